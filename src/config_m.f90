@@ -1,0 +1,112 @@
+!> Run configuration: one derived type per namelist group (SPEC section 3), defaults built
+!> into the types (the paper's values (7.1) and discretisation), and the namelist reader.
+module config_m
+    use kinds_m, only: dp
+    implicit none
+    private
+    public :: model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, material_t, config_t
+    public :: MAX_POLY_DEGREE, LEN_NAME, LEN_PATH
+
+    integer, parameter :: MAX_POLY_DEGREE = 8   !< *_poly coefficients 0..8 (constant term first)
+    integer, parameter :: LEN_NAME = 32         !< length of keyword values ('penalty', 'euler', ...)
+    integer, parameter :: LEN_PATH = 1024       !< length of path values (prefix, restart_from)
+
+    !> &model: nondimensional coefficients of (2.11); defaults are the copper values (7.1).
+    type :: model_t
+        real(dp) :: rho = 1.2298e-17_dp
+        real(dp) :: alpha = 0.0163_dp
+        real(dp) :: varpi = 0.1_dp
+        real(dp) :: gamma1 = 0.01931_dp
+        real(dp) :: gamma2 = 4.635e-4_dp
+        real(dp) :: c = 1.0136_dp
+        real(dp) :: d = 0.00251_dp
+        real(dp) :: r = 4.635e-4_dp
+        real(dp) :: hbar = 0.03058_dp
+        real(dp) :: tau0 = 0.02_dp
+        real(dp) :: tau = 0.2_dp
+    end type model_t
+
+    !> &contact: obstacle gap g and normal compliance (3.4) with penalty eps.
+    type :: contact_t
+        real(dp) :: g = 0.1_dp
+        real(dp) :: eps = 0.01_dp
+        character(len=LEN_NAME) :: law = 'penalty'
+    end type contact_t
+
+    !> &mesh: uniform partition of [0,1] into n_elements elements (h = 1/s).
+    type :: mesh_t
+        integer :: n_elements = 500
+    end type mesh_t
+
+    !> &time: implicit Euler step dt up to t_end.
+    type :: time_t
+        real(dp) :: dt = 1.0e-4_dp
+        real(dp) :: t_end = 1.0_dp
+        character(len=LEN_NAME) :: scheme = 'euler'
+        character(len=LEN_PATH) :: restart_from = ''
+    end type time_t
+
+    !> &initial: initial data (2.12) as polynomials in x plus optional steps (amp, x_end).
+    type :: initial_t
+        real(dp) :: u0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
+        real(dp) :: u1_poly(0:MAX_POLY_DEGREE) = 0.0_dp
+        real(dp) :: theta0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
+        real(dp) :: p0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
+        real(dp) :: q0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
+        real(dp) :: eta0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
+        real(dp) :: theta0_step(2) = 0.0_dp   !< (amplitude, x_end): adds amplitude on [0, x_end]
+        real(dp) :: p0_step(2) = 0.0_dp
+    end type initial_t
+
+    !> &solver: how the per-step nonlinearity (contact node) is solved.
+    type :: solver_t
+        character(len=LEN_NAME) :: method = 'monolithic'
+        real(dp) :: tol = 1.0e-7_dp
+        integer :: max_iter = 50
+    end type solver_t
+
+    !> &output: HDF5 file <prefix>.h5 and what goes into it.
+    type :: output_t
+        character(len=LEN_PATH) :: prefix = 'out/run'
+        integer :: snapshot_every = 100
+        integer :: series_every = 1
+        integer :: checkpoint_every = 0
+        logical :: quiet = .false.
+    end type output_t
+
+    !> &material (optional): physical quantities of Table 1 in SI units, from which the
+    !> &model values are computed by (2.10)-(2.11) when the group is present.
+    type :: material_t
+        logical :: present = .false.
+        real(dp) :: T0 = 293.0_dp            !< reference temperature [K]
+        real(dp) :: rho0 = 8954.0_dp         !< mass density [kg/m^3]
+        real(dp) :: cE = 383.1_dp            !< specific heat at constant strain [J/(kg K)]
+        real(dp) :: kappa = 386.0_dp         !< thermal conductivity [W/(m K)]
+        real(dp) :: lambda = 7.76e10_dp      !< Lame constant [kg/(m s^2)]
+        real(dp) :: mu = 3.86e10_dp          !< Lame constant [kg/(m s^2)]
+        real(dp) :: alpha_t = 1.78e-5_dp     !< linear thermal expansion [1/K]
+        real(dp) :: alpha_c = 1.98e-4_dp     !< linear diffusion expansion [m^3/kg]
+        real(dp) :: D = 0.85e-8_dp           !< diffusion coefficient [kg s/m^3]
+        real(dp) :: nu = 1.2e4_dp            !< thermodiffusion measure [m^2/(s^2 K)]
+        real(dp) :: varrho = 0.9e6_dp        !< diffusive effect measure [m^5/(kg s^2)]
+        real(dp) :: ell = 1.0_dp             !< rod length [m]
+        real(dp) :: tau0 = 0.0_dp            !< thermal relaxation time [s]
+        real(dp) :: tau = 0.0_dp             !< diffusion relaxation time [s]
+        real(dp) :: lambda_v = 0.0_dp        !< damping coefficient lambda' [kg/(m s)]
+        real(dp) :: mu_v = 0.0_dp            !< damping coefficient mu' [kg/(m s)]
+    end type material_t
+
+    !> The whole run configuration.
+    type :: config_t
+        type(model_t) :: model
+        type(contact_t) :: contact
+        type(mesh_t) :: mesh
+        type(time_t) :: time
+        type(initial_t) :: initial
+        type(solver_t) :: solver
+        type(output_t) :: output
+        type(material_t) :: material
+        character(len=LEN_PATH) :: source = ''   !< where the namelist came from ('-' = stdin)
+    end type config_t
+
+end module config_m

@@ -1,0 +1,28 @@
+!> Exit codes of SPEC section 2 and the one way the program stops on an error.
+module errors_m
+    use iso_fortran_env, only: error_unit
+    implicit none
+    private
+    public :: EXIT_OK, EXIT_INPUT, EXIT_NUMERIC, EXIT_OUTPUT
+    public :: fatal
+
+    integer, parameter :: EXIT_OK = 0       !< success
+    integer, parameter :: EXIT_INPUT = 2    !< bad input: file, syntax, unknown variable, out-of-range value
+    integer, parameter :: EXIT_NUMERIC = 3  !< numerical failure: non-finite value, solver failure, no convergence
+    integer, parameter :: EXIT_OUTPUT = 4   !< output failure: cannot create or write the file
+
+contains
+
+    !> Write "rodcontact: error in <where>: <message>" to stderr and stop with status `code`.
+    subroutine fatal(code, where, message)
+        integer, intent(in) :: code
+        character(len=*), intent(in) :: where
+        character(len=*), intent(in) :: message
+
+        write (error_unit, '(a)') 'rodcontact: error in '//trim(where)//': '//trim(message)
+        flush (error_unit)
+        ! plain STOP: ERROR STOP makes gfortran print a backtrace, which is noise for an input error
+        stop code, quiet=.true.
+    end subroutine fatal
+
+end module errors_m

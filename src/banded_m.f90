@@ -1,0 +1,175 @@
+!> Banded matrices in LAPACK general-band storage, factored once with dgbtrf and solved
+!> many times with dgbtrs. Every LAPACK info is decoded into a readable message.
+module banded_m
+    use kinds_m, only: dp
+    implicit none
+    private
+    public :: band_t, lapack_info_message
+
+    interface
+        subroutine dgbtrf(m, n, kl, ku, ab, ldab, ipiv, info)
+            import :: dp
+            integer, intent(in) :: m, n, kl, ku, ldab
+            real(dp), intent(inout) :: ab(ldab, *)
+            integer, intent(out) :: ipiv(*)
+            integer, intent(out) :: info
+        end subroutine dgbtrf
+        subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
+            import :: dp
+            character(len=1), intent(in) :: trans
+            integer, intent(in) :: n, kl, ku, nrhs, ldab, ldb
+            real(dp), intent(in) :: ab(ldab, *)
+            integer, intent(in) :: ipiv(*)
+            real(dp), intent(inout) :: b(ldb, *)
+            integer, intent(out) :: info
+        end subroutine dgbtrs
+    end interface
+
+    !> A general band matrix: entry (i,j), |i-j| within the band, lives at ab(kl+ku+1+i-j, j);
+    !> the first kl rows of ab are room for the fill-in of the LU factorisation.
+    type :: band_t
+        integer :: n = 0
+        integer :: kl = 0
+        integer :: ku = 0
+        real(dp), allocatable :: ab(:, :)
+        integer, allocatable :: ipiv(:)
+        logical :: factored = .false.
+    contains
+        procedure :: init => band_init
+        procedure :: zero => band_zero
+        procedure :: add => band_add
+        procedure :: get => band_get
+        procedure :: set_identity_row => band_set_identity_row
+        procedure :: matvec => band_matvec
+        procedure :: to_dense => band_to_dense
+        procedure :: factor => band_factor
+        procedure :: solve => band_solve
+    end type band_t
+
+contains
+
+    !> Allocate an n x n band matrix with kl sub- and ku super-diagonals, all zero.
+    subroutine band_init(self, n, kl, ku)
+        class(band_t), intent(inout) :: self
+        integer, intent(in) :: n, kl, ku
+
+        self%n = n
+        self%kl = kl
+        self%ku = ku
+        if (allocated(self%ab)) deallocate (self%ab)
+        if (allocated(self%ipiv)) deallocate (self%ipiv)
+        allocate (self%ab(2 * kl + ku + 1, n), self%ipiv(n))
+        call self%zero()
+    end subroutine band_init
+
+    subroutine band_zero(self)
+        class(band_t), intent(inout) :: self
+
+        self%ab = 0.0_dp
+        self%ipiv = 0
+        self%factored = .false.
+    end subroutine band_zero
+
+    !> A(i,j) += value. An entry outside the band is a programming error.
+    subroutine band_add(self, i, j, value)
+        class(band_t), intent(inout) :: self
+        integer, intent(in) :: i, j
+        real(dp), intent(in) :: value
+
+        if (j - i > self%ku .or. i - j > self%kl) error stop 'band_add: entry outside the band'
+        self%ab(self%kl + self%ku + 1 + i - j, j) = self%ab(self%kl + self%ku + 1 + i - j, j) + value
+    end subroutine band_add
+
+    !> A(i,j) (zero outside the band); only meaningful before factor().
+    pure function band_get(self, i, j) result(value)
+        class(band_t), intent(in) :: self
+        integer, intent(in) :: i, j
+        real(dp) :: value
+
+        value = 0.0_dp
+        if (j - i <= self%ku .and. i - j <= self%kl) value = self%ab(self%kl + self%ku + 1 + i - j, j)
+    end function band_get
+
+    !> Replace row i by the identity row (a Dirichlet unknown) and clear column i.
+    subroutine band_set_identity_row(self, i)
+        class(band_t), intent(inout) :: self
+        integer, intent(in) :: i
+        integer :: j
+
+        do j = max(1, i - self%kl), min(self%n, i + self%ku)
+            self%ab(self%kl + self%ku + 1 + i - j, j) = 0.0_dp
+        end do
+        do j = max(1, i - self%ku), min(self%n, i + self%kl)
+            self%ab(self%kl + self%ku + 1 + j - i, i) = 0.0_dp
+        end do
+        self%ab(self%kl + self%ku + 1, i) = 1.0_dp
+    end subroutine band_set_identity_row
+
+    !> y = A x; only meaningful before factor().
+    pure function band_matvec(self, x) result(y)
+        class(band_t), intent(in) :: self
+        real(dp), intent(in) :: x(:)
+        real(dp) :: y(self%n)
+        integer :: i, j
+
+        y = 0.0_dp
+        do j = 1, self%n
+            do i = max(1, j - self%ku), min(self%n, j + self%kl)
+                y(i) = y(i) + self%ab(self%kl + self%ku + 1 + i - j, j) * x(j)
+            end do
+        end do
+    end function band_matvec
+
+    !> The dense n x n matrix; only meaningful before factor().
+    pure function band_to_dense(self) result(a)
+        class(band_t), intent(in) :: self
+        real(dp) :: a(self%n, self%n)
+        integer :: i, j
+
+        a = 0.0_dp
+        do j = 1, self%n
+            do i = max(1, j - self%ku), min(self%n, j + self%kl)
+                a(i, j) = self%ab(self%kl + self%ku + 1 + i - j, j)
+            end do
+        end do
+    end function band_to_dense
+
+    !> LU factorisation in place (dgbtrf); info as LAPACK's, decoded by lapack_info_message.
+    subroutine band_factor(self, info)
+        class(band_t), intent(inout) :: self
+        integer, intent(out) :: info
+
+        call dgbtrf(self%n, self%n, self%kl, self%ku, self%ab, size(self%ab, 1), self%ipiv, info)
+        self%factored = info == 0
+    end subroutine band_factor
+
+    !> Solve A x = b in place (dgbtrs) with the factors of factor(). No allocation: this is
+    !> called every time step.
+    subroutine band_solve(self, b, info)
+        class(band_t), intent(in) :: self
+        real(dp), intent(inout) :: b(:)
+        integer, intent(out) :: info
+
+        if (.not. self%factored) error stop 'band_solve: matrix not factored'
+        call dgbtrs('N', self%n, self%kl, self%ku, 1, self%ab, size(self%ab, 1), self%ipiv, b, self%n, info)
+    end subroutine band_solve
+
+    !> A readable message for a LAPACK info value of routine ('dgbtrf', 'dgbtrs').
+    function lapack_info_message(routine, info) result(message)
+        character(len=*), intent(in) :: routine
+        integer, intent(in) :: info
+        character(len=:), allocatable :: message
+        character(len=32) :: buf
+
+        write (buf, '(i0)') abs(info)
+        if (info == 0) then
+            message = routine//': success'
+        else if (info < 0) then
+            message = routine//': argument '//trim(buf)//' had an illegal value (a bug in rodcontact)'
+        else
+            message = routine//': the matrix is singular: U('//trim(buf)//','//trim(buf)// &
+                      ') is exactly zero in the LU factorisation'
+        end if
+    end function lapack_info_message
+
+end module banded_m

@@ -1,0 +1,66 @@
+!> The discrete energy of Corollary 6.2 and the contact diagnostics of SPEC section 4.
+module energy_m
+    use kinds_m, only: dp
+    use config_m, only: model_t
+    use scheme_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
+    implicit none
+    private
+    public :: discrete_energy, penetration, mass_product, stiffness_product
+
+contains
+
+    !> E^n = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
+    !>       + tau hbar eta^2) dx + 1/(2 eps) [u(1) - g]_+^2, integrals exact for P1 functions.
+    pure function discrete_energy(model, eps, g, u, w) result(energy)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: eps, g
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: w(0:, :)
+        real(dp) :: energy
+
+        energy = 0.5_dp * (model%rho * mass_product(w(:, F_V), w(:, F_V)) &
+                           + model%alpha * stiffness_product(u, u) &
+                           + model%c * mass_product(w(:, F_THETA), w(:, F_THETA)) &
+                           + model%r * mass_product(w(:, F_P), w(:, F_P)) &
+                           + 2.0_dp * model%d * mass_product(w(:, F_P), w(:, F_THETA)) &
+                           + model%tau0 * mass_product(w(:, F_Q), w(:, F_Q)) &
+                           + model%tau * model%hbar * mass_product(w(:, F_ETA), w(:, F_ETA))) &
+                 + 0.5_dp / eps * penetration(u, g)**2
+    end function discrete_energy
+
+    !> [u(1) - g]_+, the penetration into the obstacle.
+    pure real(dp) function penetration(u, g)
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: g
+
+        penetration = max(u(ubound(u, 1)) - g, 0.0_dp)
+    end function penetration
+
+    !> int a b dx for P1 functions a, b given by nodal values 0..s on the uniform mesh.
+    pure real(dp) function mass_product(a, b)
+        real(dp), intent(in) :: a(0:), b(0:)
+        integer :: e, s
+
+        s = ubound(a, 1)
+        mass_product = 0.0_dp
+        do e = 1, s
+            mass_product = mass_product + 2.0_dp * a(e - 1) * b(e - 1) + a(e - 1) * b(e) &
+                           + a(e) * b(e - 1) + 2.0_dp * a(e) * b(e)
+        end do
+        mass_product = mass_product / (6.0_dp * real(s, dp))
+    end function mass_product
+
+    !> int a_x b_x dx for P1 functions a, b given by nodal values 0..s on the uniform mesh.
+    pure real(dp) function stiffness_product(a, b)
+        real(dp), intent(in) :: a(0:), b(0:)
+        integer :: e, s
+
+        s = ubound(a, 1)
+        stiffness_product = 0.0_dp
+        do e = 1, s
+            stiffness_product = stiffness_product + (a(e) - a(e - 1)) * (b(e) - b(e - 1))
+        end do
+        stiffness_product = stiffness_product * real(s, dp)
+    end function stiffness_product
+
+end module energy_m

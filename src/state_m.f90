@@ -1,0 +1,50 @@
+!> The discrete state at one time level: (u, v, theta, P, q, eta) at the nodes 0..s.
+module state_m
+    use kinds_m, only: dp
+    use config_m, only: config_t
+    use fe_m, only: mesh_nodes
+    use initial_data_m, only: profile
+    use scheme_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    implicit none
+    private
+    public :: state_t, initial_state
+
+    type :: state_t
+        integer :: s = 0                !< number of elements
+        integer :: step = 0             !< n, the time level
+        real(dp) :: t = 0.0_dp          !< t_n = n dt
+        real(dp), allocatable :: u(:)       !< u_h^n(x_i), i = 0..s
+        real(dp), allocatable :: w(:, :)    !< w(i, f): field f (scheme_m's F_*) at node i
+    end type state_t
+
+contains
+
+    !> The state at t = 0: nodal interpolants of the initial data (2.12), with the boundary
+    !> values of the spaces S_h, V_h imposed (validation has checked that the data satisfy
+    !> them, so this only removes round-off).
+    subroutine initial_state(cfg, state)
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(out) :: state
+        real(dp), allocatable :: x(:)
+        integer :: s, i, f
+
+        s = cfg%mesh%n_elements
+        state%s = s
+        allocate (state%u(0:s), state%w(0:s, N_FIELDS))
+        x = mesh_nodes(s)
+        do i = 0, s
+            state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
+            state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
+            state%w(i, F_THETA) = profile(poly=cfg%initial%theta0_poly, step=cfg%initial%theta0_step, x=x(i))
+            state%w(i, F_P) = profile(poly=cfg%initial%p0_poly, step=cfg%initial%p0_step, x=x(i))
+            state%w(i, F_Q) = profile(poly=cfg%initial%q0_poly, x=x(i))
+            state%w(i, F_ETA) = profile(poly=cfg%initial%eta0_poly, x=x(i))
+        end do
+        state%u(0) = 0.0_dp
+        do f = 1, N_FIELDS
+            if (is_dirichlet(f, 0, s)) state%w(0, f) = 0.0_dp
+            if (is_dirichlet(f, s, s)) state%w(s, f) = 0.0_dp
+        end do
+    end subroutine initial_state
+
+end module state_m

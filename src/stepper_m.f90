@@ -1,0 +1,212 @@
+!> One time step of (6.1) by either solution method of SPEC section 1.
+!>
+!> 'monolithic': all five fields in one band (nodes interleaved, kl = ku = 7), factored once.
+!>   The contact term (dt/eps)[u^{n-1}(1) + dt v_s - g]_+ acts on one unknown (v at x=1),
+!>   so with y = A^{-1} b and z = A^{-1} e_s (computed once) the solution is x = y - f z with
+!>   the scalar contact force f solving f = (dt/eps)[a - dt z_s f]_+, a = u^{n-1}(1) + dt y_s - g.
+!>   z_s = e_s^T A^{-1} e_s > 0 because the symmetric part of A is positive definite (Theorem
+!>   6.1), so the semismooth equation has the closed-form root f = 0 if a <= 0, else
+!>   f = dt a / (eps + dt^2 z_s): the active-set step is exact, one dgbtrs per time step.
+!> 'paper': the Section 7 iteration: thermal block (q, theta, P, eta) with the velocity of
+!>   the previous iterate, then the mechanical block with the new theta, P and the lagged
+!>   penalty, until the largest change of any nodal value is <= tol * max(1, max |value|).
+module stepper_m
+    use kinds_m, only: dp
+    use ieee_arithmetic, only: ieee_is_finite
+    use config_m, only: config_t, model_t
+    use banded_m, only: band_t, lapack_info_message
+    use scheme_m, only: N_FIELDS, F_V, MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, &
+                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields
+    use state_m, only: state_t
+    implicit none
+    private
+    public :: stepper_t, step_result_t
+
+    integer, parameter :: METHOD_MONOLITHIC = 1, METHOD_PAPER = 2
+
+    !> What one step did; ok = .false. with a message on a numerical failure.
+    type :: step_result_t
+        logical :: ok = .true.
+        character(len=256) :: message = ''
+        integer :: iterations = 0        !< linear solves of the step (paper: iterations)
+        logical :: in_contact = .false.  !< u^n(1) > g after the step
+    end type step_result_t
+
+    type :: stepper_t
+        type(model_t) :: model
+        real(dp) :: dt = 0.0_dp, eps = 0.0_dp, g = 0.0_dp, tol = 0.0_dp
+        integer :: s = 0, method = METHOD_MONOLITHIC, max_iter = 0
+        type(band_t) :: a              !< monolithic matrix, factored
+        real(dp), allocatable :: z(:)  !< A^{-1} e_s, the response to a unit contact force
+        integer :: contact_dof = 0     !< row of the v equation at x = 1
+        type(band_t) :: thermal        !< paper: (q, theta, P, eta) block, factored
+        type(band_t) :: mechanical     !< paper: v block, factored
+        ! work arrays, allocated once
+        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
+        ! counters for the output attributes
+        integer(kind=8) :: n_solves = 0, n_contact_steps = 0
+    contains
+        procedure :: init => stepper_init
+        procedure :: advance => stepper_advance
+    end type stepper_t
+
+contains
+
+    !> Assemble and factor the matrices of the chosen method. A singular matrix (impossible
+    !> for valid input) is reported through result.
+    subroutine stepper_init(self, cfg, result)
+        class(stepper_t), intent(out) :: self
+        type(config_t), intent(in) :: cfg
+        type(step_result_t), intent(out) :: result
+        integer :: s, info
+
+        self%model = cfg%model
+        self%dt = cfg%time%dt
+        self%eps = cfg%contact%eps
+        self%g = cfg%contact%g
+        self%tol = cfg%solver%tol
+        self%max_iter = cfg%solver%max_iter
+        self%s = cfg%mesh%n_elements
+        s = self%s
+        allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
+                  self%w_new(0:s, N_FIELDS), &
+                  self%u_lag(0:s), self%work(0:s))
+        select case (trim(cfg%solver%method))
+        case ('paper')
+            self%method = METHOD_PAPER
+            call assemble_matrix(self%model, s, self%dt, THERMAL_SLOTS, self%thermal)
+            call self%thermal%factor(info)
+            if (info /= 0) call fail(result, 'thermal block: '//lapack_info_message('dgbtrf', info))
+            call assemble_matrix(self%model, s, self%dt, MECHANICAL_SLOTS, self%mechanical)
+            call self%mechanical%factor(info)
+            if (info /= 0) call fail(result, 'mechanical block: '//lapack_info_message('dgbtrf', info))
+            allocate (self%xt(self%thermal%n), self%x(self%mechanical%n))
+        case default
+            self%method = METHOD_MONOLITHIC
+            call assemble_matrix(self%model, s, self%dt, MONOLITHIC_SLOTS, self%a)
+            call self%a%factor(info)
+            if (info /= 0) then
+                call fail(result, lapack_info_message('dgbtrf', info))
+                return
+            end if
+            self%contact_dof = N_FIELDS * s + MONOLITHIC_SLOTS(F_V)
+            allocate (self%x(self%a%n), self%z(self%a%n))
+            self%z = 0.0_dp
+            self%z(self%contact_dof) = 1.0_dp
+            call self%a%solve(self%z, info)
+            if (info /= 0) call fail(result, lapack_info_message('dgbtrs', info))
+            if (.not. (self%z(self%contact_dof) > 0.0_dp)) &
+                call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+        end select
+    end subroutine stepper_init
+
+    !> Advance state from t_{n-1} to t_n. On failure the state is left unchanged.
+    subroutine stepper_advance(self, state, result)
+        class(stepper_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(step_result_t), intent(out) :: result
+
+        call old_state_rhs(self%model, self%dt, state%u, state%w, self%b_old, self%work)
+        select case (self%method)
+        case (METHOD_PAPER)
+            call advance_paper(self, state, result)
+        case default
+            call advance_monolithic(self, state, result)
+        end select
+        if (.not. result%ok) return
+        state%step = state%step + 1
+        state%t = real(state%step, dp) * self%dt
+        result%in_contact = state%u(self%s) > self%g
+        if (result%in_contact) self%n_contact_steps = self%n_contact_steps + 1
+        self%n_solves = self%n_solves + result%iterations
+    end subroutine stepper_advance
+
+    subroutine advance_monolithic(self, state, result)
+        type(stepper_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(step_result_t), intent(inout) :: result
+        integer :: info
+        real(dp) :: gap, force
+
+        call scatter_fields(MONOLITHIC_SLOTS, self%b_old, self%x)
+        call self%a%solve(self%x, info)
+        result%iterations = 1
+        if (info /= 0) then
+            call fail(result, lapack_info_message('dgbtrs', info))
+            return
+        end if
+        ! trial gap without contact force; active set {x = 1} iff it is positive
+        gap = state%u(self%s) + self%dt * self%x(self%contact_dof) - self%g
+        if (gap > 0.0_dp) then
+            force = self%dt * gap / (self%eps + self%dt**2 * self%z(self%contact_dof))
+            self%x = self%x - force * self%z
+        end if
+        if (.not. all(ieee_is_finite(self%x))) then
+            call fail(result, 'non-finite value in the solution')
+            return
+        end if
+        call gather_fields(MONOLITHIC_SLOTS, self%x, state%w)
+        state%u = state%u + self%dt * state%w(:, F_V)
+    end subroutine advance_monolithic
+
+    subroutine advance_paper(self, state, result)
+        type(stepper_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(step_result_t), intent(inout) :: result
+        integer :: l, info, s
+        real(dp) :: change, scale
+
+        s = self%s
+        self%w_lag = state%w                 ! iterate l-1 (l = 0: the previous time level)
+        self%u_lag = state%u
+        do l = 1, self%max_iter
+            ! thermal block with the lagged velocity
+            self%b = self%b_old
+            call add_lagged_coupling(self%model, self%dt, THERMAL_SLOTS, self%w_lag, self%b, self%work)
+            call scatter_fields(THERMAL_SLOTS, self%b, self%xt)
+            call self%thermal%solve(self%xt, info)
+            if (info /= 0) then
+                call fail(result, 'thermal block: '//lapack_info_message('dgbtrs', info))
+                return
+            end if
+            call gather_fields(THERMAL_SLOTS, self%xt, self%w_new)
+            ! mechanical block with the new theta, P and the lagged penalty
+            self%b(:, F_V) = self%b_old(:, F_V)
+            call add_lagged_coupling(self%model, self%dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work)
+            self%b(s, F_V) = self%b(s, F_V) - self%dt / self%eps * max(self%u_lag(s) - self%g, 0.0_dp)
+            self%x = self%b(:, F_V)
+            call self%mechanical%solve(self%x, info)
+            if (info /= 0) then
+                call fail(result, 'mechanical block: '//lapack_info_message('dgbtrs', info))
+                return
+            end if
+            self%w_new(:, F_V) = self%x
+            result%iterations = l
+            if (.not. all(ieee_is_finite(self%w_new))) then
+                call fail(result, 'non-finite value in the solution')
+                return
+            end if
+            change = maxval(abs(self%w_new - self%w_lag))
+            scale = max(1.0_dp, maxval(abs(self%w_new)))
+            self%w_lag = self%w_new
+            self%u_lag = state%u + self%dt * self%w_new(:, F_V)
+            if (change <= self%tol * scale) then
+                state%w = self%w_lag
+                state%u = self%u_lag
+                return
+            end if
+        end do
+        write (result%message, '(a,i0,a,es10.3,a,es10.3)') 'paper iteration did not converge in ', &
+            self%max_iter, ' iterations: last change ', change, ' > tol*scale = ', self%tol * scale
+        result%ok = .false.
+    end subroutine advance_paper
+
+    subroutine fail(result, message)
+        type(step_result_t), intent(inout) :: result
+        character(len=*), intent(in) :: message
+
+        result%ok = .false.
+        result%message = message
+    end subroutine fail
+
+end module stepper_m

@@ -1,0 +1,66 @@
+!> band_t: storage, factor/solve with dgbtrf/dgbtrs against a dense solve (dgesv) of the
+!> same matrix, identity rows, and a singular matrix reported through info.
+program test_banded_m
+    use kinds_m, only: dp
+    use banded_m, only: band_t, lapack_info_message
+    use testing_m, only: check_close, check_true, test_summary
+    implicit none
+    interface
+        subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+            import :: dp
+            integer, intent(in) :: n, nrhs, lda, ldb
+            real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+            integer, intent(out) :: ipiv(*), info
+        end subroutine dgesv
+    end interface
+    integer, parameter :: n = 23, kl = 3, ku = 5
+    type(band_t) :: a
+    real(dp) :: dense(n, n), b(n), x(n), r
+    integer :: i, j, info, ipiv(n)
+    character(len=64) :: name
+
+    call a%init(n, kl, ku)
+    ! a nonsymmetric band matrix needing pivoting (small diagonal)
+    do j = 1, n
+        do i = max(1, j - ku), min(n, j + kl)
+            call random_number(r)
+            call a%add(i, j, r - 0.5_dp)
+        end do
+        call a%add(j, j, 1.0e-3_dp)
+    end do
+    call a%set_identity_row(7)
+    dense = a%to_dense()
+    call check_close('identity row diagonal', 1.0_dp, dense(7, 7), 0.0_dp)
+    call check_close('identity row off-diagonal', 0.0_dp, sum(abs(dense(7, :))) - 1.0_dp, 0.0_dp)
+    call check_close('identity column', 0.0_dp, sum(abs(dense(:, 7))) - 1.0_dp, 0.0_dp)
+    call check_close('get = dense', dense(5, 8), a%get(5, 8), 0.0_dp)
+    call check_close('outside band is zero', 0.0_dp, a%get(1, n), 0.0_dp)
+    do i = 1, n
+        b(i) = sin(real(i, dp))
+    end do
+    x = a%matvec(b)
+    call check_close('matvec = dense product', maxval(abs(matmul(dense, b))), maxval(abs(x)), 1e-14_dp)
+
+    x = b
+    call dgesv(n, 1, dense, n, ipiv, x, n, info)
+    call check_true('dgesv succeeded', info == 0)
+    call a%factor(info)
+    call check_true('dgbtrf succeeded', info == 0, lapack_info_message('dgbtrf', info))
+    call a%solve(b, info)
+    call check_true('dgbtrs succeeded', info == 0)
+    do i = 1, n
+        write (name, '(a,i0)') 'banded solve = dense solve, entry ', i
+        call check_close(trim(name), x(i), b(i), 1e-10_dp * max(1.0_dp, abs(x(i))))
+    end do
+
+    ! a singular matrix (zero column) must be reported, not solved
+    call a%init(4, 1, 1)
+    call a%add(1, 1, 1.0_dp)
+    call a%add(2, 1, 1.0_dp)
+    call a%add(3, 3, 1.0_dp)
+    call a%add(4, 4, 1.0_dp)
+    call a%factor(info)
+    call check_true('singular matrix: info > 0', info > 0)
+    call check_true('singular matrix message', index(lapack_info_message('dgbtrf', info), 'singular') > 0)
+    call test_summary('test_banded_m')
+end program test_banded_m

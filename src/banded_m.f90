@@ -33,6 +33,7 @@ module banded_m
         integer :: ku = 0
         real(dp), allocatable :: ab(:, :)
         integer, allocatable :: ipiv(:)
+        real(dp), allocatable :: inv_diag(:)   !< 1 / U(j,j), so that the solve multiplies
         logical :: factored = .false.
     contains
         procedure :: init => band_init
@@ -44,6 +45,7 @@ module banded_m
         procedure :: to_dense => band_to_dense
         procedure :: factor => band_factor
         procedure :: solve => band_solve
+        procedure :: solve_lapack => band_solve_lapack
     end type band_t
 
 contains
@@ -141,18 +143,61 @@ contains
 
         call dgbtrf(self%n, self%n, self%kl, self%ku, self%ab, size(self%ab, 1), self%ipiv, info)
         self%factored = info == 0
+        if (self%factored) self%inv_diag = 1.0_dp / self%ab(self%kl + self%ku + 1, :)
     end subroutine band_factor
 
-    !> Solve A x = b in place (dgbtrs) with the factors of factor(). No allocation: this is
-    !> called every time step.
+    !> Solve A x = b in place with the factors of factor(): forward substitution with L and the
+    !> row interchanges, back substitution with the band of U, exactly the operations of
+    !> LAPACK's dgbtrs ('N', one right-hand side) on the same factors, written as plain loops.
+    !> Why not dgbtrs itself: it makes one BLAS call per column (dswap, dger of length kl),
+    !> and for our kl = ku = 7 that call overhead, not arithmetic, dominates; with OpenBLAS
+    !> it is worse. No allocation: called every time step. info = 0 always (kept for the
+    !> same interface as solve_lapack).
     subroutine band_solve(self, b, info)
         class(band_t), intent(in) :: self
         real(dp), intent(inout) :: b(:)
         integer, intent(out) :: info
+        integer :: j, i, jp, lm, kd, ku_u
+        real(dp) :: temp
 
         if (.not. self%factored) error stop 'band_solve: matrix not factored'
-        call dgbtrs('N', self%n, self%kl, self%ku, 1, self%ab, size(self%ab, 1), self%ipiv, b, self%n, info)
+        kd = self%kl + self%ku + 1         ! row of the diagonal in ab
+        ku_u = self%kl + self%ku           ! super-diagonals of U after pivoting
+        ! L y = P b: column j of L (unit diagonal) holds the multipliers in rows kd+1..kd+lm
+        do j = 1, self%n - 1
+            lm = min(self%kl, self%n - j)
+            jp = self%ipiv(j)
+            temp = b(jp)
+            if (jp /= j) then
+                b(jp) = b(j)
+                b(j) = temp
+            end if
+            do i = 1, lm
+                b(j + i) = b(j + i) - self%ab(kd + i, j) * temp
+            end do
+        end do
+        ! U x = y, U upper triangular with ku_u super-diagonals: ab(kd + i - j, j) = U(i, j).
+        ! Multiplying by the stored reciprocal keeps a division off the critical path: each
+        ! column waits for the previous one, so the solve is latency-bound, not flop-bound.
+        do j = self%n, 1, -1
+            b(j) = b(j) * self%inv_diag(j)
+            temp = b(j)
+            do i = max(1, j - ku_u), j - 1
+                b(i) = b(i) - self%ab(kd + i - j, j) * temp
+            end do
+        end do
+        info = 0
     end subroutine band_solve
+
+    !> The same solve through LAPACK's dgbtrs (reference for tests and benchmarks).
+    subroutine band_solve_lapack(self, b, info)
+        class(band_t), intent(in) :: self
+        real(dp), intent(inout) :: b(:)
+        integer, intent(out) :: info
+
+        if (.not. self%factored) error stop 'band_solve_lapack: matrix not factored'
+        call dgbtrs('N', self%n, self%kl, self%ku, 1, self%ab, size(self%ab, 1), self%ipiv, b, self%n, info)
+    end subroutine band_solve_lapack
 
     !> A readable message for a LAPACK info value of routine ('dgbtrf', 'dgbtrs').
     function lapack_info_message(routine, info) result(message)

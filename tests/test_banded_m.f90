@@ -15,7 +15,7 @@ program test_banded_m
     end interface
     integer, parameter :: n = 23, kl = 3, ku = 5
     type(band_t) :: a
-    real(dp) :: dense(n, n), b(n), x(n), r
+    real(dp) :: dense(n, n), b(n), x(n), y(n), r
     integer :: i, j, info, ipiv(n)
     character(len=64) :: name
 
@@ -46,11 +46,18 @@ program test_banded_m
     call check_true('dgesv succeeded', info == 0)
     call a%factor(info)
     call check_true('dgbtrf succeeded', info == 0, lapack_info_message('dgbtrf', info))
-    call a%solve(b, info)
+    y = b
+    call a%solve_lapack(y, info)
     call check_true('dgbtrs succeeded', info == 0)
+    call a%solve(b, info)
+    call check_true('band solve succeeded', info == 0)
     do i = 1, n
         write (name, '(a,i0)') 'banded solve = dense solve, entry ', i
         call check_close(trim(name), x(i), b(i), 1e-10_dp * max(1.0_dp, abs(x(i))))
+        write (name, '(a,i0)') 'dgbtrs = dense solve, entry ', i
+        call check_close(trim(name), x(i), y(i), 1e-10_dp * max(1.0_dp, abs(x(i))))
+        write (name, '(a,i0)') 'banded solve = dgbtrs to round-off, entry ', i
+        call check_close(trim(name), y(i), b(i), 1e-13_dp * max(1.0_dp, abs(x(i))))
     end do
 
     ! a singular matrix (zero column) must be reported, not solved

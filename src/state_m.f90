@@ -30,8 +30,8 @@ contains
 
         s = cfg%mesh%n_elements
         state%s = s
-        allocate (state%u(0:s), state%w(0:s, N_FIELDS))
-        x = mesh_nodes(s)
+        allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s))
+        x = mesh_nodes(s)            ! x is allocated first so that it keeps the bounds 0:s
         do i = 0, s
             state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
             state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))

@@ -1,0 +1,100 @@
+#!/usr/bin/env bash
+# Make sure the Debian packages rodcontact needs are installed, then configure and
+# build it. Called by scripts/run.sh and scripts/test.sh; safe to call directly, from
+# any directory, as often as you like: when everything is present and up to date it
+# prints nothing.
+#
+#   scripts/setup.sh                    # Release build in <repo>/build
+#   BUILD_TYPE=Debug BUILD_DIR=build-debug scripts/setup.sh
+#
+# Environment: BUILD_TYPE (default Release), BUILD_DIR (default build; relative paths
+# are taken from the repository root), JOBS (parallel build jobs, default 2).
+# Exit status: 0 ready; 1 missing packages that could not be installed, or the
+# configure/build failed.
+
+set -euo pipefail
+
+REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
+                   gnuplot-nox python3-h5py python3-numpy python3-matplotlib)
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$repo_root"
+
+build_type="${BUILD_TYPE:-Release}"
+build_dir="${BUILD_DIR:-build}"
+[[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
+jobs="${JOBS:-2}"
+
+say() { echo "setup: $*" >&2; }
+
+# --- 1. Debian packages --------------------------------------------------------------
+missing=()
+if command -v dpkg-query >/dev/null 2>&1; then
+    for pkg in "${REQUIRED_PACKAGES[@]}"; do
+        status="$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)"
+        if [[ "$status" != "install ok installed" ]]; then
+            missing+=("$pkg")
+        fi
+    done
+else
+    say "dpkg-query not found (not Debian/Ubuntu?): not checking packages."
+    say "rodcontact needs: a Fortran compiler, CMake >= 3.20, make, LAPACK/BLAS, HDF5 with Fortran bindings."
+fi
+
+if ((${#missing[@]} > 0)); then
+    install_cmd="apt-get install -y ${missing[*]}"
+    say "missing Debian packages: ${missing[*]}"
+    sudo_cmd=()
+    if [[ "$(id -u)" -ne 0 ]]; then
+        if command -v sudo >/dev/null 2>&1; then
+            sudo_cmd=(sudo)
+        else
+            say "not root and no sudo: cannot install them. Run as root:"
+            echo "    apt-get update && $install_cmd" >&2
+            exit 1
+        fi
+    fi
+    say "installing${sudo_cmd[*]:+ with sudo}: apt-get update && $install_cmd"
+    if ! { "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q &&
+           "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}"; }; then
+        say "package installation failed. Install them yourself, as root:"
+        echo "    apt-get update && $install_cmd" >&2
+        exit 1
+    fi
+    say "packages installed."
+fi
+
+# --- 2. configure ----------------------------------------------------------------------
+# Configure when there is no complete configuration yet (none, or an earlier one that
+# failed), when it was made for another build type, or when packages were just installed.
+cache="$build_dir/CMakeCache.txt"
+cached_type=""
+if [[ -f "$cache" ]]; then
+    cached_type="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$cache")"
+fi
+if [[ ! -f "$cache" || "$cached_type" != "$build_type" || ${#missing[@]} -gt 0 ||
+      ( ! -f "$build_dir/Makefile" && ! -f "$build_dir/build.ninja" ) ]]; then
+    say "configuring $build_type build in $build_dir/"
+    mkdir -p "$build_dir"
+    log="$build_dir/setup-configure.log"
+    if ! cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" >"$log" 2>&1; then
+        cat "$log" >&2
+        say "configure failed (log: $log)"
+        exit 1
+    fi
+fi
+
+# --- 3. build --------------------------------------------------------------------------
+# The build log is kept out of sight unless something was rebuilt or it failed.
+log="$build_dir/setup-build.log"
+if ! cmake --build "$build_dir" -j "$jobs" >"$log" 2>&1; then
+    cat "$log" >&2
+    say "build failed (log: $log)"
+    exit 1
+fi
+if grep -q -E 'Building|Linking' "$log"; then
+    say "built $build_type in $build_dir/"
+fi
+if grep -q -i 'warning' "$log"; then
+    say "the build printed warnings: see $log"
+fi

@@ -1,0 +1,438 @@
+!> Small reader for rodcontact HDF5 files (SPEC section 4): whole datasets and root
+!> attributes, one call each (the file is opened and closed every time). Used by the tests,
+!> and by restart and summary tools. Also owns the once-only HDF5 library start-up shared
+!> with the writer (output_m).
+!>
+!> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) comes back as
+!> values(s+1, n_snap), i.e. values(:, k) is snapshot k.
+module h5_read_m
+    use iso_c_binding, only: c_ptr, c_char, c_int, c_size_t, c_loc, c_f_pointer, c_associated
+    use kinds_m, only: dp
+    use errors_m, only: fatal, EXIT_OUTPUT
+    use fsys_m, only: file_exists
+    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
+                    H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
+                    h5sclose_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
+                    h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, h5aread_f, &
+                    h5aexists_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tcopy_f, &
+                    h5tget_class_f, h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, &
+                    H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, h5lexists_f, h5oopen_f, h5oclose_f, &
+                    h5iget_type_f, H5I_DATASET_F
+    implicit none
+    private
+    public :: h5_library_init
+    public :: read_real_1d, read_real_2d, read_int_1d
+    public :: read_attr_str, read_attr_real, read_attr_int, read_attr_real_1d
+    public :: dataset_exists, attr_exists
+
+    !> The HDF5 library is started once per process; this flag is the only module state.
+    logical, save :: library_open = .false.
+
+    interface
+        ! frees the strings HDF5 allocated when reading a variable-length string
+        function c_h5free_memory(mem) bind(C, name='H5free_memory') result(rc)
+            import :: c_ptr, c_int
+            type(c_ptr), value, intent(in) :: mem
+            integer(c_int) :: rc
+        end function c_h5free_memory
+
+        function c_strlen(text) bind(C, name='strlen') result(n)
+            import :: c_ptr, c_size_t
+            type(c_ptr), value, intent(in) :: text
+            integer(c_size_t) :: n
+        end function c_strlen
+    end interface
+
+contains
+
+    !> Start the HDF5 library (once). HDF5's automatic error-stack printing is switched off:
+    !> every call's error flag is checked here and in output_m and reported with the file and
+    !> operation, so the stack dump would only be noise on stderr. Set RODCONTACT_HDF5_ERRORS=1
+    !> to keep it on when debugging. The library is never closed explicitly: HDF5 shuts
+    !> itself down at exit, and an h5close_f while another reader or writer is open would
+    !> invalidate its identifiers.
+    subroutine h5_library_init()
+        integer :: hdferr, env_len, env_status
+        character(len=8) :: env_value
+
+        if (library_open) return
+        call h5open_f(hdferr)
+        if (hdferr < 0) call fatal(EXIT_OUTPUT, 'hdf5', 'cannot initialise the HDF5 library (h5open_f)')
+        call get_environment_variable('RODCONTACT_HDF5_ERRORS', env_value, env_len, env_status)
+        if (env_status /= 0 .or. env_value /= '1') then
+            call h5eset_auto_f(0, hdferr)
+            if (hdferr < 0) call fatal(EXIT_OUTPUT, 'hdf5', 'cannot configure HDF5 error printing (h5eset_auto_f)')
+        end if
+        library_open = .true.
+    end subroutine h5_library_init
+
+    !> Whole 1D float dataset `dset` (e.g. '/series/t') of `file`.
+    subroutine read_real_1d(file, dset, values)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        real(dp), allocatable, intent(out) :: values(:)
+
+        integer(hid_t) :: file_id, dset_id
+        integer(hsize_t) :: dims(1)
+        integer :: hdferr
+
+        call open_dataset(file, dset, 1, file_id, dset_id, dims)
+        allocate (values(dims(1)))
+        if (dims(1) > 0) then
+            call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+            if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
+        end if
+        call close_dataset(file, dset, file_id, dset_id)
+    end subroutine read_real_1d
+
+    !> Whole 2D float dataset: values(s+1, n_snap) for what h5py shows as (n_snap, s+1).
+    subroutine read_real_2d(file, dset, values)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        real(dp), allocatable, intent(out) :: values(:, :)
+
+        integer(hid_t) :: file_id, dset_id
+        integer(hsize_t) :: dims(2)
+        integer :: hdferr
+
+        call open_dataset(file, dset, 2, file_id, dset_id, dims)
+        allocate (values(dims(1), dims(2)))
+        if (size(values) > 0) then
+            call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+            if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
+        end if
+        call close_dataset(file, dset, file_id, dset_id)
+    end subroutine read_real_2d
+
+    !> Whole 1D integer dataset (e.g. '/series/iterations'), converted to default integer.
+    subroutine read_int_1d(file, dset, values)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        integer, allocatable, intent(out) :: values(:)
+
+        integer(hid_t) :: file_id, dset_id
+        integer(hsize_t) :: dims(1)
+        integer :: hdferr
+
+        call open_dataset(file, dset, 1, file_id, dset_id, dims)
+        allocate (values(dims(1)))
+        if (dims(1) > 0) then
+            call h5dread_f(dset_id, H5T_NATIVE_INTEGER, values, dims, hdferr)
+            if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
+        end if
+        call close_dataset(file, dset, file_id, dset_id)
+    end subroutine read_int_1d
+
+    !> True when `dset` exists in `file` and is a dataset (not a group).
+    function dataset_exists(file, dset) result(yes)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        logical :: yes
+
+        integer(hid_t) :: file_id, obj_id
+        integer :: hdferr, i, obj_type
+        logical :: link_exists
+
+        yes = .false.
+        file_id = open_file(file, dset)
+        ! h5lexists_f fails (rather than saying no) when an intermediate group is missing,
+        ! so test each prefix of the path in turn
+        link_exists = .true.
+        do i = 2, len_trim(dset) + 1
+            if (i <= len_trim(dset)) then
+                if (dset(i:i) /= '/') cycle
+            end if
+            call h5lexists_f(file_id, dset(1:i-1), link_exists, hdferr)
+            if (hdferr < 0) call fail(file, dset, "h5lexists_f failed on '"//dset(1:i-1)//"'")
+            if (.not. link_exists) exit
+        end do
+        if (link_exists .and. len_trim(dset) > 0) then
+            call h5oopen_f(file_id, trim(dset), obj_id, hdferr)
+            if (hdferr < 0) call fail(file, dset, 'h5oopen_f failed')
+            call h5iget_type_f(obj_id, obj_type, hdferr)
+            if (hdferr < 0) call fail(file, dset, 'h5iget_type_f failed')
+            yes = (obj_type == H5I_DATASET_F)
+            call h5oclose_f(obj_id, hdferr)
+            if (hdferr < 0) call fail(file, dset, 'h5oclose_f failed')
+        end if
+        call close_file(file, dset, file_id)
+    end function dataset_exists
+
+    !> True when the root group of `file` has attribute `name`.
+    function attr_exists(file, name) result(yes)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        logical :: yes
+
+        integer(hid_t) :: file_id
+        integer :: hdferr
+
+        file_id = open_file(file, 'attribute '//name)
+        call h5aexists_f(file_id, name, yes, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aexists_f failed')
+        call close_file(file, 'attribute '//name, file_id)
+    end function attr_exists
+
+    !> Root attribute `name` as a string; fixed-length and variable-length strings both work.
+    subroutine read_attr_str(file, name, value)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable, intent(out) :: value
+
+        character(len=:), allocatable :: what
+        integer(hid_t) :: file_id, attr_id, file_type, mem_type
+        integer(size_t) :: type_size
+        integer :: hdferr, type_class, i, n
+        logical :: is_variable
+        type(c_ptr), target :: vl_ptr(1)
+        type(c_ptr) :: buf_ptr   ! h5aread_f wants a variable, not an expression
+        character(kind=c_char), allocatable, target :: fixed(:)
+        character(kind=c_char), pointer :: chars(:)
+
+        what = 'attribute '//name
+        call open_attr(file, name, 1_hsize_t, file_id, attr_id)
+        call h5aget_type_f(attr_id, file_type, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5aget_type_f failed')
+        call h5tget_class_f(file_type, type_class, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5tget_class_f failed')
+        if (type_class /= H5T_STRING_F) call fail(file, what, 'not a string attribute')
+        call h5tis_variable_str_f(file_type, is_variable, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5tis_variable_str_f failed')
+        ! the type from h5aget_type_f is already a memory type; a copy of it reads the
+        ! string without any character-set conversion (which HDF5 does not do)
+        call h5tcopy_f(file_type, mem_type, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5tcopy_f failed')
+
+        if (is_variable) then
+            buf_ptr = c_loc(vl_ptr)
+            call h5aread_f(attr_id, mem_type, buf_ptr, hdferr)
+            if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
+            if (c_associated(vl_ptr(1))) then
+                n = int(c_strlen(vl_ptr(1)))
+                call c_f_pointer(vl_ptr(1), chars, [n])
+                allocate (character(len=n) :: value)
+                do i = 1, n
+                    value(i:i) = chars(i)
+                end do
+                if (c_h5free_memory(vl_ptr(1)) < 0) call fail(file, what, 'H5free_memory failed')
+            else
+                value = ''
+            end if
+        else
+            call h5tget_size_f(file_type, type_size, hdferr)
+            if (hdferr < 0) call fail(file, what, 'h5tget_size_f failed')
+            allocate (fixed(max(1_size_t, type_size)))
+            fixed = c_char_' '
+            buf_ptr = c_loc(fixed)
+            call h5aread_f(attr_id, mem_type, buf_ptr, hdferr)
+            if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
+            ! null-terminated, null-padded or space-padded: stop at the first NUL, drop
+            ! trailing blanks
+            n = int(type_size)
+            do i = 1, int(type_size)
+                if (fixed(i) == achar(0, kind=c_char)) then
+                    n = i - 1
+                    exit
+                end if
+            end do
+            allocate (character(len=n) :: value)
+            do i = 1, n
+                value(i:i) = fixed(i)
+            end do
+            value = trim(value)
+        end if
+
+        call h5tclose_f(mem_type, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5tclose_f failed')
+        call h5tclose_f(file_type, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5tclose_f failed')
+        call close_attr(file, name, file_id, attr_id)
+    end subroutine read_attr_str
+
+    !> Scalar float root attribute `name`.
+    subroutine read_attr_real(file, name, value)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        real(dp), intent(out) :: value
+
+        integer(hid_t) :: file_id, attr_id
+        integer(hsize_t) :: dims(1)
+        integer :: hdferr
+
+        call open_attr(file, name, 1_hsize_t, file_id, attr_id)
+        dims = 1
+        call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, value, dims, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
+        call close_attr(file, name, file_id, attr_id)
+    end subroutine read_attr_real
+
+    !> Scalar integer root attribute `name` (also the 0/1 of a logical attribute).
+    subroutine read_attr_int(file, name, value)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        integer, intent(out) :: value
+
+        integer(hid_t) :: file_id, attr_id
+        integer(hsize_t) :: dims(1)
+        integer :: hdferr
+
+        call open_attr(file, name, 1_hsize_t, file_id, attr_id)
+        dims = 1
+        call h5aread_f(attr_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
+        call close_attr(file, name, file_id, attr_id)
+    end subroutine read_attr_int
+
+    !> Float-array root attribute `name` (any number of elements).
+    subroutine read_attr_real_1d(file, name, values)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        real(dp), allocatable, intent(out) :: values(:)
+
+        integer(hid_t) :: file_id, attr_id, space_id
+        integer(hsize_t) :: dims(1), npoints
+        integer :: hdferr
+
+        call open_attr(file, name, -1_hsize_t, file_id, attr_id)
+        call h5aget_space_f(attr_id, space_id, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aget_space_f failed')
+        call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sget_simple_extent_npoints_f failed')
+        call h5sclose_f(space_id, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sclose_f failed')
+        allocate (values(npoints))
+        if (npoints > 0) then
+            dims = npoints
+            call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+            if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
+        end if
+        call close_attr(file, name, file_id, attr_id)
+    end subroutine read_attr_real_1d
+
+    ! ---------------------------------------------------------------- private helpers
+
+    !> Stop with a message naming the file, the dataset or attribute, and what failed.
+    subroutine fail(file, what, reason)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: what
+        character(len=*), intent(in) :: reason
+
+        call fatal(EXIT_OUTPUT, 'h5_read', "cannot read '"//trim(what)//"' from '"//trim(file)//"': "//reason)
+    end subroutine fail
+
+    function open_file(file, what) result(file_id)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: what
+        integer(hid_t) :: file_id
+
+        integer :: hdferr
+
+        call h5_library_init()
+        if (.not. file_exists(file)) call fail(file, what, 'no such file')
+        call h5fopen_f(trim(file), H5F_ACC_RDONLY_F, file_id, hdferr)
+        if (hdferr < 0) call fail(file, what, 'not an HDF5 file or not readable (h5fopen_f failed)')
+    end function open_file
+
+    subroutine close_file(file, what, file_id)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: what
+        integer(hid_t), intent(in) :: file_id
+
+        integer :: hdferr
+
+        call h5fclose_f(file_id, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5fclose_f failed')
+    end subroutine close_file
+
+    !> Open `file` and dataset `dset`, check its rank is `rank`, return its Fortran dims.
+    subroutine open_dataset(file, dset, rank, file_id, dset_id, dims)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        integer, intent(in) :: rank
+        integer(hid_t), intent(out) :: file_id
+        integer(hid_t), intent(out) :: dset_id
+        integer(hsize_t), intent(out) :: dims(rank)
+
+        integer(hid_t) :: space_id
+        integer(hsize_t) :: maxdims(rank)
+        integer :: hdferr, file_rank
+        character(len=12) :: rank_text
+
+        file_id = open_file(file, dset)
+        call h5dopen_f(file_id, trim(dset), dset_id, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'no such dataset (h5dopen_f failed)')
+        call h5dget_space_f(dset_id, space_id, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5dget_space_f failed')
+        call h5sget_simple_extent_ndims_f(space_id, file_rank, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5sget_simple_extent_ndims_f failed')
+        if (file_rank /= rank) then
+            write (rank_text, '(i0)') file_rank
+            call fail(file, dset, 'dataset has rank '//trim(rank_text)//', expected ' &
+                      //merge('1', '2', rank == 1))
+        end if
+        ! returns the rank on success, -1 on failure
+        call h5sget_simple_extent_dims_f(space_id, dims, maxdims, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5sget_simple_extent_dims_f failed')
+        call h5sclose_f(space_id, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5sclose_f failed')
+    end subroutine open_dataset
+
+    subroutine close_dataset(file, dset, file_id, dset_id)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        integer(hid_t), intent(in) :: file_id
+        integer(hid_t), intent(in) :: dset_id
+
+        integer :: hdferr
+
+        call h5dclose_f(dset_id, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5dclose_f failed')
+        call close_file(file, dset, file_id)
+    end subroutine close_dataset
+
+    !> Open `file` and root attribute `name`; when npoints_wanted >= 0 check its size.
+    subroutine open_attr(file, name, npoints_wanted, file_id, attr_id)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        integer(hsize_t), intent(in) :: npoints_wanted
+        integer(hid_t), intent(out) :: file_id
+        integer(hid_t), intent(out) :: attr_id
+
+        integer(hid_t) :: space_id
+        integer(hsize_t) :: npoints
+        integer :: hdferr
+        logical :: exists
+        character(len=:), allocatable :: what
+
+        what = 'attribute '//name
+        file_id = open_file(file, what)
+        call h5aexists_f(file_id, name, exists, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5aexists_f failed')
+        if (.not. exists) call fail(file, what, 'no such root attribute')
+        call h5aopen_f(file_id, name, attr_id, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5aopen_f failed')
+        if (npoints_wanted >= 0) then
+            call h5aget_space_f(attr_id, space_id, hdferr)
+            if (hdferr < 0) call fail(file, what, 'h5aget_space_f failed')
+            call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
+            if (hdferr < 0) call fail(file, what, 'h5sget_simple_extent_npoints_f failed')
+            call h5sclose_f(space_id, hdferr)
+            if (hdferr < 0) call fail(file, what, 'h5sclose_f failed')
+            if (npoints /= npoints_wanted) call fail(file, what, 'attribute is not a scalar')
+        end if
+    end subroutine open_attr
+
+    subroutine close_attr(file, name, file_id, attr_id)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: file_id
+        integer(hid_t), intent(in) :: attr_id
+
+        integer :: hdferr
+
+        call h5aclose_f(attr_id, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aclose_f failed')
+        call close_file(file, 'attribute '//name, file_id)
+    end subroutine close_attr
+
+end module h5_read_m

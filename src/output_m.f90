@@ -1,0 +1,665 @@
+!> The HDF5 writer of SPEC section 4. Layout as h5py sees it:
+!>
+!>     /mesh/x                                          (s+1,)          float64
+!>     /series/t, energy, u_end, penetration, contact_stress  (n_series,)  float64
+!>     /series/iterations                               (n_series,)     int32
+!>     /snapshots/t                                     (n_snap,)       float64
+!>     /snapshots/u, v, theta, P, q, eta                (n_snap, s+1)   float64
+!>     root attributes: input values 'group.variable', version, counters, 'status'
+!>
+!> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
+!> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
+!> no run leaves a truncated file under the final name (SPEC section 2). Until finish()
+!> writes the real status, the root attribute `status` reads 'incomplete'.
+!>
+!> The writer knows nothing of the scheme: it stores what it is given.
+module output_m
+    use iso_c_binding, only: c_ptr, c_char, c_loc, c_null_char
+    use kinds_m, only: dp
+    use errors_m, only: fatal, EXIT_OUTPUT
+    use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
+    use h5_read_m, only: h5_library_init
+    use hdf5, only: hid_t, hsize_t, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
+                    H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
+                    h5pset_chunk_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, &
+                    H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, h5screate_f, &
+                    h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, H5S_SCALAR_F, &
+                    H5S_NULL_F, H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
+                    h5dwrite_f, h5dset_extent_f, h5dget_space_f, h5acreate_f, h5aclose_f, &
+                    h5awrite_f, h5aexists_f, h5adelete_f, h5tcopy_f, h5tclose_f, h5tset_cset_f, &
+                    H5T_STRING, H5T_CSET_UTF8_F, H5T_IEEE_F64LE, H5T_STD_I32LE, &
+                    H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
+    implicit none
+    private
+    public :: h5_writer_t
+    public :: SERIES_BUFFER_SIZE
+
+    !> Series entries held in memory between writes; also the chunk length of the series
+    !> datasets, so that each full flush fills exactly one chunk.
+    integer, parameter :: SERIES_BUFFER_SIZE = 4096
+    !> Target size of one chunk of a snapshot field: a few rows per chunk keeps chunks well
+    !> inside HDF5's default 1 MiB per-dataset chunk cache while rows are appended one by one.
+    integer, parameter :: SNAPSHOT_CHUNK_BYTES = 256 * 1024
+    integer, parameter :: N_SERIES_REAL = 5
+    integer, parameter :: N_FIELDS = 6
+
+    character(len=*), parameter :: SERIES_REAL_NAMES(N_SERIES_REAL) = &
+        [character(len=14) :: 't', 'energy', 'u_end', 'penetration', 'contact_stress']
+    character(len=*), parameter :: FIELD_NAMES(N_FIELDS) = &
+        [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta']
+
+    !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
+    !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
+    type :: h5_writer_t
+        private
+        logical :: opened = .false.
+        !> true inside create(): a failure there is reported as "cannot create" against
+        !> &output prefix, later ones as "cannot write"
+        logical :: creating = .false.
+        character(len=:), allocatable :: final_path
+        character(len=:), allocatable :: part_path
+        integer :: n_nodes = 0
+        integer(hid_t) :: file_id = -1
+        integer(hid_t) :: series_real_ids(N_SERIES_REAL) = -1
+        integer(hid_t) :: series_iter_id = -1
+        integer(hid_t) :: snap_t_id = -1
+        integer(hid_t) :: snap_field_ids(N_FIELDS) = -1
+        integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
+        integer(hsize_t) :: n_snap = 0             !< snapshots in the file
+        integer :: n_buf = 0                       !< series entries waiting in the buffer
+        real(dp), allocatable :: buf_real(:, :)    !< (SERIES_BUFFER_SIZE, N_SERIES_REAL)
+        integer, allocatable :: buf_iter(:)        !< (SERIES_BUFFER_SIZE)
+    contains
+        procedure :: create => writer_create
+        procedure :: append_series => writer_append_series
+        procedure :: append_snapshot => writer_append_snapshot
+        procedure :: attr_real => writer_attr_real
+        procedure :: attr_int => writer_attr_int
+        procedure :: attr_str => writer_attr_str
+        procedure :: attr_logical => writer_attr_logical
+        procedure :: attr_real_array => writer_attr_real_array
+        procedure :: flush => writer_flush
+        procedure :: finish => writer_finish
+        procedure :: abandon => writer_abandon
+        procedure :: is_open => writer_is_open
+        procedure :: file_name => writer_file_name
+        procedure, private :: check => writer_check
+        procedure, private :: fail => writer_fail
+        procedure, private :: flush_series => writer_flush_series
+        procedure, private :: new_attr => writer_new_attr
+        procedure, private :: close_attr => writer_close_attr
+        procedure, private :: create_extendible => writer_create_extendible
+        procedure, private :: select_append => writer_select_append
+        procedure, private :: close_spaces => writer_close_spaces
+    end type h5_writer_t
+
+contains
+
+    !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
+    !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes.
+    subroutine writer_create(w, prefix, x)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: prefix
+        real(dp), intent(in) :: x(0:)
+
+        character(len=:), allocatable :: dir, message
+        logical :: ok
+        integer(hid_t) :: fapl_id, group_id, space_id, dset_id
+        integer(hsize_t) :: dims(1), dims2(2), chunk_rows
+        integer :: hdferr, k
+
+        if (w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: create() on a writer that is &
+                                 &already writing '"//w%part_path//"'")
+        call h5_library_init()
+        w%final_path = trim(prefix)//'.h5'
+        w%part_path = trim(prefix)//'.h5.part'
+        w%creating = .true.
+        if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
+        w%n_nodes = size(x)
+        w%n_series_written = 0
+        w%n_snap = 0
+        w%n_buf = 0
+
+        dir = parent_dir(prefix)
+        if (len(dir) > 0) then
+            if (.not. dir_exists(dir)) then
+                call mkdir_p(dir, ok, message)
+                if (.not. ok) call w%fail(message)
+            end if
+        end if
+        ! HDF5 says only that h5fcreate_f failed; creating the file first gets the system's
+        ! reason ('Permission denied', 'Is a directory', ...) for the message
+        call create_empty_file(w%part_path, ok, message)
+        if (.not. ok) call w%fail(message)
+
+        ! from here on abandon() has something to close
+        w%opened = .true.
+        ! strong close: h5fclose_f also closes any object still open, so abandon() after a
+        ! failure half-way through cannot leave the file held open
+        call h5pcreate_f(H5P_FILE_ACCESS_F, fapl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (file access)')
+        call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
+        call w%check(hdferr, 'h5pset_fclose_degree_f')
+        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, access_prp=fapl_id)
+        call w%check(hdferr, 'h5fcreate_f')
+        call h5pclose_f(fapl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (file access)')
+
+        ! /mesh/x
+        call h5gcreate_f(w%file_id, 'mesh', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /mesh')
+        dims = int(w%n_nodes, hsize_t)
+        call h5screate_simple_f(1, dims, space_id, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f /mesh/x')
+        call h5dcreate_f(group_id, 'x', H5T_IEEE_F64LE, space_id, dset_id, hdferr)
+        call w%check(hdferr, 'h5dcreate_f /mesh/x')
+        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, x, dims, hdferr)
+        call w%check(hdferr, 'h5dwrite_f /mesh/x')
+        call h5dclose_f(dset_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /mesh/x')
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f /mesh/x')
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /mesh')
+
+        ! /series/*: 1D, growing by SERIES_BUFFER_SIZE entries at a time
+        call h5gcreate_f(w%file_id, 'series', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /series')
+        dims = 0
+        do k = 1, N_SERIES_REAL
+            call w%create_extendible(group_id, '/series/', trim(SERIES_REAL_NAMES(k)), H5T_IEEE_F64LE, &
+                                     dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_real_ids(k))
+        end do
+        call w%create_extendible(group_id, '/series/', 'iterations', H5T_STD_I32LE, &
+                                 dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_iter_id)
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /series')
+
+        ! /snapshots/*: t is 1D, the fields are (s+1, n_snap) growing by one row per snapshot
+        call h5gcreate_f(w%file_id, 'snapshots', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /snapshots')
+        chunk_rows = int(max(1, min(64, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes))), hsize_t)
+        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, [256_hsize_t], &
+                                 w%snap_t_id)
+        dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
+        do k = 1, N_FIELDS
+            call w%create_extendible(group_id, '/snapshots/', trim(FIELD_NAMES(k)), H5T_IEEE_F64LE, &
+                                     dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k))
+        end do
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /snapshots')
+
+        allocate (w%buf_real(SERIES_BUFFER_SIZE, N_SERIES_REAL), w%buf_iter(SERIES_BUFFER_SIZE))
+        call w%attr_str('status', 'incomplete')
+        w%creating = .false.
+    end subroutine writer_create
+
+    !> Add one series entry. Held in a fixed-size buffer and written SERIES_BUFFER_SIZE
+    !> entries at a time: this is called every time step, so it must cost a few stores.
+    subroutine writer_append_series(w, t, energy, u_end, penetration, contact_stress, iterations)
+        class(h5_writer_t), intent(inout) :: w
+        real(dp), intent(in) :: t
+        real(dp), intent(in) :: energy
+        real(dp), intent(in) :: u_end
+        real(dp), intent(in) :: penetration
+        real(dp), intent(in) :: contact_stress
+        integer, intent(in) :: iterations
+
+        integer :: i
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_series() on a closed writer')
+        i = w%n_buf + 1
+        w%buf_real(i, 1) = t
+        w%buf_real(i, 2) = energy
+        w%buf_real(i, 3) = u_end
+        w%buf_real(i, 4) = penetration
+        w%buf_real(i, 5) = contact_stress
+        w%buf_iter(i) = iterations
+        w%n_buf = i
+        if (i == SERIES_BUFFER_SIZE) call w%flush_series()
+    end subroutine writer_append_series
+
+    !> Add one snapshot at time t; each field holds the s+1 nodal values, boundary zeros
+    !> included. Written to the file at once (one new row per dataset).
+    subroutine writer_append_snapshot(w, t, u, v, theta, P, q, eta)
+        class(h5_writer_t), intent(inout) :: w
+        real(dp), intent(in) :: t
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: v(0:)
+        real(dp), intent(in) :: theta(0:)
+        real(dp), intent(in) :: P(0:)
+        real(dp), intent(in) :: q(0:)
+        real(dp), intent(in) :: eta(0:)
+
+        integer(hid_t) :: file_space, mem_space
+        integer(hsize_t) :: row(2)
+        integer :: hdferr, k
+        character(len=:), allocatable :: what
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_snapshot() on a closed writer')
+        if (any([size(u), size(v), size(theta), size(P), size(q), size(eta)] /= w%n_nodes)) &
+            call w%fail('internal error: append_snapshot() given arrays whose size is not the number of mesh nodes')
+
+        call w%select_append(w%snap_t_id, '/snapshots/t', [1_hsize_t], w%n_snap, file_space, mem_space)
+        call h5dwrite_f(w%snap_t_id, H5T_NATIVE_DOUBLE, [t], [1_hsize_t], hdferr, &
+                        mem_space_id=mem_space, file_space_id=file_space)
+        call w%check(hdferr, 'h5dwrite_f /snapshots/t')
+        call w%close_spaces('/snapshots/t', file_space, mem_space)
+
+        row = [int(w%n_nodes, hsize_t), 1_hsize_t]
+        do k = 1, N_FIELDS
+            what = '/snapshots/'//trim(FIELD_NAMES(k))
+            call w%select_append(w%snap_field_ids(k), what, row, w%n_snap, file_space, mem_space)
+            select case (k)
+            case (1)
+                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, u, row, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            case (2)
+                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, v, row, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            case (3)
+                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, theta, row, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            case (4)
+                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, P, row, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            case (5)
+                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, q, row, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            case default
+                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, eta, row, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            end select
+            call w%check(hdferr, 'h5dwrite_f '//what)
+            call w%close_spaces(what, file_space, mem_space)
+        end do
+        w%n_snap = w%n_snap + 1
+    end subroutine writer_append_snapshot
+
+    !> Scalar float64 root attribute; an existing attribute of that name is replaced.
+    subroutine writer_attr_real(w, name, value)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: value
+
+        integer(hid_t) :: space_id, attr_id
+        integer :: hdferr
+
+        call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+        call w%check(hdferr, 'h5screate_f for attribute '//name)
+        call w%new_attr(name, H5T_IEEE_F64LE, space_id, attr_id)
+        call h5awrite_f(attr_id, H5T_NATIVE_DOUBLE, value, [1_hsize_t], hdferr)
+        call w%check(hdferr, 'h5awrite_f attribute '//name)
+        call w%close_attr(name, space_id, attr_id)
+    end subroutine writer_attr_real
+
+    !> Scalar int32 root attribute; an existing attribute of that name is replaced.
+    subroutine writer_attr_int(w, name, value)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: value
+
+        integer(hid_t) :: space_id, attr_id
+        integer :: hdferr
+
+        call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+        call w%check(hdferr, 'h5screate_f for attribute '//name)
+        call w%new_attr(name, H5T_STD_I32LE, space_id, attr_id)
+        call h5awrite_f(attr_id, H5T_NATIVE_INTEGER, value, [1_hsize_t], hdferr)
+        call w%check(hdferr, 'h5awrite_f attribute '//name)
+        call w%close_attr(name, space_id, attr_id)
+    end subroutine writer_attr_int
+
+    !> Logical root attribute, stored as int32 1 (.true.) / 0 (.false.): numeric, so
+    !> scripts can test it directly (`if f.attrs['output.quiet']:`), unlike 'false' strings.
+    subroutine writer_attr_logical(w, name, value)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        logical, intent(in) :: value
+
+        call w%attr_int(name, merge(1, 0, value))
+    end subroutine writer_attr_logical
+
+    !> Float64 array root attribute (e.g. polynomial coefficients); replaced if present.
+    !> An empty array is stored with a null dataspace (h5py: h5py.Empty).
+    subroutine writer_attr_real_array(w, name, values)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: values(:)
+
+        integer(hid_t) :: space_id, attr_id
+        integer(hsize_t) :: dims(1)
+        integer :: hdferr
+
+        dims = int(size(values), hsize_t)
+        if (size(values) > 0) then
+            call h5screate_simple_f(1, dims, space_id, hdferr)
+        else
+            call h5screate_f(H5S_NULL_F, space_id, hdferr)
+        end if
+        call w%check(hdferr, 'h5screate_f for attribute '//name)
+        call w%new_attr(name, H5T_IEEE_F64LE, space_id, attr_id)
+        if (size(values) > 0) then
+            call h5awrite_f(attr_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+            call w%check(hdferr, 'h5awrite_f attribute '//name)
+        end if
+        call w%close_attr(name, space_id, attr_id)
+    end subroutine writer_attr_real_array
+
+    !> String root attribute, stored as a scalar variable-length UTF-8 string: h5py returns
+    !> it as str (`f.attrs['status'] == 'complete'`), with no padding to strip.
+    subroutine writer_attr_str(w, name, value)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: value
+
+        integer(hid_t) :: type_id, space_id, attr_id
+        integer :: hdferr, i
+        character(kind=c_char), allocatable, target :: chars(:)
+        type(c_ptr), target :: str_ptr(1)
+        type(c_ptr) :: buf_ptr
+
+        ! a variable-length string is written as a pointer to a NUL-terminated C string
+        allocate (chars(len(value) + 1))
+        do i = 1, len(value)
+            chars(i) = value(i:i)
+        end do
+        chars(len(value) + 1) = c_null_char
+        str_ptr(1) = c_loc(chars)
+        buf_ptr = c_loc(str_ptr)
+
+        call h5tcopy_f(H5T_STRING, type_id, hdferr)
+        call w%check(hdferr, 'h5tcopy_f (string type) for attribute '//name)
+        call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
+        call w%check(hdferr, 'h5tset_cset_f for attribute '//name)
+        call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+        call w%check(hdferr, 'h5screate_f for attribute '//name)
+        call w%new_attr(name, type_id, space_id, attr_id)
+        call h5awrite_f(attr_id, type_id, buf_ptr, hdferr)
+        call w%check(hdferr, 'h5awrite_f attribute '//name)
+        call w%close_attr(name, space_id, attr_id)
+        call h5tclose_f(type_id, hdferr)
+        call w%check(hdferr, 'h5tclose_f (string type) for attribute '//name)
+    end subroutine writer_attr_str
+
+    !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
+    !> crash leaves everything appended so far readable in the .part file.
+    subroutine writer_flush(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer :: hdferr
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
+        call w%flush_series()
+        call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
+        call w%check(hdferr, 'h5fflush_f')
+    end subroutine writer_flush
+
+    !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
+    !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
+    !> `<prefix>.h5`, replacing an older file of that name.
+    subroutine writer_finish(w, status)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: status
+
+        integer :: hdferr, k
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: finish() on a closed writer')
+        call w%flush_series()
+        call w%attr_str('status', status)
+
+        do k = 1, N_SERIES_REAL
+            call h5dclose_f(w%series_real_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES_REAL_NAMES(k)))
+            w%series_real_ids(k) = -1
+        end do
+        call h5dclose_f(w%series_iter_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /series/iterations')
+        w%series_iter_id = -1
+        call h5dclose_f(w%snap_t_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /snapshots/t')
+        w%snap_t_id = -1
+        do k = 1, N_FIELDS
+            call h5dclose_f(w%snap_field_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(FIELD_NAMES(k)))
+            w%snap_field_ids(k) = -1
+        end do
+        call h5fclose_f(w%file_id, hdferr)
+        call w%check(hdferr, 'h5fclose_f')
+        w%file_id = -1
+        w%opened = .false.
+        deallocate (w%buf_real, w%buf_iter)
+
+        call rename_file(w%part_path, w%final_path, ok, message)
+        ! the .part file is complete and valid here: keep it rather than lose the run
+        if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
+                                 //w%part_path//"')")
+    end subroutine writer_finish
+
+    !> Close whatever is open, ignoring errors, and delete the .part file. For output
+    !> failures, where no valid file can be promised. A writer that is not open is left alone.
+    subroutine writer_abandon(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer :: hdferr
+
+        if (.not. w%opened) return
+        w%opened = .false.
+        ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
+        if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
+        w%file_id = -1
+        w%series_real_ids = -1
+        w%series_iter_id = -1
+        w%snap_t_id = -1
+        w%snap_field_ids = -1
+        w%n_buf = 0
+        if (allocated(w%buf_real)) deallocate (w%buf_real)
+        if (allocated(w%buf_iter)) deallocate (w%buf_iter)
+        call remove_file(w%part_path)
+    end subroutine writer_abandon
+
+    !> True between create() and finish() / abandon().
+    function writer_is_open(w) result(yes)
+        class(h5_writer_t), intent(in) :: w
+        logical :: yes
+
+        yes = w%opened
+    end function writer_is_open
+
+    !> The final file name `<prefix>.h5` ('' before create()).
+    function writer_file_name(w) result(path)
+        class(h5_writer_t), intent(in) :: w
+        character(len=:), allocatable :: path
+
+        if (allocated(w%final_path)) then
+            path = w%final_path
+        else
+            path = ''
+        end if
+    end function writer_file_name
+
+    ! ---------------------------------------------------------------- private helpers
+
+    !> On a negative HDF5 error flag: abandon the file and stop (exit status 4).
+    subroutine writer_check(w, hdferr, what)
+        class(h5_writer_t), intent(inout) :: w
+        integer, intent(in) :: hdferr
+        character(len=*), intent(in) :: what
+
+        if (hdferr >= 0) return
+        call w%fail(what//' failed')
+    end subroutine writer_check
+
+    !> Abandon the file and stop with a message naming the file and the reason. During
+    !> create() the fault is the &output prefix; later it is a write failure.
+    subroutine writer_fail(w, reason)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: reason
+
+        character(len=:), allocatable :: path
+
+        if (allocated(w%part_path)) then
+            path = w%part_path
+        else
+            path = '(no file)'
+        end if
+        if (w%creating) then
+            ! abandon() only acts on an open writer; the empty .part may exist already
+            call w%abandon()
+            call remove_file(path)
+            call fatal(EXIT_OUTPUT, 'output.prefix', "cannot create '"//path//"': "//reason)
+        else
+            call w%abandon()
+            call fatal(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason)
+        end if
+    end subroutine writer_fail
+
+    !> Append the buffered series entries to the six /series datasets.
+    subroutine writer_flush_series(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer(hid_t) :: file_space, mem_space
+        integer(hsize_t) :: n(1)
+        integer :: hdferr, k
+        character(len=:), allocatable :: what
+
+        if (w%n_buf == 0) return
+        n = int(w%n_buf, hsize_t)
+        do k = 1, N_SERIES_REAL
+            what = '/series/'//trim(SERIES_REAL_NAMES(k))
+            call w%select_append(w%series_real_ids(k), what, n, w%n_series_written, file_space, mem_space)
+            call h5dwrite_f(w%series_real_ids(k), H5T_NATIVE_DOUBLE, w%buf_real(1:w%n_buf, k), n, hdferr, &
+                            mem_space_id=mem_space, file_space_id=file_space)
+            call w%check(hdferr, 'h5dwrite_f '//what)
+            call w%close_spaces(what, file_space, mem_space)
+        end do
+        what = '/series/iterations'
+        call w%select_append(w%series_iter_id, what, n, w%n_series_written, file_space, mem_space)
+        call h5dwrite_f(w%series_iter_id, H5T_NATIVE_INTEGER, w%buf_iter(1:w%n_buf), n, hdferr, &
+                        mem_space_id=mem_space, file_space_id=file_space)
+        call w%check(hdferr, 'h5dwrite_f '//what)
+        call w%close_spaces(what, file_space, mem_space)
+        w%n_series_written = w%n_series_written + n(1)
+        w%n_buf = 0
+    end subroutine writer_flush_series
+
+    !> Create an empty dataset `name` in group_id whose last dimension is unlimited.
+    !> dims gives the initial size (last entry 0), chunk the chunk shape.
+    subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: group_id
+        character(len=*), intent(in) :: group_path
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: file_type
+        integer(hsize_t), intent(in) :: dims(:)
+        integer(hsize_t), intent(in) :: chunk(:)
+        integer(hid_t), intent(out) :: dset_id
+
+        integer(hid_t) :: space_id, dcpl_id
+        integer(hsize_t) :: maxdims(size(dims))
+        integer :: hdferr, rank
+        character(len=:), allocatable :: what
+
+        what = group_path//name
+        rank = size(dims)
+        maxdims = dims
+        maxdims(rank) = H5S_UNLIMITED_F
+        call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
+        call w%check(hdferr, 'h5screate_simple_f '//what)
+        call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (dataset creation) '//what)
+        call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
+        call w%check(hdferr, 'h5pset_chunk_f '//what)
+        call h5dcreate_f(group_id, name, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
+        call w%check(hdferr, 'h5dcreate_f '//what)
+        call h5pclose_f(dcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (dataset creation) '//what)
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f '//what)
+    end subroutine writer_create_extendible
+
+    !> Grow dataset dset_id along its last dimension from `offset` to offset + block(rank)
+    !> and return the file dataspace with the new block selected and a matching memory
+    !> dataspace; the caller writes, then calls close_spaces.
+    subroutine writer_select_append(w, dset_id, what, block, offset, file_space, mem_space)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: what
+        integer(hsize_t), intent(in) :: block(:)
+        integer(hsize_t), intent(in) :: offset
+        integer(hid_t), intent(out) :: file_space
+        integer(hid_t), intent(out) :: mem_space
+
+        integer(hsize_t) :: new_dims(size(block)), start(size(block))
+        integer :: hdferr, rank
+
+        rank = size(block)
+        new_dims = block
+        new_dims(rank) = offset + block(rank)
+        start = 0
+        start(rank) = offset
+        call h5dset_extent_f(dset_id, new_dims, hdferr)
+        call w%check(hdferr, 'h5dset_extent_f '//what)
+        call h5dget_space_f(dset_id, file_space, hdferr)
+        call w%check(hdferr, 'h5dget_space_f '//what)
+        call h5sselect_hyperslab_f(file_space, H5S_SELECT_SET_F, start, block, hdferr)
+        call w%check(hdferr, 'h5sselect_hyperslab_f '//what)
+        call h5screate_simple_f(rank, block, mem_space, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
+    end subroutine writer_select_append
+
+    subroutine writer_close_spaces(w, what, file_space, mem_space)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: what
+        integer(hid_t), intent(in) :: file_space
+        integer(hid_t), intent(in) :: mem_space
+
+        integer :: hdferr
+
+        call h5sclose_f(mem_space, hdferr)
+        call w%check(hdferr, 'h5sclose_f (memory) '//what)
+        call h5sclose_f(file_space, hdferr)
+        call w%check(hdferr, 'h5sclose_f '//what)
+    end subroutine writer_close_spaces
+
+    !> Create root attribute `name`, deleting an older one first: HDF5 cannot re-create an
+    !> attribute in place, and end-of-run values ('steps', 'wall_seconds') overwrite earlier ones.
+    subroutine writer_new_attr(w, name, file_type, space_id, attr_id)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: file_type
+        integer(hid_t), intent(in) :: space_id
+        integer(hid_t), intent(out) :: attr_id
+
+        logical :: exists
+        integer :: hdferr
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
+                                       "' written on a closed writer")
+        call h5aexists_f(w%file_id, name, exists, hdferr)
+        call w%check(hdferr, 'h5aexists_f attribute '//name)
+        if (exists) then
+            call h5adelete_f(w%file_id, name, hdferr)
+            call w%check(hdferr, 'h5adelete_f attribute '//name)
+        end if
+        call h5acreate_f(w%file_id, name, file_type, space_id, attr_id, hdferr)
+        call w%check(hdferr, 'h5acreate_f attribute '//name)
+    end subroutine writer_new_attr
+
+    subroutine writer_close_attr(w, name, space_id, attr_id)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: space_id
+        integer(hid_t), intent(in) :: attr_id
+
+        integer :: hdferr
+
+        call h5aclose_f(attr_id, hdferr)
+        call w%check(hdferr, 'h5aclose_f attribute '//name)
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f for attribute '//name)
+    end subroutine writer_close_attr
+
+end module output_m

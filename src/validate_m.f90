@@ -1,0 +1,316 @@
+!> Input validation (SPEC section 3, "Validation"), run before any allocation or output:
+!> the checks go through the groups in the order model, contact, mesh, time, initial,
+!> solver, output, and the first failure stops with EXIT_INPUT, naming group.variable,
+!> the value given and what is allowed.
+module validate_m
+    use, intrinsic :: iso_fortran_env, only: error_unit
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use kinds_m, only: dp
+    use errors_m, only: fatal, EXIT_INPUT
+    use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
+                        format_real
+    use initial_data_m, only: profile
+    implicit none
+    private
+    public :: validate_config
+
+    real(dp), parameter :: GIB = 1024.0_dp**3
+    !> Working memory per mesh node: ~60 reals of field and work arrays plus the band
+    !> storage of the monolithic matrix (22 rows for 5 interleaved fields).
+    real(dp), parameter :: REALS_PER_NODE = 60.0_dp + 22.0_dp * 5.0_dp
+    real(dp), parameter :: MEMORY_LIMIT = 8.0_dp * GIB        !< refuse meshes needing more
+    real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
+    real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
+    integer, parameter :: N_SNAPSHOT_FIELDS = 6               !< u, v, theta, P, q, eta
+    integer, parameter :: N_SERIES = 6                        !< t, energy, u_end, penetration, ...
+    !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
+    real(dp), parameter :: BOUNDARY_TOL = 1.0e-12_dp
+
+contains
+
+    !> Apply every check of SPEC section 3 to cfg; stop with EXIT_INPUT at the first failure.
+    !> A large (but allowed) output size gives a warning on stderr.
+    subroutine validate_config(cfg)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: n_steps
+
+        call validate_model(cfg%model, cfg%material%present)
+        call validate_contact(cfg%contact)
+        call validate_mesh(cfg%mesh)
+        call validate_time(cfg%time, n_steps)
+        call validate_initial(cfg%initial, cfg%contact%g)
+        call validate_solver(cfg%solver)
+        call validate_output(cfg%output, cfg%mesh%n_elements, n_steps)
+    end subroutine validate_config
+
+    ! ---------------------------------------------------------------- one check per group
+
+    subroutine validate_model(m, from_material)
+        type(model_t), intent(in) :: m
+        logical, intent(in) :: from_material
+        character(len=:), allocatable :: note
+
+        note = ''
+        if (from_material) note = ' (computed from &material by (2.10)-(2.11))'
+        call require_positive(m%rho, 'model.rho', note)
+        call require_positive(m%alpha, 'model.alpha', note)
+        call require_nonnegative(m%varpi, 'model.varpi', note)
+        call require_nonnegative(m%gamma1, 'model.gamma1', note)
+        call require_nonnegative(m%gamma2, 'model.gamma2', note)
+        call require_positive(m%c, 'model.c', note)
+        call require_nonnegative(m%d, 'model.d', note)
+        call require_positive(m%r, 'model.r', note)
+        call require_positive(m%hbar, 'model.hbar', note)
+        call require_nonnegative(m%tau0, 'model.tau0', note)
+        call require_nonnegative(m%tau, 'model.tau', note)
+        if (.not. m%c * m%r - m%d**2 > 0.0_dp) call fatal(EXIT_INPUT, 'model.d', 'got d = ' // format_real(m%d) // &
+            ' with c = ' // format_real(m%c) // ', r = ' // format_real(m%r) // ': c*r - d**2 = ' // &
+            format_real(m%c * m%r - m%d**2) // '; condition (2.16) needs c*r - d**2 > 0' // note)
+    end subroutine validate_model
+
+    subroutine validate_contact(contact)
+        type(contact_t), intent(in) :: contact
+
+        call require_positive(contact%g, 'contact.g')
+        call require_positive(contact%eps, 'contact.eps')
+        if (contact%law == 'signorini') call fatal(EXIT_INPUT, 'contact.law', "got 'signorini': the Signorini " // &
+            "law (exact u(1) <= g) is not supported yet; use law = 'penalty' (normal compliance (3.4))")
+        call require_one_of(contact%law, [character(len=7) :: 'penalty'], 'contact.law')
+    end subroutine validate_contact
+
+    subroutine validate_mesh(mesh)
+        type(mesh_t), intent(in) :: mesh
+        real(dp) :: bytes
+
+        call require_at_least(mesh%n_elements, 2, 'mesh.n_elements')
+        bytes = 8.0_dp * REALS_PER_NODE * (real(mesh%n_elements, dp) + 1.0_dp)
+        if (bytes > MEMORY_LIMIT) call fatal(EXIT_INPUT, 'mesh.n_elements', 'got ' // int_str(mesh%n_elements) // &
+            '; the arrays would need about ' // gib_str(bytes) // ' GiB, more than the ' // gib_str(MEMORY_LIMIT) // &
+            ' GiB allowed; must be at most ' // int_str(int(MEMORY_LIMIT / (8.0_dp * REALS_PER_NODE)) - 1))
+    end subroutine validate_mesh
+
+    !> n_steps: the number of time steps, about t_end/dt (for the output size estimate).
+    subroutine validate_time(time, n_steps)
+        type(time_t), intent(in) :: time
+        real(dp), intent(out) :: n_steps
+
+        call require_positive(time%dt, 'time.dt')
+        call require_positive(time%t_end, 'time.t_end')
+        if (time%t_end < time%dt) call fatal(EXIT_INPUT, 'time.t_end', 'got ' // format_real(time%t_end) // &
+            ' < dt = ' // format_real(time%dt) // '; must be >= dt (at least one time step)')
+        ! the step counter is a default integer
+        if (time%t_end / time%dt > real(huge(0), dp) - 1.0_dp) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
+            format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
+            format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
+        n_steps = real(ceiling(time%t_end / time%dt), dp)
+        if (time%scheme /= 'euler') call fatal(EXIT_INPUT, 'time.scheme', &
+            "got '" // trim(time%scheme) // "': not supported yet; the only time scheme is 'euler' (implicit Euler)")
+        if (len_trim(time%restart_from) > 0) call fatal(EXIT_INPUT, 'time.restart_from', "got '" // &
+            trim(time%restart_from) // "': restarting is not supported yet; must be '' (empty)")
+    end subroutine validate_time
+
+    !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
+    !> u0, u1, q0, eta0 in S_h vanish at x = 0, theta0, P0 in V_h vanish at x = 1; u0(1) <= g.
+    subroutine validate_initial(init, g)
+        type(initial_t), intent(in) :: init
+        real(dp), intent(in) :: g
+        real(dp) :: u0_end
+
+        call require_finite_array(init%u0_poly, 'initial.u0_poly')
+        call require_finite_array(init%u1_poly, 'initial.u1_poly')
+        call require_finite_array(init%theta0_poly, 'initial.theta0_poly')
+        call require_finite_array(init%p0_poly, 'initial.p0_poly')
+        call require_finite_array(init%q0_poly, 'initial.q0_poly')
+        call require_finite_array(init%eta0_poly, 'initial.eta0_poly')
+        call require_step(init%theta0_step, 'initial.theta0_step')
+        call require_step(init%p0_step, 'initial.p0_step')
+        call require_boundary_zero('u0', init%u0_poly, 0.0_dp, 'u(0,t) = 0, (2.13)')
+        call require_boundary_zero('u1', init%u1_poly, 0.0_dp, 'v = u_t vanishes where u(0,t) = 0, (2.13)')
+        call require_boundary_zero('theta0', init%theta0_poly, 1.0_dp, 'theta(1,t) = 0, (2.15)', init%theta0_step)
+        call require_boundary_zero('p0', init%p0_poly, 1.0_dp, 'P(1,t) = 0, (2.15)', init%p0_step)
+        call require_boundary_zero('q0', init%q0_poly, 0.0_dp, 'q(0,t) = 0, (2.15)')
+        call require_boundary_zero('eta0', init%eta0_poly, 0.0_dp, 'eta(0,t) = 0, (2.15)')
+        u0_end = profile(poly=init%u0_poly, x=1.0_dp)
+        if (u0_end > g + BOUNDARY_TOL * (1.0_dp + sum(abs(init%u0_poly)))) call fatal(EXIT_INPUT, 'initial.u0_poly', &
+            'got u0(1) = ' // format_real(u0_end) // ' > g = ' // format_real(g) // &
+            '; the initial displacement must satisfy the contact constraint u0(1) <= g')
+    end subroutine validate_initial
+
+    subroutine validate_solver(solver)
+        type(solver_t), intent(in) :: solver
+
+        call require_one_of(solver%method, [character(len=10) :: 'monolithic', 'paper'], 'solver.method')
+        call require_positive(solver%tol, 'solver.tol')
+        call require_at_least(solver%max_iter, 1, 'solver.max_iter')
+    end subroutine validate_solver
+
+    !> Output settings, and the size of <prefix>.h5: a warning above OUTPUT_WARN, an error
+    !> above OUTPUT_LIMIT (counting snapshots and series as run_m writes them).
+    subroutine validate_output(output, n_elements, n_steps)
+        type(output_t), intent(in) :: output
+        integer, intent(in) :: n_elements
+        real(dp), intent(in) :: n_steps
+        real(dp) :: nodes, snapshot_bytes, series_bytes, total
+        character(len=:), allocatable :: where
+
+        if (len_trim(output%prefix) == 0) call fatal(EXIT_INPUT, 'output.prefix', &
+            "got ''; must be a non-empty path prefix, e.g. 'out/run' (the file is <prefix>.h5)")
+        call require_at_least(output%snapshot_every, 1, 'output.snapshot_every')
+        call require_at_least(output%series_every, 1, 'output.series_every')
+        if (output%checkpoint_every /= 0) call fatal(EXIT_INPUT, 'output.checkpoint_every', 'got ' // &
+            int_str(output%checkpoint_every) // ': checkpointing is not supported yet; must be 0')
+        ! the initial state, every k-th step, and the last step
+        nodes = real(n_elements, dp) + 1.0_dp
+        snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
+        series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
+        total = snapshot_bytes + series_bytes + 8.0_dp * nodes
+        where = 'output.snapshot_every'
+        if (series_bytes > snapshot_bytes) where = 'output.series_every'
+        if (total > OUTPUT_LIMIT) call fatal(EXIT_INPUT, where, 'the output file would be about ' // &
+            gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots, ' // gib_str(series_bytes) // &
+            ' GiB of series), more than the ' // gib_str(OUTPUT_LIMIT) // ' GiB allowed; raise ' // where)
+        if (total > OUTPUT_WARN) then
+            write (error_unit, '(a)') 'rodcontact: warning: ' // trim(output%prefix) // '.h5 will be about ' // &
+                gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots); raise ' // where // &
+                ' for a smaller file'
+            flush (error_unit)
+        end if
+    end subroutine validate_output
+
+    ! ---------------------------------------------------------------- small checks
+
+    subroutine require_finite(x, where, note)
+        real(dp), intent(in) :: x
+        character(len=*), intent(in) :: where
+        character(len=*), intent(in), optional :: note
+
+        if (.not. ieee_is_finite(x)) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
+                                                '; must be a finite real number' // optional_text(note))
+    end subroutine require_finite
+
+    subroutine require_positive(x, where, note)
+        real(dp), intent(in) :: x
+        character(len=*), intent(in) :: where
+        character(len=*), intent(in), optional :: note
+
+        call require_finite(x, where, note)
+        if (.not. x > 0.0_dp) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be > 0' // &
+                                         optional_text(note))
+    end subroutine require_positive
+
+    subroutine require_nonnegative(x, where, note)
+        real(dp), intent(in) :: x
+        character(len=*), intent(in) :: where
+        character(len=*), intent(in), optional :: note
+
+        call require_finite(x, where, note)
+        if (.not. x >= 0.0_dp) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be >= 0' // &
+                                          optional_text(note))
+    end subroutine require_nonnegative
+
+    subroutine require_at_least(n, n_min, where)
+        integer, intent(in) :: n, n_min
+        character(len=*), intent(in) :: where
+
+        if (n < n_min) call fatal(EXIT_INPUT, where, 'got ' // int_str(n) // '; must be an integer >= ' // int_str(n_min))
+    end subroutine require_at_least
+
+    subroutine require_one_of(value, allowed, where)
+        character(len=*), intent(in) :: value
+        character(len=*), intent(in) :: allowed(:)
+        character(len=*), intent(in) :: where
+        character(len=:), allocatable :: list
+        integer :: k
+
+        if (any(allowed == value)) return
+        list = "'" // trim(allowed(1)) // "'"
+        do k = 2, size(allowed)
+            list = list // ", '" // trim(allowed(k)) // "'"
+        end do
+        call fatal(EXIT_INPUT, where, "got '" // trim(value) // "'; must be one of " // list)
+    end subroutine require_one_of
+
+    subroutine require_finite_array(coefficients, where)
+        real(dp), intent(in) :: coefficients(0:)
+        character(len=*), intent(in) :: where
+        integer :: k
+
+        do k = 0, ubound(coefficients, 1)
+            if (.not. ieee_is_finite(coefficients(k))) call fatal(EXIT_INPUT, where, 'got ' // &
+                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k) // &
+                '; every coefficient must be a finite real number')
+        end do
+    end subroutine require_finite_array
+
+    !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= 1.
+    subroutine require_step(step, where)
+        real(dp), intent(in) :: step(2)
+        character(len=*), intent(in) :: where
+
+        if (.not. ieee_is_finite(step(1))) call fatal(EXIT_INPUT, where, 'got amplitude ' // format_real(step(1)) // &
+                                                      '; must be a finite real number')
+        if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
+                                                      '; must be a finite real number')
+        if (.not. (step(2) >= 0.0_dp .and. step(2) <= 1.0_dp)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
+            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= 1')
+    end subroutine require_step
+
+    !> The initial profile `name` (polynomial plus optional step) must vanish at the
+    !> boundary point x of its finite element space; evaluated by the same profile() that
+    !> initialises the nodes.
+    subroutine require_boundary_zero(name, poly, x, why, step)
+        character(len=*), intent(in) :: name, why
+        real(dp), intent(in) :: poly(0:)
+        real(dp), intent(in) :: x
+        real(dp), intent(in), optional :: step(2)
+        real(dp) :: value, scale
+        character(len=:), allocatable :: where, what
+
+        value = profile(poly=poly, x=x, step=step)
+        scale = 1.0_dp + sum(abs(poly))
+        if (present(step)) scale = scale + abs(step(1))
+        if (abs(value) <= BOUNDARY_TOL * scale) return
+        where = 'initial.' // name // '_poly'
+        what = ''
+        if (present(step)) then
+            if (abs(value - profile(poly=poly, x=x)) > 0.0_dp) what = ' (polynomial plus step)'
+            ! the polynomial alone is right: it is the step that reaches x
+            if (abs(profile(poly=poly, x=x)) <= BOUNDARY_TOL * scale) where = 'initial.' // name // '_step'
+        end if
+        call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // format_real(value) // what // &
+                   '; must be 0 at x = ' // format_real(x) // ' (boundary condition ' // why // ')')
+    end subroutine require_boundary_zero
+
+    ! ---------------------------------------------------------------- formatting
+
+    pure function optional_text(text) result(s)
+        character(len=*), intent(in), optional :: text
+        character(len=:), allocatable :: s
+
+        s = ''
+        if (present(text)) s = text
+    end function optional_text
+
+    pure function int_str(n) result(s)
+        integer, intent(in) :: n
+        character(len=:), allocatable :: s
+        character(len=16) :: buf
+        integer :: ios
+
+        write (buf, '(i0)', iostat=ios) n
+        s = trim(buf)
+    end function int_str
+
+    !> bytes in GiB with one decimal.
+    pure function gib_str(bytes) result(s)
+        real(dp), intent(in) :: bytes
+        character(len=:), allocatable :: s
+        character(len=32) :: buf
+        integer :: ios
+
+        write (buf, '(f0.1)', iostat=ios) bytes / GIB
+        s = trim(adjustl(buf))
+        if (s(1:1) == '.') s = '0' // s
+    end function gib_str
+
+end module validate_m

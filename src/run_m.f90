@@ -92,7 +92,8 @@ contains
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         if (failure /= '') then
             call writer%finish('failed: '//trim(failure))
-            call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; the output holds every step up to the failure')
+            call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &
+                       trim(cfg%output%prefix)//'.h5 (status attribute: failed)')
         end if
         call writer%finish('complete')
     end subroutine run_simulation

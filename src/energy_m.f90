@@ -11,11 +11,13 @@ contains
 
     !> E^n = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
     !>       + tau hbar eta^2) dx + 1/(2 eps) [u(1) - g]_+^2, integrals exact for P1 functions.
-    pure function discrete_energy(model, eps, g, u, w) result(energy)
+    !> With the Signorini law (penalty = .false.) the last term is absent: u(1) <= g.
+    pure function discrete_energy(model, eps, g, u, w, penalty) result(energy)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: eps, g
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
+        logical, intent(in), optional :: penalty   !< .false.: Signorini law, no penalty energy
         real(dp) :: energy
         real(dp) :: mass_terms, strain_terms
         integer :: e, s
@@ -36,8 +38,11 @@ contains
                 + model%tau * model%hbar * element_mass_product(w(e - 1, F_ETA), w(e, F_ETA), w(e - 1, F_ETA), w(e, F_ETA))
             strain_terms = strain_terms + (u(e) - u(e - 1))**2
         end do
-        energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp)) &
-                 + 0.5_dp / eps * penetration(u, g)**2
+        energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp))
+        if (present(penalty)) then
+            if (.not. penalty) return
+        end if
+        energy = energy + 0.5_dp / eps * penetration(u, g)**2
     end function discrete_energy
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1

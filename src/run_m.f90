@@ -46,6 +46,7 @@ contains
         integer :: n, n_steps
         integer(int64) :: clock_start, clock_rate
         real(dp) :: energy, energy_old, max_rise
+        logical :: penalty
         character(len=320) :: failure
 
         call system_clock(clock_start, clock_rate)
@@ -56,9 +57,12 @@ contains
         call writer%attr_str('version', PROGRAM_VERSION)
         call writer%attr_int('steps_planned', n_steps)
 
-        energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w)
+        penalty = trim(cfg%contact%law) /= 'signorini'
+        energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
         max_rise = 0.0_dp
-        call write_series(writer, cfg, state, energy, 0)
+        result%contact_force = 0.0_dp
+        if (penalty) result%contact_force = penetration(state%u, cfg%contact%g) / cfg%contact%eps
+        call write_series(writer, cfg, state, energy, result)
         call write_snapshot(writer, state)
 
         call stepper%init(cfg, result)
@@ -74,11 +78,11 @@ contains
                 exit
             end if
             energy_old = energy
-            energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w)
+            energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
             ! Corollary 6.2: E^n <= E^{n-1}; record the largest relative rise (round-off only)
             max_rise = max(max_rise, (energy - energy_old) / max(energy_old, tiny(1.0_dp)))
             if (mod(n, cfg%output%series_every) == 0 .or. n == n_steps) &
-                call write_series(writer, cfg, state, energy, result%iterations)
+                call write_series(writer, cfg, state, energy, result)
             if (mod(n, cfg%output%snapshot_every) == 0 .or. n == n_steps) call write_snapshot(writer, state)
             call progress%update(n, state%t, result%in_contact)
         end do
@@ -98,16 +102,17 @@ contains
         call writer%finish('complete')
     end subroutine run_simulation
 
-    subroutine write_series(writer, cfg, state, energy, iterations)
+    !> One series entry; the contact stress is sigma(1,t) = -lambda (normal compliance (3.4),
+    !> or the Signorini multiplier).
+    subroutine write_series(writer, cfg, state, energy, result)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
         type(state_t), intent(in) :: state
         real(dp), intent(in) :: energy
-        integer, intent(in) :: iterations
-        real(dp) :: pen
+        type(step_result_t), intent(in) :: result
 
-        pen = penetration(state%u, cfg%contact%g)
-        call writer%append_series(state%t, energy, state%u(state%s), pen, -pen / cfg%contact%eps, iterations)
+        call writer%append_series(state%t, energy, state%u(state%s), penetration(state%u, cfg%contact%g), &
+                                  -result%contact_force, result%iterations)
     end subroutine write_series
 
     subroutine write_snapshot(writer, state)

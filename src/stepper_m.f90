@@ -21,6 +21,7 @@ module stepper_m
     use scheme_m, only: N_FIELDS, F_V, MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, &
                         assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields
     use state_m, only: state_t
+    use sources_m, only: source_t, add_source_terms
     implicit none
     private
     public :: stepper_t, step_result_t
@@ -32,13 +33,17 @@ module stepper_m
         logical :: ok = .true.
         character(len=256) :: message = ''
         integer :: iterations = 0        !< linear solves of the step (paper: iterations)
-        logical :: in_contact = .false.  !< u^n(1) > g after the step
+        logical :: in_contact = .false.  !< the contact node is active after the step
+        real(dp) :: contact_force = 0.0_dp  !< lambda = -sigma(1,t_n): (1/eps)[u^n(1)-g]_+, or the
+                                            !< Signorini multiplier
     end type step_result_t
 
     type :: stepper_t
         type(model_t) :: model
         real(dp) :: dt = 0.0_dp, eps = 0.0_dp, g = 0.0_dp, tol = 0.0_dp
         integer :: s = 0, method = METHOD_MONOLITHIC, max_iter = 0
+        logical :: signorini = .false.        !< law = 'signorini': exact u(1) <= g, no penalty
+        class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
         type(band_t) :: a              !< monolithic matrix, factored (dgbtrf)
         type(block_tridiagonal_t) :: blocks   !< the same matrix, block LU (fast per-step solve)
         logical :: use_blocks = .false.       !< block LU agreed with dgbtrf at set-up
@@ -59,10 +64,11 @@ contains
 
     !> Assemble and factor the matrices of the chosen method. A singular matrix (impossible
     !> for valid input) is reported through result.
-    subroutine stepper_init(self, cfg, result)
+    subroutine stepper_init(self, cfg, result, source)
         class(stepper_t), intent(out) :: self
         type(config_t), intent(in) :: cfg
         type(step_result_t), intent(out) :: result
+        class(source_t), intent(in), optional :: source   !< source terms of sources_m
         integer :: s, info
 
         self%model = cfg%model
@@ -72,6 +78,8 @@ contains
         self%tol = cfg%solver%tol
         self%max_iter = cfg%solver%max_iter
         self%s = cfg%mesh%n_elements
+        self%signorini = trim(cfg%contact%law) == 'signorini'
+        if (present(source)) allocate (self%source, source=source)
         s = self%s
         allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
                   self%w_new(0:s, N_FIELDS), &
@@ -79,6 +87,7 @@ contains
         select case (trim(cfg%solver%method))
         case ('paper')
             self%method = METHOD_PAPER
+            if (self%signorini) call fail(result, "method 'paper' (lagged penalty) has no Signorini form")
             call assemble_matrix(self%model, s, self%dt, THERMAL_SLOTS, self%thermal)
             call self%thermal%factor(info)
             if (info /= 0) call fail(result, 'thermal block: '//lapack_info_message('dgbtrf', info))
@@ -114,6 +123,8 @@ contains
         type(step_result_t), intent(out) :: result
 
         call old_state_rhs(self%model, self%dt, state%u, state%w, self%b_old, self%work)
+        if (allocated(self%source)) &
+            call add_source_terms(self%source, self%model, real(state%step + 1, dp) * self%dt, self%dt, self%b_old)
         select case (self%method)
         case (METHOD_PAPER)
             call advance_paper(self, state, result)
@@ -123,7 +134,7 @@ contains
         if (.not. result%ok) return
         state%step = state%step + 1
         state%t = real(state%step, dp) * self%dt
-        result%in_contact = state%u(self%s) > self%g
+        result%in_contact = result%contact_force > 0.0_dp
         if (result%in_contact) self%n_contact_steps = self%n_contact_steps + 1
         self%n_solves = self%n_solves + result%iterations
     end subroutine stepper_advance
@@ -142,11 +153,20 @@ contains
             call self%a%solve(self%x, info)
         end if
         result%iterations = 1
-        ! trial gap without contact force; active set {x = 1} iff it is positive
+        ! Trial gap without contact force; the contact node is active iff it is positive.
+        ! The scaled momentum row carries dt*lambda, so x = y - dt*lambda*z with
+        !   penalty (3.4):  lambda = (1/eps)(gap - dt^2 z_s lambda)  (u^n(1) - g = gap - dt^2 z_s lambda)
+        !   Signorini:      u^n(1) = g, i.e. dt^2 z_s lambda = gap.
         gap = state%u(self%s) + self%dt * self%x(self%contact_dof) - self%g
+        result%contact_force = 0.0_dp
         if (gap > 0.0_dp) then
-            force = self%dt * gap / (self%eps + self%dt**2 * self%z(self%contact_dof))
+            if (self%signorini) then
+                force = gap / (self%dt * self%z(self%contact_dof))
+            else
+                force = self%dt * gap / (self%eps + self%dt**2 * self%z(self%contact_dof))
+            end if
             self%x = self%x - force * self%z
+            result%contact_force = force / self%dt
         end if
         if (.not. all(ieee_is_finite(self%x))) then
             call fail(result, 'non-finite value in the solution')
@@ -200,6 +220,7 @@ contains
             if (change <= self%tol * scale) then
                 state%w = self%w_lag
                 state%u = self%u_lag
+                result%contact_force = max(state%u(s) - self%g, 0.0_dp) / self%eps
                 return
             end if
         end do

@@ -5,7 +5,7 @@ module energy_m
     use scheme_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
     implicit none
     private
-    public :: discrete_energy, penetration, mass_product, stiffness_product
+    public :: discrete_energy, bdf2_energy, penetration, mass_product, stiffness_product
 
 contains
 
@@ -44,6 +44,29 @@ contains
         end if
         energy = energy + 0.5_dp / eps * penetration(u, g)**2
     end function discrete_energy
+
+    !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
+    !> of (2.11) tested with the new level,
+    !>   (3a - 4b + c)/2 . a = [|a|^2 + |2a - b|^2]/4 - [|b|^2 + |2b - c|^2]/4 + |a - 2b + c|^2/4,
+    !> so E_G^n = (E_lin(X^n) + E_lin(2 X^n - X^{n-1})) / 2 never rises while the contact
+    !> node is inactive (E_lin: E^n without the penalty term). The penalty term is added at
+    !> the current level, 1/(2 eps)[u^n(1) - g]_+^2. With an active penalty BDF2 has no such
+    !> law (the nonlinear term is not G-stable); see docs/performance.md for what we measured.
+    !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
+    subroutine bdf2_energy(model, eps, g, u, w, u_prev, w_prev, u_work, w_work, penalty, energy)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: eps, g
+        real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
+        real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
+        logical, intent(in) :: penalty
+        real(dp), intent(out) :: energy
+
+        u_work = 2.0_dp * u - u_prev
+        w_work = 2.0_dp * w - w_prev
+        energy = 0.5_dp * (discrete_energy(model, eps, g, u, w, .false.) &
+                           + discrete_energy(model, eps, g, u_work, w_work, .false.))
+        if (penalty) energy = energy + 0.5_dp / eps * penetration(u, g)**2
+    end subroutine bdf2_energy
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
     !> and b0, b1).

@@ -15,6 +15,8 @@ module state_m
         real(dp) :: t = 0.0_dp          !< t_n = n dt
         real(dp), allocatable :: u(:)       !< u_h^n(x_i), i = 0..s
         real(dp), allocatable :: w(:, :)    !< w(i, f): field f (scheme_m's F_*) at node i
+        real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
+                                                          !< only; allocated by the stepper)
     end type state_t
 
 contains

@@ -12,6 +12,13 @@
 !> 'paper': the Section 7 iteration: thermal block (q, theta, P, eta) with the velocity of
 !>   the previous iterate, then the mechanical block with the new theta, P and the lagged
 !>   penalty, until the largest change of any nodal value is <= tol * max(1, max |value|).
+!>
+!> &time scheme = 'bdf2' (monolithic only): the second-order backward differentiation
+!> formula, X_t ~ (3 X^n - 4 X^{n-1} + X^{n-2}) / (2 dt) in every equation and
+!> u^n = (4 u^{n-1} - u^{n-2} + 2 dt v^n) / 3. Multiplied by 2/3 this is exactly the Euler
+!> step (6.1) with step dt_eff = 2 dt / 3 from the extrapolated level
+!> X* = (4 X^{n-1} - X^{n-2}) / 3, so the same assembly, contact step and sources serve
+!> both; the first step (no X^{-1}) is an Euler step. Two matrices, each factored once.
 module stepper_m
     use kinds_m, only: dp
     use ieee_arithmetic, only: ieee_is_finite
@@ -38,26 +45,36 @@ module stepper_m
                                             !< Signorini multiplier
     end type step_result_t
 
+    !> The monolithic matrix of (6.1) for one step size, factored, with its contact response.
+    type :: monolithic_system_t
+        real(dp) :: dt_eff = 0.0_dp    !< dt (Euler) or 2 dt / 3 (BDF2)
+        type(band_t) :: a              !< factored with dgbtrf
+        type(block_tridiagonal_t) :: blocks   !< the same matrix, block LU (fast per-step solve)
+        logical :: use_blocks = .false.       !< block LU agreed with dgbtrf at set-up
+        real(dp), allocatable :: z(:)  !< A^{-1} e_s, the response to a unit contact force
+        integer :: contact_dof = 0     !< row of the v equation at x = 1
+    end type monolithic_system_t
+
     type :: stepper_t
         type(model_t) :: model
         real(dp) :: dt = 0.0_dp, eps = 0.0_dp, g = 0.0_dp, tol = 0.0_dp
         integer :: s = 0, method = METHOD_MONOLITHIC, max_iter = 0
         logical :: signorini = .false.        !< law = 'signorini': exact u(1) <= g, no penalty
+        logical :: bdf2 = .false.             !< scheme = 'bdf2'
         class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
-        type(band_t) :: a              !< monolithic matrix, factored (dgbtrf)
-        type(block_tridiagonal_t) :: blocks   !< the same matrix, block LU (fast per-step solve)
-        logical :: use_blocks = .false.       !< block LU agreed with dgbtrf at set-up
-        real(dp), allocatable :: z(:)  !< A^{-1} e_s, the response to a unit contact force
-        integer :: contact_dof = 0     !< row of the v equation at x = 1
+        type(monolithic_system_t) :: euler    !< step dt (every Euler step, first BDF2 step)
+        type(monolithic_system_t) :: bdf      !< step 2 dt / 3 (BDF2 steps)
         type(band_t) :: thermal        !< paper: (q, theta, P, eta) block, factored
         type(band_t) :: mechanical     !< paper: v block, factored
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
+        real(dp), allocatable :: u_star(:), w_star(:, :)   !< the level the step starts from
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
         procedure :: init => stepper_init
         procedure :: advance => stepper_advance
+        procedure :: uses_block_solver => stepper_uses_block_solver
     end type stepper_t
 
 contains
@@ -79,15 +96,17 @@ contains
         self%max_iter = cfg%solver%max_iter
         self%s = cfg%mesh%n_elements
         self%signorini = trim(cfg%contact%law) == 'signorini'
+        self%bdf2 = trim(cfg%time%scheme) == 'bdf2'
         if (present(source)) allocate (self%source, source=source)
         s = self%s
         allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
                   self%w_new(0:s, N_FIELDS), &
-                  self%u_lag(0:s), self%work(0:s))
+                  self%u_lag(0:s), self%work(0:s), self%u_star(0:s), self%w_star(0:s, N_FIELDS))
         select case (trim(cfg%solver%method))
         case ('paper')
             self%method = METHOD_PAPER
             if (self%signorini) call fail(result, "method 'paper' (lagged penalty) has no Signorini form")
+            if (self%bdf2) call fail(result, "method 'paper' is the paper's implicit Euler iteration; use scheme 'euler'")
             call assemble_matrix(self%model, s, self%dt, THERMAL_SLOTS, self%thermal)
             call self%thermal%factor(info)
             if (info /= 0) call fail(result, 'thermal block: '//lapack_info_message('dgbtrf', info))
@@ -97,24 +116,47 @@ contains
             allocate (self%xt(self%thermal%n), self%x(self%mechanical%n))
         case default
             self%method = METHOD_MONOLITHIC
-            call assemble_matrix(self%model, s, self%dt, MONOLITHIC_SLOTS, self%a)
-            call self%blocks%factor(self%a, info)
-            self%use_blocks = info == 0
-            call self%a%factor(info)
-            if (info /= 0) then
-                call fail(result, lapack_info_message('dgbtrf', info))
-                return
-            end if
-            self%contact_dof = N_FIELDS * s + MONOLITHIC_SLOTS(F_V)
-            allocate (self%x(self%a%n), self%z(self%a%n))
-            self%z = 0.0_dp
-            self%z(self%contact_dof) = 1.0_dp
-            call self%a%solve(self%z, info)
-            if (self%use_blocks) self%use_blocks = blocks_agree(self)
-            if (.not. (self%z(self%contact_dof) > 0.0_dp)) &
-                call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+            allocate (self%x(N_FIELDS * (s + 1)))
+            call setup_monolithic(self, self%dt, self%euler, result)
+            if (self%bdf2 .and. result%ok) call setup_monolithic(self, 2.0_dp * self%dt / 3.0_dp, self%bdf, result)
         end select
     end subroutine stepper_init
+
+    !> Assemble (6.1) with step dt_eff, factor it (dgbtrf and block LU) and compute the
+    !> contact response z.
+    subroutine setup_monolithic(self, dt_eff, sys, result)
+        type(stepper_t), intent(inout) :: self
+        real(dp), intent(in) :: dt_eff
+        type(monolithic_system_t), intent(out) :: sys
+        type(step_result_t), intent(inout) :: result
+        integer :: info
+
+        sys%dt_eff = dt_eff
+        call assemble_matrix(self%model, self%s, dt_eff, MONOLITHIC_SLOTS, sys%a)
+        call sys%blocks%factor(sys%a, info)
+        sys%use_blocks = info == 0
+        call sys%a%factor(info)
+        if (info /= 0) then
+            call fail(result, lapack_info_message('dgbtrf', info))
+            return
+        end if
+        sys%contact_dof = N_FIELDS * self%s + MONOLITHIC_SLOTS(F_V)
+        allocate (sys%z(sys%a%n))
+        sys%z = 0.0_dp
+        sys%z(sys%contact_dof) = 1.0_dp
+        call sys%a%solve(sys%z, info)
+        if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, self%x)
+        if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
+            call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+    end subroutine setup_monolithic
+
+    !> Does the monolithic method solve with the block-tridiagonal LU (else dgbtrf's factors)?
+    logical function stepper_uses_block_solver(self)
+        class(stepper_t), intent(in) :: self
+
+        stepper_uses_block_solver = self%method == METHOD_MONOLITHIC .and. self%euler%use_blocks
+        if (self%bdf2) stepper_uses_block_solver = stepper_uses_block_solver .and. self%bdf%use_blocks
+    end function stepper_uses_block_solver
 
     !> Advance state from t_{n-1} to t_n. On failure the state is left unchanged.
     subroutine stepper_advance(self, state, result)
@@ -122,14 +164,29 @@ contains
         type(state_t), intent(inout) :: state
         type(step_result_t), intent(out) :: result
 
-        call old_state_rhs(self%model, self%dt, state%u, state%w, self%b_old, self%work)
-        if (allocated(self%source)) &
-            call add_source_terms(self%source, self%model, real(state%step + 1, dp) * self%dt, self%dt, self%b_old)
+        logical :: second_order
+
+        ! the level the step starts from: X^{n-1} (Euler) or (4 X^{n-1} - X^{n-2}) / 3 (BDF2)
+        second_order = self%bdf2 .and. state%step >= 1 .and. allocated(state%u_prev)
+        if (second_order) then
+            self%u_star = (4.0_dp * state%u - state%u_prev) / 3.0_dp
+            self%w_star = (4.0_dp * state%w - state%w_prev) / 3.0_dp
+        else
+            self%u_star = state%u
+            self%w_star = state%w
+        end if
         select case (self%method)
         case (METHOD_PAPER)
+            call start_rhs(self, self%dt, state)
             call advance_paper(self, state, result)
         case default
-            call advance_monolithic(self, state, result)
+            if (second_order) then
+                call start_rhs(self, self%bdf%dt_eff, state)
+                call advance_monolithic(self, self%bdf, state, result)
+            else
+                call start_rhs(self, self%euler%dt_eff, state)
+                call advance_monolithic(self, self%euler, state, result)
+            end if
         end select
         if (.not. result%ok) return
         state%step = state%step + 1
@@ -139,41 +196,56 @@ contains
         self%n_solves = self%n_solves + result%iterations
     end subroutine stepper_advance
 
-    subroutine advance_monolithic(self, state, result)
+    !> Right-hand side of (6.1) with step dt_eff from the level (u_star, w_star), plus sources.
+    subroutine start_rhs(self, dt_eff, state)
         type(stepper_t), intent(inout) :: self
+        real(dp), intent(in) :: dt_eff
+        type(state_t), intent(in) :: state
+
+        call old_state_rhs(self%model, dt_eff, self%u_star, self%w_star, self%b_old, self%work)
+        if (allocated(self%source)) &
+            call add_source_terms(self%source, self%model, real(state%step + 1, dp) * self%dt, dt_eff, self%b_old)
+    end subroutine start_rhs
+
+    subroutine advance_monolithic(self, sys, state, result)
+        type(stepper_t), intent(inout) :: self
+        type(monolithic_system_t), intent(in) :: sys
         type(state_t), intent(inout) :: state
         type(step_result_t), intent(inout) :: result
         integer :: info
         real(dp) :: gap, force
 
         call scatter_fields(MONOLITHIC_SLOTS, self%b_old, self%x)
-        if (self%use_blocks) then
-            call self%blocks%solve(self%x)
+        if (sys%use_blocks) then
+            call sys%blocks%solve(self%x)
         else
-            call self%a%solve(self%x, info)
+            call sys%a%solve(self%x, info)
         end if
         result%iterations = 1
         ! Trial gap without contact force; the contact node is active iff it is positive.
         ! The scaled momentum row carries dt*lambda, so x = y - dt*lambda*z with
         !   penalty (3.4):  lambda = (1/eps)(gap - dt^2 z_s lambda)  (u^n(1) - g = gap - dt^2 z_s lambda)
         !   Signorini:      u^n(1) = g, i.e. dt^2 z_s lambda = gap.
-        gap = state%u(self%s) + self%dt * self%x(self%contact_dof) - self%g
-        result%contact_force = 0.0_dp
-        if (gap > 0.0_dp) then
-            if (self%signorini) then
-                force = gap / (self%dt * self%z(self%contact_dof))
-            else
-                force = self%dt * gap / (self%eps + self%dt**2 * self%z(self%contact_dof))
+        associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof))
+            gap = self%u_star(self%s) + dt * self%x(sys%contact_dof) - self%g
+            result%contact_force = 0.0_dp
+            if (gap > 0.0_dp) then
+                if (self%signorini) then
+                    force = gap / (dt * z_s)
+                else
+                    force = dt * gap / (self%eps + dt**2 * z_s)
+                end if
+                self%x = self%x - force * sys%z
+                result%contact_force = force / dt
             end if
-            self%x = self%x - force * self%z
-            result%contact_force = force / self%dt
-        end if
+        end associate
         if (.not. all(ieee_is_finite(self%x))) then
             call fail(result, 'non-finite value in the solution')
             return
         end if
+        if (self%bdf2) call keep_previous_level(state)
         call gather_fields(MONOLITHIC_SLOTS, self%x, state%w)
-        state%u = state%u + self%dt * state%w(:, F_V)
+        state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
     end subroutine advance_monolithic
 
     subroutine advance_paper(self, state, result)
@@ -229,27 +301,39 @@ contains
         result%ok = .false.
     end subroutine advance_paper
 
+    !> BDF2 needs the level before: keep X^{n-1} before the step overwrites it (the arrays
+    !> are allocated on the first step only).
+    subroutine keep_previous_level(state)
+        type(state_t), intent(inout) :: state
+
+        if (.not. allocated(state%u_prev)) allocate (state%u_prev, mold=state%u)
+        if (.not. allocated(state%w_prev)) allocate (state%w_prev, mold=state%w)
+        state%u_prev = state%u
+        state%w_prev = state%w
+    end subroutine keep_previous_level
+
     !> The block LU has no pivoting across nodes; use it only if it reproduces the band LU
     !> (partial pivoting) on the contact response z and on a smooth right-hand side to 1e-9.
-    logical function blocks_agree(self)
-        type(stepper_t), intent(inout) :: self
+    logical function blocks_agree(sys, x)
+        type(monolithic_system_t), intent(in) :: sys
+        real(dp), intent(inout) :: x(:)            !< work array of the system's size
         real(dp), allocatable :: reference(:)
         integer :: k, info
 
         blocks_agree = NB == N_FIELDS
         if (.not. blocks_agree) return
-        self%x = 0.0_dp
-        self%x(self%contact_dof) = 1.0_dp
-        call self%blocks%solve(self%x)
-        blocks_agree = maxval(abs(self%x - self%z)) <= 1.0e-9_dp * maxval(abs(self%z))
-        do k = 1, size(self%x)
-            self%x(k) = sin(0.1_dp * k)
+        x = 0.0_dp
+        x(sys%contact_dof) = 1.0_dp
+        call sys%blocks%solve(x)
+        blocks_agree = maxval(abs(x - sys%z)) <= 1.0e-9_dp * maxval(abs(sys%z))
+        do k = 1, size(x)
+            x(k) = sin(0.1_dp * k)
         end do
-        reference = self%x
-        call self%a%solve(reference, info)
-        call self%blocks%solve(self%x)
+        reference = x
+        call sys%a%solve(reference, info)
+        call sys%blocks%solve(x)
         blocks_agree = blocks_agree .and. info == 0 .and. &
-                       maxval(abs(self%x - reference)) <= 1.0e-9_dp * maxval(abs(reference))
+                       maxval(abs(x - reference)) <= 1.0e-9_dp * maxval(abs(reference))
     end function blocks_agree
 
     subroutine fail(result, message)

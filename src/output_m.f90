@@ -19,7 +19,7 @@ module output_m
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
     use h5_read_m, only: h5_library_init
-    use hdf5, only: hid_t, hsize_t, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
+    use hdf5, only: hid_t, hsize_t, h5lexists_f, h5dopen_f, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
                     h5pset_chunk_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, &
                     H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, h5screate_f, &
@@ -79,11 +79,13 @@ module output_m
         procedure :: attr_logical => writer_attr_logical
         procedure :: attr_real_array => writer_attr_real_array
         procedure :: flush => writer_flush
+        procedure :: write_checkpoint => writer_write_checkpoint
         procedure :: finish => writer_finish
         procedure :: abandon => writer_abandon
         procedure :: is_open => writer_is_open
         procedure :: file_name => writer_file_name
         procedure, private :: check => writer_check
+        procedure, private :: put_real => writer_put_real
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
         procedure, private :: new_attr => writer_new_attr
@@ -127,6 +129,9 @@ contains
                 if (.not. ok) call w%fail(message)
             end if
         end if
+        ! finish() renames the .part file to <prefix>.h5, which fails on a directory: say so
+        ! now, not after the whole run
+        if (dir_exists(w%final_path)) call w%fail("'"//w%final_path//"' exists and is a directory")
         ! HDF5 says only that h5fcreate_f failed; creating the file first gets the system's
         ! reason ('Permission denied', 'Is a directory', ...) for the message
         call create_empty_file(w%part_path, ok, message)
@@ -382,6 +387,70 @@ contains
         call w%check(hdferr, 'h5tclose_f (string type) for attribute '//name)
     end subroutine writer_attr_str
 
+    !> Write (or overwrite) the restart data under /checkpoint: state (s+1, 6) with columns
+    !> u, q, theta, v, P, eta; counters (a real vector, see run_m); previous (s+1, 6), the
+    !> level before, for multistep schemes. Then flush the series buffer and the file, so
+    !> that a run killed afterwards leaves this checkpoint readable.
+    subroutine writer_write_checkpoint(w, state, counters, previous)
+        class(h5_writer_t), intent(inout) :: w
+        real(dp), intent(in) :: state(:, :)
+        real(dp), intent(in) :: counters(:)
+        real(dp), intent(in), optional :: previous(:, :)
+
+        integer(hid_t) :: group_id
+        logical :: exists
+        integer :: hdferr
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_checkpoint() on a closed writer')
+        call h5lexists_f(w%file_id, 'checkpoint', exists, hdferr)
+        call w%check(hdferr, 'h5lexists_f /checkpoint')
+        if (.not. exists) then
+            call h5gcreate_f(w%file_id, 'checkpoint', group_id, hdferr)
+            call w%check(hdferr, 'h5gcreate_f /checkpoint')
+            call h5gclose_f(group_id, hdferr)
+            call w%check(hdferr, 'h5gclose_f /checkpoint')
+        end if
+        call w%put_real('/checkpoint/state', state, [size(state, 1), size(state, 2)])
+        call w%put_real('/checkpoint/counters', counters, [size(counters), 1])
+        if (present(previous)) call w%put_real('/checkpoint/previous', previous, [size(previous, 1), size(previous, 2)])
+        call w%flush()
+    end subroutine writer_write_checkpoint
+
+    !> Write a fixed-size real dataset (rank 1 when shape(2) == 1, else rank 2), creating it
+    !> on the first call.
+    subroutine writer_put_real(w, name, values, shape2)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: values(*)
+        integer, intent(in) :: shape2(2)
+
+        integer(hid_t) :: dset_id, space_id
+        integer(hsize_t) :: dims(2)
+        integer :: rank, hdferr
+        logical :: exists
+
+        dims = int(shape2, hsize_t)
+        rank = 2
+        if (shape2(2) == 1) rank = 1
+        call h5lexists_f(w%file_id, name, exists, hdferr)
+        call w%check(hdferr, 'h5lexists_f '//name)
+        if (exists) then
+            call h5dopen_f(w%file_id, name, dset_id, hdferr)
+            call w%check(hdferr, 'h5dopen_f '//name)
+        else
+            call h5screate_simple_f(rank, dims(1:rank), space_id, hdferr)
+            call w%check(hdferr, 'h5screate_simple_f '//name)
+            call h5dcreate_f(w%file_id, name, H5T_NATIVE_DOUBLE, space_id, dset_id, hdferr)
+            call w%check(hdferr, 'h5dcreate_f '//name)
+            call h5sclose_f(space_id, hdferr)
+            call w%check(hdferr, 'h5sclose_f '//name)
+        end if
+        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values(1:product(shape2)), dims(1:rank), hdferr)
+        call w%check(hdferr, 'h5dwrite_f '//name)
+        call h5dclose_f(dset_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f '//name)
+    end subroutine writer_put_real
+
     !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
     !> crash leaves everything appended so far readable in the .part file.
     subroutine writer_flush(w)
@@ -509,7 +578,9 @@ contains
             ! abandon() only acts on an open writer; the empty .part may exist already
             call w%abandon()
             call remove_file(path)
-            call fatal(EXIT_OUTPUT, 'output.prefix', "cannot create '"//path//"': "//reason)
+            call fatal(EXIT_OUTPUT, 'output.prefix', "cannot create '"//path//"': "//reason// &
+                       '; &output prefix must name a file in a directory that exists or can be created, '// &
+                       'and that this user may write to')
         else
             call w%abandon()
             call fatal(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason)

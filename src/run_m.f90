@@ -11,12 +11,28 @@ module run_m
     use stepper_m, only: stepper_t, step_result_t
     use scheme_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
     use energy_m, only: discrete_energy, bdf2_energy, penetration
+    use restart_m, only: N_COUNTERS, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, COUNTER_LAW_ENERGY, &
+                         COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_STEP, COUNTER_T, pack_state, read_checkpoint, &
+                         copy_history
     use output_m, only: h5_writer_t
     use progress_m, only: progress_t
     use version_m, only: PROGRAM_VERSION
     implicit none
     private
     public :: run_simulation, number_of_steps
+
+    !> The discrete energy of every level and the largest relative rise of the energy the
+    !> scheme's law is stated for (E^n for Euler, the G-energy for BDF2).
+    type :: energy_monitor_t
+        logical :: penalty = .true., bdf2 = .false.
+        real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
+        logical :: have_law = .false.
+        real(dp), allocatable :: u_work(:), w_work(:, :)
+    contains
+        procedure :: init => monitor_init
+        procedure :: resume => monitor_resume
+        procedure :: observe => monitor_observe
+    end type energy_monitor_t
 
 contains
 
@@ -43,38 +59,45 @@ contains
         type(step_result_t) :: result
         type(h5_writer_t) :: writer
         type(progress_t) :: progress
-        integer :: n, n_steps
+        type(energy_monitor_t) :: monitor
+        integer :: n, n_steps, first_step
         integer(int64) :: clock_start, clock_rate
-        real(dp) :: energy, energy_old, law_energy, law_energy_old, max_rise
-        real(dp), allocatable :: u_work(:), w_work(:, :)
-        logical :: penalty, bdf2
+        real(dp) :: counters(N_COUNTERS)
         character(len=320) :: failure
 
         call system_clock(clock_start, clock_rate)
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
         call initial_state(cfg, state)
+        call monitor%init(cfg, state)
+        if (cfg%time%restart_from /= '') then
+            ! everything the restart needs is read and checked before the new file exists
+            call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters)
+            call monitor%resume(counters)
+        end if
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
         call writer%attr_int('steps_planned', n_steps)
-
-        penalty = trim(cfg%contact%law) /= 'signorini'
-        bdf2 = trim(cfg%time%scheme) == 'bdf2'
-        energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
-        law_energy = energy
-        max_rise = 0.0_dp
-        if (bdf2) allocate (u_work, mold=state%u)
-        if (bdf2) allocate (w_work, mold=state%w)
-        result%contact_force = 0.0_dp
-        if (penalty) result%contact_force = penetration(state%u, cfg%contact%g) / cfg%contact%eps
-        call write_series(writer, cfg, state, energy, result)
-        call write_snapshot(writer, state)
+        if (cfg%time%restart_from /= '') then
+            call copy_history(writer, trim(cfg%time%restart_from), state%t)
+            call writer%attr_int('restart_step', state%step)
+        else
+            result%contact_force = 0.0_dp
+            if (monitor%penalty) result%contact_force = penetration(state%u, cfg%contact%g) / cfg%contact%eps
+            call write_series(writer, cfg, state, monitor%energy, result)
+            call write_snapshot(writer, state)
+        end if
 
         call stepper%init(cfg, result)
+        if (cfg%time%restart_from /= '') then
+            stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
+            stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
+        end if
         failure = ''
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
+        first_step = state%step + 1
         call progress%start(n_steps, cfg%output%quiet)
-        do n = 1, n_steps
+        do n = first_step, n_steps
             if (failure /= '') exit
             call stepper%advance(state, result)
             if (.not. result%ok) then
@@ -82,19 +105,13 @@ contains
                     '): '//trim(result%message)
                 exit
             end if
-            energy_old = energy
-            law_energy_old = law_energy
-            energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
-            law_energy = energy
-            if (bdf2 .and. n >= 2) call bdf2_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, &
-                                                     state%u_prev, state%w_prev, u_work, w_work, penalty, law_energy)
-            ! Corollary 6.2: E^n <= E^{n-1} (BDF2: its G-energy from the second step on, see
-            ! energy_m); record the largest relative rise (round-off only for Euler)
-            if (.not. bdf2 .or. n >= 3) &
-                max_rise = max(max_rise, (law_energy - law_energy_old) / max(law_energy_old, tiny(1.0_dp)))
+            call monitor%observe(cfg, state)
             if (mod(n, cfg%output%series_every) == 0 .or. n == n_steps) &
-                call write_series(writer, cfg, state, energy, result)
+                call write_series(writer, cfg, state, monitor%energy, result)
             if (mod(n, cfg%output%snapshot_every) == 0 .or. n == n_steps) call write_snapshot(writer, state)
+            if (cfg%output%checkpoint_every > 0) then
+                if (mod(n, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, monitor)
+            end if
             call progress%update(n, state%t, result%in_contact)
         end do
         call progress%finish()
@@ -102,14 +119,15 @@ contains
         call writer%attr_int('steps', state%step)
         call writer%attr_real('t_final', state%t)
         call writer%attr_real('wall_seconds', seconds_since(clock_start, clock_rate))
-        call writer%attr_real('energy_max_relative_rise', max_rise)
-        if (bdf2) then
+        call writer%attr_real('energy_max_relative_rise', monitor%max_rise)
+        if (monitor%bdf2) then
             call writer%attr_str('energy_law', 'BDF2 G-energy (E_lin(X^n) + E_lin(2X^n - X^{n-1}))/2 + penalty(u^n)')
         else
             call writer%attr_str('energy_law', 'E^n of Corollary 6.2')
         end if
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
+        call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
         if (failure /= '') then
             call writer%finish('failed: '//trim(failure))
             call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &
@@ -117,6 +135,80 @@ contains
         end if
         call writer%finish('complete')
     end subroutine run_simulation
+
+    !> The energy of the first level and the law it must obey from then on.
+    subroutine monitor_init(self, cfg, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(in) :: state
+
+        self%penalty = trim(cfg%contact%law) /= 'signorini'
+        self%bdf2 = trim(cfg%time%scheme) == 'bdf2'
+        self%energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, self%penalty)
+        self%law_energy = self%energy
+        self%have_law = .not. self%bdf2
+        self%max_rise = 0.0_dp
+        if (self%bdf2) allocate (self%u_work, mold=state%u)
+        if (self%bdf2) allocate (self%w_work, mold=state%w)
+    end subroutine monitor_init
+
+    !> Continue the bookkeeping of a checkpointed run.
+    subroutine monitor_resume(self, counters)
+        class(energy_monitor_t), intent(inout) :: self
+        real(dp), intent(in) :: counters(N_COUNTERS)
+
+        self%energy = counters(COUNTER_ENERGY)
+        self%law_energy = counters(COUNTER_LAW_ENERGY)
+        self%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
+        self%max_rise = counters(COUNTER_MAX_RISE)
+    end subroutine monitor_resume
+
+    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for
+    !> Euler, the G-energy of energy_m's bdf2_energy for BDF2 (defined once a previous level
+    !> exists, compared from the first BDF2 step on).
+    subroutine monitor_observe(self, cfg, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(in) :: state
+        real(dp) :: law_old
+        logical :: had_law
+
+        law_old = self%law_energy
+        had_law = self%have_law
+        self%energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, self%penalty)
+        self%law_energy = self%energy
+        if (self%bdf2) then
+            self%have_law = allocated(state%u_prev)
+            if (self%have_law) call bdf2_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, &
+                                                state%u_prev, state%w_prev, self%u_work, self%w_work, &
+                                                self%penalty, self%law_energy)
+        end if
+        if (had_law .and. self%have_law) &
+            self%max_rise = max(self%max_rise, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
+    end subroutine monitor_observe
+
+    !> /checkpoint: the state, the level before (BDF2) and the counters to continue exactly.
+    subroutine write_checkpoint(writer, state, stepper, monitor)
+        type(h5_writer_t), intent(inout) :: writer
+        type(state_t), intent(in) :: state
+        type(stepper_t), intent(in) :: stepper
+        type(energy_monitor_t), intent(in) :: monitor
+        real(dp) :: counters(N_COUNTERS)
+
+        counters(COUNTER_STEP) = real(state%step, dp)
+        counters(COUNTER_T) = state%t
+        counters(COUNTER_SOLVES) = real(stepper%n_solves, dp)
+        counters(COUNTER_CONTACT_STEPS) = real(stepper%n_contact_steps, dp)
+        counters(COUNTER_ENERGY) = monitor%energy
+        counters(COUNTER_LAW_ENERGY) = monitor%law_energy
+        counters(COUNTER_HAVE_LAW) = merge(1.0_dp, 0.0_dp, monitor%have_law)
+        counters(COUNTER_MAX_RISE) = monitor%max_rise
+        if (allocated(state%u_prev)) then
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, pack_state(state%u_prev, state%w_prev))
+        else
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters)
+        end if
+    end subroutine write_checkpoint
 
     !> One series entry; the contact stress is sigma(1,t) = -lambda (normal compliance (3.4),
     !> or the Signorini multiplier).

@@ -25,6 +25,15 @@ module validate_m
     integer, parameter :: N_SERIES = 6                        !< t, energy, u_end, penetration, ...
     !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
     real(dp), parameter :: BOUNDARY_TOL = 1.0e-12_dp
+    !> Every real input has magnitude at most MAX_MAGNITUDE, and the coefficients that
+    !> divide (rho, alpha, c, r, hbar weigh the energy; 1/eps; t_end/dt) are at least
+    !> MIN_POSITIVE. Why: with every input in this range no intermediate quantity of the
+    !> scheme can overflow. The initial energy is at most ~1e93, the matrix entries
+    !> (largest dt**2 alpha / h) at most ~1e97, and the scheme never lets the energy grow
+    !> (Corollary 6.2), so every field stays far below the double-precision limit ~1.8e308.
+    !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
+    real(dp), parameter :: MAX_MAGNITUDE = 1.0e30_dp
+    real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
 
 contains
 
@@ -40,6 +49,7 @@ contains
         call validate_time(cfg%time, n_steps)
         call validate_initial(cfg%initial, cfg%contact%g)
         call validate_solver(cfg%solver)
+        call validate_combination(cfg)
         call validate_output(cfg%output, cfg%mesh%n_elements, n_steps)
     end subroutine validate_config
 
@@ -52,15 +62,15 @@ contains
 
         note = ''
         if (from_material) note = ' (computed from &material by (2.10)-(2.11))'
-        call require_positive(m%rho, 'model.rho', note)
-        call require_positive(m%alpha, 'model.alpha', note)
+        call require_positive(m%rho, 'model.rho', note, scaled=.true.)
+        call require_positive(m%alpha, 'model.alpha', note, scaled=.true.)
         call require_nonnegative(m%varpi, 'model.varpi', note)
         call require_nonnegative(m%gamma1, 'model.gamma1', note)
         call require_nonnegative(m%gamma2, 'model.gamma2', note)
-        call require_positive(m%c, 'model.c', note)
+        call require_positive(m%c, 'model.c', note, scaled=.true.)
         call require_nonnegative(m%d, 'model.d', note)
-        call require_positive(m%r, 'model.r', note)
-        call require_positive(m%hbar, 'model.hbar', note)
+        call require_positive(m%r, 'model.r', note, scaled=.true.)
+        call require_positive(m%hbar, 'model.hbar', note, scaled=.true.)
         call require_nonnegative(m%tau0, 'model.tau0', note)
         call require_nonnegative(m%tau, 'model.tau', note)
         if (.not. m%c * m%r - m%d**2 > 0.0_dp) call fatal(EXIT_INPUT, 'model.d', 'got d = ' // format_real(m%d) // &
@@ -72,10 +82,8 @@ contains
         type(contact_t), intent(in) :: contact
 
         call require_positive(contact%g, 'contact.g')
-        call require_positive(contact%eps, 'contact.eps')
-        if (contact%law == 'signorini') call fatal(EXIT_INPUT, 'contact.law', "got 'signorini': the Signorini " // &
-            "law (exact u(1) <= g) is not supported yet; use law = 'penalty' (normal compliance (3.4))")
-        call require_one_of(contact%law, [character(len=7) :: 'penalty'], 'contact.law')
+        call require_positive(contact%eps, 'contact.eps', scaled=.true.)
+        call require_one_of(contact%law, [character(len=9) :: 'penalty', 'signorini'], 'contact.law')
     end subroutine validate_contact
 
     subroutine validate_mesh(mesh)
@@ -94,7 +102,7 @@ contains
         type(time_t), intent(in) :: time
         real(dp), intent(out) :: n_steps
 
-        call require_positive(time%dt, 'time.dt')
+        call require_positive(time%dt, 'time.dt', scaled=.true.)
         call require_positive(time%t_end, 'time.t_end')
         if (time%t_end < time%dt) call fatal(EXIT_INPUT, 'time.t_end', 'got ' // format_real(time%t_end) // &
             ' < dt = ' // format_real(time%dt) // '; must be >= dt (at least one time step)')
@@ -103,10 +111,7 @@ contains
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
         n_steps = real(ceiling(time%t_end / time%dt), dp)
-        if (time%scheme /= 'euler') call fatal(EXIT_INPUT, 'time.scheme', &
-            "got '" // trim(time%scheme) // "': not supported yet; the only time scheme is 'euler' (implicit Euler)")
-        if (len_trim(time%restart_from) > 0) call fatal(EXIT_INPUT, 'time.restart_from', "got '" // &
-            trim(time%restart_from) // "': restarting is not supported yet; must be '' (empty)")
+        call require_one_of(time%scheme, [character(len=5) :: 'euler', 'bdf2'], 'time.scheme')
     end subroutine validate_time
 
     !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
@@ -136,6 +141,20 @@ contains
             '; the initial displacement must satisfy the contact constraint u0(1) <= g')
     end subroutine validate_initial
 
+    !> The paper's Section 7 iteration is implicit Euler with a lagged penalty: it has no
+    !> Signorini form and no BDF2 form.
+    subroutine validate_combination(cfg)
+        type(config_t), intent(in) :: cfg
+
+        if (cfg%solver%method /= 'paper') return
+        if (cfg%contact%law /= 'penalty') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
+            "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the penalty term and " // &
+            "has no Signorini form; method must be 'monolithic' with this law")
+        if (cfg%time%scheme /= 'euler') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
+            "time.scheme = '" // trim(cfg%time%scheme) // "': the paper's iteration is implicit Euler; " // &
+            "method must be 'monolithic' with this scheme")
+    end subroutine validate_combination
+
     subroutine validate_solver(solver)
         type(solver_t), intent(in) :: solver
 
@@ -155,10 +174,10 @@ contains
 
         if (len_trim(output%prefix) == 0) call fatal(EXIT_INPUT, 'output.prefix', &
             "got ''; must be a non-empty path prefix, e.g. 'out/run' (the file is <prefix>.h5)")
+        call require_file_prefix(output%prefix)
         call require_at_least(output%snapshot_every, 1, 'output.snapshot_every')
         call require_at_least(output%series_every, 1, 'output.series_every')
-        if (output%checkpoint_every /= 0) call fatal(EXIT_INPUT, 'output.checkpoint_every', 'got ' // &
-            int_str(output%checkpoint_every) // ': checkpointing is not supported yet; must be 0')
+        call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
         ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
         snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
@@ -177,6 +196,34 @@ contains
         end if
     end subroutine validate_output
 
+    !> The prefix must name a file: printable characters only (a NUL would cut the name
+    !> the C library sees), a last component that is not empty, '.' or '..' ('out/' would
+    !> write the hidden file 'out/.h5'), and not filling the whole variable (the namelist
+    !> read truncates a longer string without a word).
+    subroutine require_file_prefix(prefix)
+        character(len=*), intent(in) :: prefix
+        character(len=:), allocatable :: p, last, example
+        integer :: k, n
+
+        n = len_trim(prefix)
+        if (n >= len(prefix)) call fatal(EXIT_INPUT, 'output.prefix', 'got a path of ' // int_str(n) // &
+            ' or more characters (cut at ' // int_str(len(prefix)) // '); must be at most ' // &
+            int_str(len(prefix) - 1) // ' characters')
+        p = prefix(1:n)
+        do k = 1, n
+            if (iachar(p(k:k)) < 32 .or. iachar(p(k:k)) == 127) call fatal(EXIT_INPUT, 'output.prefix', &
+                'got a control character (code ' // int_str(iachar(p(k:k))) // ') at position ' // int_str(k) // &
+                '; must be a path of printable characters, e.g. ''out/run'' (the file is <prefix>.h5)')
+        end do
+        last = p(index(p, '/', back=.true.) + 1:)
+        if (len(last) == 0 .or. last == '.' .or. last == '..') then
+            example = p // '/run'
+            if (p(n:n) == '/') example = p // 'run'
+            call fatal(EXIT_INPUT, 'output.prefix', "got '" // p // "', which names a directory; must end in a " // &
+                       "file name, e.g. '" // example // "' (the file is " // example // '.h5)')
+        end if
+    end subroutine require_file_prefix
+
     ! ---------------------------------------------------------------- small checks
 
     subroutine require_finite(x, where, note)
@@ -186,16 +233,27 @@ contains
 
         if (.not. ieee_is_finite(x)) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
                                                 '; must be a finite real number' // optional_text(note))
+        if (abs(x) > MAX_MAGNITUDE) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
+            '; must be at most ' // format_real(MAX_MAGNITUDE) // ' in magnitude (larger values overflow ' // &
+            'double precision inside the scheme)' // optional_text(note))
     end subroutine require_finite
 
-    subroutine require_positive(x, where, note)
+    !> x finite, > 0 and at most MAX_MAGNITUDE; with scaled=.true. also >= MIN_POSITIVE (a
+    !> coefficient the scheme divides by).
+    subroutine require_positive(x, where, note, scaled)
         real(dp), intent(in) :: x
         character(len=*), intent(in) :: where
         character(len=*), intent(in), optional :: note
+        logical, intent(in), optional :: scaled
 
         call require_finite(x, where, note)
         if (.not. x > 0.0_dp) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be > 0' // &
                                          optional_text(note))
+        if (present(scaled)) then
+            if (scaled .and. x < MIN_POSITIVE) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
+                '; must be >= ' // format_real(MIN_POSITIVE) // ' (the energy or the scheme divides by it; smaller ' // &
+                'values can make the fields overflow double precision)' // optional_text(note))
+        end if
     end subroutine require_positive
 
     subroutine require_nonnegative(x, where, note)
@@ -239,6 +297,10 @@ contains
             if (.not. ieee_is_finite(coefficients(k))) call fatal(EXIT_INPUT, where, 'got ' // &
                 format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k) // &
                 '; every coefficient must be a finite real number')
+            if (abs(coefficients(k)) > MAX_MAGNITUDE) call fatal(EXIT_INPUT, where, 'got ' // &
+                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k) // &
+                '; every coefficient must be at most ' // format_real(MAX_MAGNITUDE) // ' in magnitude ' // &
+                '(larger initial data overflow double precision in the energy)')
         end do
     end subroutine require_finite_array
 
@@ -249,6 +311,9 @@ contains
 
         if (.not. ieee_is_finite(step(1))) call fatal(EXIT_INPUT, where, 'got amplitude ' // format_real(step(1)) // &
                                                       '; must be a finite real number')
+        if (abs(step(1)) > MAX_MAGNITUDE) call fatal(EXIT_INPUT, where, 'got amplitude ' // format_real(step(1)) // &
+            '; must be at most ' // format_real(MAX_MAGNITUDE) // ' in magnitude ' // &
+            '(larger initial data overflow double precision in the energy)')
         if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
                                                       '; must be a finite real number')
         if (.not. (step(2) >= 0.0_dp .and. step(2) <= 1.0_dp)) call fatal(EXIT_INPUT, where, 'got x_end ' // &

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Bad input: every case must exit with status 2, name group.variable on stderr (and print
-# nothing on stdout that looks like an error), and leave no <prefix>.h5 nor <prefix>.h5.part.
+# Bad input: every case must exit with status 2 (4 for an output location that cannot be
+# created), write exactly one line to stderr, 'rodcontact: error in <group.variable>: ...',
+# saying what is allowed (and no gfortran runtime error or backtrace), print nothing on
+# stdout that looks like an error, and leave no <prefix>.h5 nor <prefix>.h5.part.
 # A valid control run checks that the harness would see an output file if there were one.
 #
 #   bash tests/test_bad_input.sh <path to rodcontact> <source dir> <scratch dir>
@@ -51,21 +53,42 @@ run_input() {
     status=$?
 }
 
-# check_result <form> <expected where> <extra expected text or ''> <dir> <input text>
+# Words by which a message says what is allowed (or, for a broken text, what is wrong
+# with its structure).
+ALLOWED_WORDS="must|allowed|need|at most|at least|give one|only|use law|every group|not closed|cannot open|given twice"
+
+# check_result <form> <expected where> <extra expected text or ''> <dir> <input text> [<prefix>]
+#   Expects exit status $expect_status (2 unless the caller sets it) and no <prefix>.h5 nor
+#   <prefix>.h5.part (prefix <dir>/run by default).
+expect_status=2
 check_result() {
-    local form=$1 where=$2 extra=$3 dir=$4 text=$5
+    local form=$1 where=$2 extra=$3 dir=$4 text=$5 prefix=${6:-$4/run}
     local problems=()
-    [[ $status -eq 2 ]] || problems+=("exit status: expected 2, got $status")
+    [[ $status -eq $expect_status ]] || problems+=("exit status: expected $expect_status, got $status")
     grep -qF "rodcontact: error in $where:" "$dir/stderr" ||
         problems+=("stderr: expected 'rodcontact: error in $where:', got '$(head -c 300 "$dir/stderr")'")
     if [[ -n "$extra" ]]; then
         grep -qF -- "$extra" "$dir/stderr" || problems+=("stderr: expected to contain '$extra'")
     fi
+    local n_lines
+    n_lines=$(wc -l < "$dir/stderr")
+    [[ $n_lines -eq 1 ]] || problems+=("stderr: expected exactly 1 line, got $n_lines: '$(head -c 400 "$dir/stderr")'")
+    grep -qE "$ALLOWED_WORDS" "$dir/stderr" ||
+        problems+=("stderr: expected the message to say what is allowed (one of: $ALLOWED_WORDS)")
+    if grep -qE 'Fortran runtime error|Backtrace|Program received signal' "$dir/stderr"; then
+        problems+=("stderr: a runtime error or backtrace instead of a message")
+    fi
     if grep -qi "error" "$dir/stdout"; then
         problems+=("stdout: an error message went to stdout: '$(head -c 200 "$dir/stdout")'")
     fi
-    for leftover in "$dir/run.h5" "$dir/run.h5.part"; do
-        [[ -e "$leftover" ]] && problems+=("output: expected no file, found $leftover")
+    for leftover in "$prefix.h5" "$prefix.h5.part"; do
+        if [[ "$leftover" == "${keep_dir:-}" ]]; then
+            # made a directory by the case itself: must be left as it was, empty
+            [[ -d "$leftover" && -z "$(ls -A "$leftover")" ]] ||
+                problems+=("output: expected $leftover to stay an empty directory")
+        elif [[ -e "$leftover" ]]; then
+            problems+=("output: expected no file, found $leftover")
+        fi
     done
     local label="case $n_case ($form) $where"
     if [[ ${#problems[@]} -eq 0 ]]; then
@@ -96,21 +119,19 @@ run_case stdin material.kappa  "got -386"          "&material kappa = -386 /"
 
 # --- validation: &model
 run_case file  model.rho       "got -1.2298e-17"   "&model rho = -1.2298e-17 /"
-run_case stdin model.alpha     "got NaN"           "&model alpha = NaN /"
 run_case file  model.d         "(2.16)"            "&model d = 0.1 /"
-run_case stdin model.hbar      "must be > 0"       "&model hbar = 0 /"
 run_case file  model.tau0      "must be >= 0"      "&model tau0 = -0.02 /"
 # --- &contact
-run_case stdin contact.g       "must be > 0"       "&contact g = 0 /"
-run_case file  contact.law     "not supported yet" "&contact law = 'signorini' /"
+run_case file  contact.law     "'penalty', 'signorini'" "&contact law = 'hertz' /"
+run_case stdin solver.method   "no Signorini form" "&contact law = 'signorini' / &solver method = 'paper' /"
 # --- &mesh
 run_case stdin mesh.n_elements "must be an integer >= 2" "&mesh n_elements = 1 /"
 run_case file  mesh.n_elements "GiB"               "&mesh n_elements = 2000000000 /"
 # --- &time
-run_case stdin time.dt         "got Inf"           "&time dt = Inf /"
 run_case file  time.t_end      "must be >= dt"     "&time dt = 1e-3, t_end = 1e-4 /"
-run_case stdin time.scheme     "not supported yet" "&time scheme = 'bdf2' /"
-run_case file  time.restart_from "not supported yet" "&time restart_from = 'old.h5' /"
+run_case stdin time.scheme     "'euler', 'bdf2'" "&time scheme = 'bdf3' /"
+run_case stdin solver.method   "implicit Euler" "&time scheme = 'bdf2' / &solver method = 'paper' /"
+run_case file  time.restart_from "no such file" "&time restart_from = 'old.h5' /"
 run_case stdin time.dt         "steps"             "&time dt = 1e-12, t_end = 1 /"
 # --- &initial
 run_case file  initial.u0_poly "u0(1) <= g"        "&initial u0_poly = 0, 0.2 /"
@@ -122,15 +143,127 @@ run_case stdin initial.p0_step "x_end"             "&initial p0_step = 20, 1.5 /
 run_case file  initial.eta0_poly "finite"          "&initial eta0_poly = 0, -Inf /"
 # --- &solver
 run_case stdin solver.method   "'monolithic', 'paper'" "&solver method = 'foo' /"
-run_case file  solver.tol      "must be > 0"       "&solver tol = 0 /"
 run_case stdin solver.max_iter ">= 1"              "&solver max_iter = 0 /"
 # --- &output
 run_case file  output.snapshot_every ">= 1"        "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. snapshot_every = 0 /"
-run_case stdin output.checkpoint_every "not supported yet" "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. checkpoint_every = 10 /"
+run_case stdin output.checkpoint_every ">= 0" "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. checkpoint_every = -10 /"
 run_case file  output.prefix   "non-empty"         "&output prefix = '' /"
 run_case stdin output.snapshot_every "GiB"         "&mesh n_elements = 100000 /
 &time dt = 1e-6, t_end = 1 /
 &output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. snapshot_every = 1 /"
+
+# --- more reader cases: types, values, structure
+run_case file  output.quiet    "must be .true. or .false." "&output prefix='$scratch/case$((n_case + 1))/run' quiet = 'yes' /"
+run_case stdin solver.max_iter "must be an integer" "&solver max_iter = .true. /"
+run_case file  mesh.n_elements "must be an integer" "&mesh n_elements = NaN /"
+run_case stdin mesh.n_elements "Integer overflow"  "&mesh n_elements = 3000000000 /"
+run_case file  model.rho       "given twice"       "&model rho = 1.0 rho = 2.0 /"
+run_case stdin model.rho       "no value"          "&model rho = /"
+run_case file  contact         "not closed"        "&contact law = 'penalty /"
+run_case stdin input           "without a group name" "& /"
+
+# --- every checked real: zero, negative, NaN, Inf, too large (and too small where the
+# scheme divides by it). Variables that must be > 0 and are divided by:
+m=0
+for where in model.rho model.alpha model.c model.r model.hbar contact.eps time.dt; do
+    group=${where%%.*} var=${where#*.}
+    for value in 0 -1 NaN Inf 1e31 1e-31; do
+        case $value in
+            0|-1) expected="must be > 0" ;;
+            NaN|Inf) expected="must be a finite real number" ;;
+            1e31) expected="at most 1e30" ;;
+            1e-31) expected="must be >= 1e-30" ;;
+        esac
+        forms=(stdin file dash); form=${forms[$((m % 3))]}; m=$((m + 1))
+        run_case "$form" "$where" "$expected" "&$group $var = $value /"
+    done
+done
+# must be > 0, not divided by (tiny values are fine)
+for where in contact.g time.t_end solver.tol; do
+    group=${where%%.*} var=${where#*.}
+    for value in 0 -1 NaN -Inf 1e31; do
+        case $value in
+            0|-1) expected="must be > 0" ;;
+            NaN|-Inf) expected="must be a finite real number" ;;
+            1e31) expected="at most 1e30" ;;
+        esac
+        forms=(stdin file dash); form=${forms[$((m % 3))]}; m=$((m + 1))
+        run_case "$form" "$where" "$expected" "&$group $var = $value /"
+    done
+done
+# must be >= 0
+for where in model.varpi model.gamma1 model.gamma2 model.d model.tau0 model.tau; do
+    group=${where%%.*} var=${where#*.}
+    for value in -1 NaN Inf 1e31; do
+        case $value in
+            -1) expected="must be >= 0" ;;
+            NaN|Inf) expected="must be a finite real number" ;;
+            1e31) expected="at most 1e30" ;;
+        esac
+        forms=(stdin file dash); form=${forms[$((m % 3))]}; m=$((m + 1))
+        run_case "$form" "$where" "$expected" "&$group $var = $value /"
+    done
+done
+# integers
+run_case stdin mesh.n_elements "must be an integer >= 2" "&mesh n_elements = 0 /"
+run_case file  mesh.n_elements "must be an integer >= 2" "&mesh n_elements = -5 /"
+run_case stdin solver.max_iter ">= 1"              "&solver max_iter = -1 /"
+run_case file  output.series_every ">= 1"          "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. series_every = 0 /"
+run_case stdin output.snapshot_every ">= 1"        "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. snapshot_every = -3 /"
+# (2.16) exactly on its boundary: c*r - d**2 = 0
+run_case file  model.d         "(2.16)"            "&model c = 1, r = 1, d = 1 /"
+# initial data: non-finite or too large coefficients, boundary values of the spaces
+for var in u0_poly u1_poly theta0_poly p0_poly q0_poly eta0_poly; do
+    forms=(stdin file dash); form=${forms[$((m % 3))]}; m=$((m + 1))
+    run_case "$form" "initial.$var" "finite" "&initial $var = 0, NaN /"
+    run_case "$form" "initial.$var" "at most 1e30" "&initial $var = 0, 1e300, -1e300 /"
+done
+run_case stdin initial.theta0_step "finite"        "&initial theta0_step = Inf, 0.5 /"
+run_case file  initial.p0_step "at most 1e30"      "&initial p0_step = 1e31, 0.5 /"
+run_case stdin initial.theta0_step "need 0 <= x_end <= 1" "&initial theta0_step = 1, -0.1 /"
+run_case file  initial.u0_poly "must be 0 at x = 0" "&initial u0_poly = 1 /"
+run_case stdin initial.p0_poly "must be 0 at x = 1" "&initial p0_poly = 1 /"
+run_case file  initial.eta0_poly "must be 0 at x = 0" "&initial eta0_poly = -2, 1 /"
+run_case stdin initial.u0_poly "u0(1) <= g"        "&contact g = 0.01 /
+&initial u0_poly = 0, 0, 0.02 /"
+# prefixes that do not name a file (input errors, exit 2)
+run_case file  output.prefix   "names a directory" "&output prefix = '$scratch/case$((n_case + 1))/' /"
+run_case stdin output.prefix   "names a directory" "&output prefix = '.' /"
+run_case file  output.prefix   "control character" "&output prefix = '$scratch/case$((n_case + 1))/r$(printf '\001')un' /"
+run_case stdin output.prefix   "at most 1023"      "&output prefix = '$scratch/case$((n_case + 1))/$(printf 'x%.0s' {1..1100})' /"
+
+# --- output locations that cannot be created: exit 4, naming output.prefix
+# run_output_case <label> <prefix> <extra expected text>: <prefix> must not get a file
+run_output_case() {
+    local label=$1 prefix=$2 extra=$3
+    n_case=$((n_case + 1))
+    local dir="$scratch/case$n_case"
+    local input="$dir/input.nml"
+    printf '%s\n' "&mesh n_elements = 4 /" "&time dt = 1e-3, t_end = 2e-3 /" \
+        "&output prefix='$prefix' quiet=.true. /" > "$input"
+    run_input file "$input" "$dir"
+    expect_status=4
+    check_result file output.prefix "$extra" "$dir" "($label) prefix '$prefix'" "$prefix"
+    expect_status=2
+}
+prepare() { n_next=$((n_case + 1)); rm -rf "$scratch/case$n_next"; mkdir -p "$scratch/case$n_next"; }
+prepare; touch "$scratch/case$n_next/regular-file"
+run_output_case "under a regular file" "$scratch/case$n_next/regular-file/run" "is not a directory"
+prepare; touch "$scratch/case$n_next/regular-file"
+run_output_case "two levels under a regular file" "$scratch/case$n_next/regular-file/sub/run" "is not a directory"
+prepare
+run_output_case "directory cannot be created under /proc" "/proc/rodcontact-no-such-dir/run" "cannot create directory"
+prepare
+run_output_case "file cannot be created in /proc/self" "/proc/self/rodcontact-run" "cannot create"
+prepare
+run_output_case "read-only for root: /sys" "/sys/rodcontact-run" "Permission denied"
+prepare; keep_dir="$scratch/case$n_next/run.h5"; mkdir -p "$keep_dir"
+run_output_case "<prefix>.h5 is a directory" "$scratch/case$n_next/run" "is a directory"
+prepare; keep_dir="$scratch/case$n_next/run.h5.part"; mkdir -p "$keep_dir"
+run_output_case "<prefix>.h5.part is a directory" "$scratch/case$n_next/run" "Is a directory"
+keep_dir=''
+prepare
+run_output_case "file name longer than NAME_MAX" "$scratch/case$n_next/$(printf 'n%.0s' {1..300})" "File name too long"
 
 # --- a file that cannot be read
 n_case=$((n_case + 1))

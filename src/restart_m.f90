@@ -1,0 +1,149 @@
+!> Checkpoint contents and restart (&output checkpoint_every, &time restart_from).
+!>
+!> A checkpoint is the group /checkpoint of the output file: `state` (s+1, 6) with the
+!> columns u, q, theta, v, P, eta; `previous`, the same for the level before (BDF2 only);
+!> `counters`, the scalars the run needs to continue exactly (COUNTER_* below). A restart
+!> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
+!> copies the series and snapshots up to it into the new file and continues the time loop
+!> from there, so the result is bit-for-bit that of an uninterrupted run.
+module restart_m
+    use kinds_m, only: dp
+    use config_m, only: config_t
+    use errors_m, only: fatal, EXIT_INPUT
+    use state_m, only: state_t
+    use scheme_m, only: N_FIELDS
+    use fsys_m, only: file_exists
+    use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
+                         read_attr_str, dataset_exists
+    use output_m, only: h5_writer_t
+    implicit none
+    private
+    public :: N_COUNTERS, COUNTER_STEP, COUNTER_T, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, &
+              COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
+    public :: pack_state, read_checkpoint, copy_history
+
+    integer, parameter :: COUNTER_STEP = 1, COUNTER_T = 2, COUNTER_SOLVES = 3, COUNTER_CONTACT_STEPS = 4, &
+                          COUNTER_ENERGY = 5, COUNTER_LAW_ENERGY = 6, COUNTER_HAVE_LAW = 7, COUNTER_MAX_RISE = 8
+    integer, parameter :: N_COUNTERS = 8
+    character(len=*), parameter :: WHERE = 'time.restart_from'
+
+contains
+
+    !> (s+1, 6) array with the columns u, q, theta, v, P, eta (the layout of /checkpoint/state).
+    pure function pack_state(u, w) result(packed)
+        real(dp), intent(in) :: u(0:), w(0:, :)
+        real(dp) :: packed(size(u), 1 + N_FIELDS)
+
+        packed(:, 1) = u
+        packed(:, 2:) = w
+    end function pack_state
+
+    !> Read the checkpoint of `file` into state and counters. The run being restarted must
+    !> have the same mesh, time step, scheme, method and contact law as cfg.
+    subroutine read_checkpoint(file, cfg, state, counters)
+        character(len=*), intent(in) :: file
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(inout) :: state
+        real(dp), intent(out) :: counters(N_COUNTERS)
+        real(dp), allocatable :: packed(:, :), values(:)
+        integer :: s
+
+        if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
+                                                "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
+        if (.not. dataset_exists(file, '/checkpoint/state')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+            "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
+        call require_same_int(file, 'mesh.n_elements', cfg%mesh%n_elements)
+        call require_same_real(file, 'time.dt', cfg%time%dt)
+        call require_same_str(file, 'time.scheme', trim(cfg%time%scheme))
+        call require_same_str(file, 'solver.method', trim(cfg%solver%method))
+        call require_same_str(file, 'contact.law', trim(cfg%contact%law))
+        s = cfg%mesh%n_elements
+        call read_real_2d(file, '/checkpoint/state', packed)
+        if (any(shape(packed) /= [s + 1, 1 + N_FIELDS])) &
+            call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/state has the wrong shape")
+        state%u = packed(:, 1)
+        state%w = packed(:, 2:)
+        if (dataset_exists(file, '/checkpoint/previous')) then
+            call read_real_2d(file, '/checkpoint/previous', packed)
+            allocate (state%u_prev(0:s), state%w_prev(0:s, N_FIELDS))
+            state%u_prev = packed(:, 1)
+            state%w_prev = packed(:, 2:)
+        end if
+        call read_real_1d(file, '/checkpoint/counters', values)
+        if (size(values) /= N_COUNTERS) call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/counters is not "// &
+                                                   "from this version of rodcontact")
+        counters = values
+        state%step = nint(counters(COUNTER_STEP))
+        state%t = counters(COUNTER_T)
+    end subroutine read_checkpoint
+
+    !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint.
+    subroutine copy_history(writer, file, t_checkpoint)
+        type(h5_writer_t), intent(inout) :: writer
+        character(len=*), intent(in) :: file
+        real(dp), intent(in) :: t_checkpoint
+        real(dp), allocatable :: t(:), energy(:), u_end(:), pen(:), stress(:), snap_t(:)
+        real(dp), allocatable :: u(:, :), v(:, :), theta(:, :), p(:, :), q(:, :), eta(:, :)
+        integer, allocatable :: iterations(:)
+        real(dp) :: t_last
+        integer :: k
+
+        t_last = t_checkpoint * (1.0_dp + 1.0e-12_dp)
+        call read_real_1d(file, '/series/t', t)
+        call read_real_1d(file, '/series/energy', energy)
+        call read_real_1d(file, '/series/u_end', u_end)
+        call read_real_1d(file, '/series/penetration', pen)
+        call read_real_1d(file, '/series/contact_stress', stress)
+        call read_int_1d(file, '/series/iterations', iterations)
+        do k = 1, size(t)
+            if (t(k) > t_last) exit
+            call writer%append_series(t(k), energy(k), u_end(k), pen(k), stress(k), iterations(k))
+        end do
+        call read_real_1d(file, '/snapshots/t', snap_t)
+        call read_real_2d(file, '/snapshots/u', u)
+        call read_real_2d(file, '/snapshots/v', v)
+        call read_real_2d(file, '/snapshots/theta', theta)
+        call read_real_2d(file, '/snapshots/P', p)
+        call read_real_2d(file, '/snapshots/q', q)
+        call read_real_2d(file, '/snapshots/eta', eta)
+        do k = 1, size(snap_t)
+            if (snap_t(k) > t_last) exit
+            call writer%append_snapshot(snap_t(k), u(:, k), v(:, k), theta(:, k), p(:, k), q(:, k), eta(:, k))
+        end do
+    end subroutine copy_history
+
+    subroutine require_same_int(file, name, expected)
+        character(len=*), intent(in) :: file, name
+        integer, intent(in) :: expected
+        integer :: value
+        character(len=64) :: buf
+
+        call read_attr_int(file, name, value)
+        write (buf, '(a,i0,a,i0)') ' was ', value, ', this run has ', expected
+        if (value /= expected) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//trim(buf)// &
+                                          '; a restart must keep the mesh, dt, scheme, method and contact law')
+    end subroutine require_same_int
+
+    subroutine require_same_real(file, name, expected)
+        character(len=*), intent(in) :: file, name
+        real(dp), intent(in) :: expected
+        real(dp) :: value
+        character(len=64) :: buf
+
+        call read_attr_real(file, name, value)
+        write (buf, '(a,es12.5,a,es12.5)') ' was ', value, ', this run has ', expected
+        if (value /= expected) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//trim(buf)// &
+                                          '; a restart must keep the mesh, dt, scheme, method and contact law')
+    end subroutine require_same_real
+
+    subroutine require_same_str(file, name, expected)
+        character(len=*), intent(in) :: file, name, expected
+        character(len=:), allocatable :: value
+
+        call read_attr_str(file, name, value)
+        if (value /= expected) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//" was '"//value// &
+                                          "', this run has '"//expected// &
+                                          "'; a restart must keep the mesh, dt, scheme, method and contact law")
+    end subroutine require_same_str
+
+end module restart_m

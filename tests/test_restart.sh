@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Checkpoint and restart (&output checkpoint_every, &time restart_from):
+#  1. for Euler and BDF2, a run split at T/2 and restarted gives bit-for-bit the series,
+#     snapshots and energy bookkeeping of the uninterrupted run;
+#  2. a run killed with SIGKILL leaves its .h5.part with the last checkpoint readable and
+#     restartable, and the restarted run equals the uninterrupted one bit for bit;
+#  3. bad restarts (missing file, no checkpoint, another mesh) exit 2 and write nothing.
+# Usage: bash test_restart.sh <rodcontact> <source dir> <scratch dir>
+set -u
+exe=$1; src=$2; scratch=$3
+py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py to compare the files"; exit 77; }
+cd "$scratch" && rm -rf ./* || exit 1
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# exp1 data on 100 elements; contact starts at t ~ 0.19
+make_input() {   # make_input <file> <prefix> <t_end> <scheme> [extra &time text]
+    sed -e 's/n_elements=500/n_elements=100/' -e "s|t_end=3.0 /|t_end=$3 scheme='$4' ${5:-} /|" \
+        -e "s|prefix='out/exp1'|prefix='$2' checkpoint_every=250 quiet=.true.|" "$src/input/exp1.nml" > "$1"
+}
+same() {   # same <a.h5> <b.h5>: every series and snapshot dataset identical, same status
+    "$py" - "$1" "$2" <<'PY'
+import sys, h5py, numpy as np
+a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
+bad = []
+for g in ("series", "snapshots"):
+    for k in a[g]:
+        x, y = a[g][k][:], b[g][k][:]
+        if x.shape != y.shape or not np.array_equal(x, y):
+            bad.append(f"/{g}/{k}: shapes {x.shape} vs {y.shape}, max diff "
+                       f"{np.max(np.abs(x - y)) if x.shape == y.shape else 'n/a'}")
+for k in ("status", "energy_max_relative_rise", "solver.linear_solves", "solver.contact_steps", "steps"):
+    if a.attrs[k] != b.attrs[k]:
+        bad.append(f"attribute {k}: {a.attrs[k]} vs {b.attrs[k]}")
+print("\n".join(bad) if bad else "identical")
+sys.exit(1 if bad else 0)
+PY
+}
+
+for scheme in euler bdf2; do
+    make_input full_$scheme.nml full_$scheme 0.6 $scheme
+    make_input half_$scheme.nml half_$scheme 0.3 $scheme
+    make_input rest_$scheme.nml rest_$scheme 0.6 $scheme "restart_from='half_$scheme.h5'"
+    "$exe" full_$scheme.nml || fail "$scheme: uninterrupted run exit $?"
+    "$exe" half_$scheme.nml || fail "$scheme: first half exit $?"
+    "$exe" rest_$scheme.nml || fail "$scheme: restarted run exit $?"
+    if out=$(same full_$scheme.h5 rest_$scheme.h5); then echo "PASS $scheme: split at T/2 and restarted = uninterrupted ($out)"
+    else fail "$scheme: restarted run differs from the uninterrupted one:"; echo "$out"; fi
+done
+
+# killed run: long enough (300,000 steps) that the kill lands mid-run; checkpoints every 250 steps
+make_input long.nml long 30.0 euler
+make_input long_full.nml long_full 30.0 euler
+timeout -s KILL 1.5 "$exe" long.nml
+status=$?
+[ $status -eq 137 ] || fail "killed run: expected exit 137 (SIGKILL), got $status"
+[ -f long.h5.part ] || fail "killed run: no long.h5.part left"
+[ -f long.h5 ] && fail "killed run: a final long.h5 exists although the run was killed"
+step=$("$py" -c "import h5py; print(int(h5py.File('long.h5.part', 'r')['checkpoint/counters'][0]))") \
+    || fail "killed run: the .part file or its checkpoint is not readable"
+echo "killed run: last checkpoint at step ${step:-?}"
+# continue 5000 steps past the last checkpoint, and compare with a run from t = 0 to there
+t_end=$(awk -v n="${step:-0}" 'BEGIN { printf "%.4f", (n + 5000) * 1e-4 }')
+make_input long_rest.nml long_rest "$t_end" euler "restart_from='long.h5.part'"
+make_input long_ref.nml long_ref "$t_end" euler
+if [ "${step:-0}" -gt 0 ] && [ "${step:-0}" -lt 300000 ]; then
+    "$exe" long_rest.nml || fail "restart from the killed run: exit $?"
+    "$exe" long_ref.nml || fail "reference run: exit $?"
+    if out=$(same long_ref.h5 long_rest.h5); then echo "PASS: restart from a SIGKILLed run = uninterrupted ($out)"
+    else fail "restart from the killed run differs:"; echo "$out"; fi
+else
+    fail "killed run: checkpoint step ${step:-none} not in (0, 300000): the kill did not land mid-run"
+fi
+
+# bad restarts: exit 2, message naming time.restart_from, no output file
+bad() {   # bad <what> <restart_from value> [sed expression]
+    make_input bad.nml bad 0.6 euler "restart_from='$2'"
+    [ -n "${3:-}" ] && sed -i -e "$3" bad.nml
+    rm -f bad.h5 bad.h5.part
+    err=$("$exe" bad.nml 2>&1 >/dev/null); st=$?
+    if [ $st -ne 2 ]; then fail "$1: expected exit 2, got $st ($err)"
+    elif ! grep -q "time.restart_from" <<< "$err"; then fail "$1: message does not name time.restart_from: $err"
+    elif [ -e bad.h5 ] || [ -e bad.h5.part ]; then fail "$1: an output file was left"
+    else echo "PASS $1: $err"; fi
+}
+bad "missing restart file" "does-not-exist.h5"
+make_input nock.nml nock 0.01 euler; sed -i 's/checkpoint_every=250/checkpoint_every=0/' nock.nml; "$exe" nock.nml
+bad "file without checkpoint" "nock.h5"
+bad "restart on another mesh" "half_euler.h5" 's/n_elements=100/n_elements=50/'
+bad "restart with another dt" "half_euler.h5" 's/dt=1e-4/dt=2e-4/'
+
+echo "test_restart: $failures failed"
+[ $failures -eq 0 ]

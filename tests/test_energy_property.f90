@@ -3,12 +3,15 @@
 !> down to 1e-6, coarse and fine meshes, contact and no contact, penalty and Signorini
 !> laws — a short run of the monolithic scheme never lets the discrete energy rise:
 !> E^n <= E^{n-1} (1 + 1e-12) at every step.
+!> The same sets with scheme = 'bdf2': its G-energy (energy_m's bdf2_energy) must never rise
+!> in the sets without contact (G-stability of BDF2 for the linear system); with an active
+!> penalty BDF2 has no proven law, and the rises found are counted and reported.
 program test_energy_property
     use kinds_m, only: dp
     use config_m, only: config_t
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
-    use energy_m, only: discrete_energy
+    use energy_m, only: discrete_energy, bdf2_energy
     use testing_m, only: check_true, test_summary
     implicit none
     integer, parameter :: N_SETS = 50, N_STEPS = 150
@@ -23,6 +26,8 @@ program test_energy_property
     integer, allocatable :: seed(:)
     logical :: penalty
     character(len=400) :: detail
+    integer :: n_bdf2_contact_rises, n_bdf2_free
+    real(dp) :: worst_bdf2_contact
 
     call random_seed(size=seed_size)
     allocate (seed(seed_size))
@@ -57,11 +62,57 @@ program test_energy_property
     end do
     write (*, '(a,i0,a,i0,a,es10.3)') 'parameter sets: ', N_SETS, ', with contact: ', n_contact_sets, &
         ', largest relative energy rise over all: ', worst
+    call bdf2_sets()
     call check_true('contact occurs in at least a third of the sets', 3 * n_contact_sets >= N_SETS)
     call check_true('no contact in at least a fifth of the sets', 5 * (N_SETS - n_contact_sets) >= N_SETS)
     call test_summary('test_energy_property')
 
 contains
+
+    !> The same random sets (same seed) with BDF2.
+    subroutine bdf2_sets()
+        real(dp), allocatable :: u_work(:), w_work(:, :)
+        real(dp) :: law, law_old
+        logical :: contact
+
+        call random_seed(put=seed)
+        n_bdf2_contact_rises = 0
+        n_bdf2_free = 0
+        worst_bdf2_contact = -huge(1.0_dp)
+        do k = 1, N_SETS
+            call random_configuration(cfg)
+            cfg%time%scheme = 'bdf2'
+            penalty = cfg%contact%law == 'penalty'
+            call initial_state(cfg, state)
+            call stepper%init(cfg, result)
+            if (allocated(u_work)) deallocate (u_work, w_work)
+            allocate (u_work, mold=state%u)
+            allocate (w_work, mold=state%w)
+            rise = -huge(1.0_dp)
+            contact = .false.
+            do n = 1, N_STEPS
+                call stepper%advance(state, result)
+                if (.not. result%ok) exit
+                contact = contact .or. result%in_contact
+                law_old = law
+                call bdf2_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, state%u_prev, &
+                                 state%w_prev, u_work, w_work, penalty, law)
+                if (n >= 2) rise = max(rise, (law - law_old) / law_old)
+            end do
+            call check_true('bdf2 steps succeed', result%ok, result%message)
+            write (detail, '(a,i0,a,es10.3)') 'bdf2 set ', k, ' without contact: G-energy rise ', rise
+            if (.not. contact) then
+                n_bdf2_free = n_bdf2_free + 1
+                call check_true('bdf2: G-energy never rises without contact', rise <= MAX_RISE, detail)
+            else
+                worst_bdf2_contact = max(worst_bdf2_contact, rise)
+                if (rise > MAX_RISE) n_bdf2_contact_rises = n_bdf2_contact_rises + 1
+            end if
+        end do
+        write (*, '(a,i0,a,i0,a,i0,a,es10.3)') 'bdf2: sets without contact: ', n_bdf2_free, &
+            ' (G-energy never rises: asserted); sets with contact: ', N_SETS - n_bdf2_free, &
+            ', of which with a G-energy rise: ', n_bdf2_contact_rises, ', largest: ', worst_bdf2_contact
+    end subroutine bdf2_sets
 
     real(dp) function uniform(a, b)
         real(dp), intent(in) :: a, b

@@ -3,53 +3,131 @@
 !>
 !>   rodcontact < input.nml      namelist on standard input
 !>   rodcontact input.nml        namelist file as argument ('-' for standard input)
+!>   rodcontact input.nml --set group.variable=value ...   overrides after the file
+!>   rodcontact --summary file.h5 | --summary-header       one CSV row about a finished run
 !>   rodcontact --help | --version
 program rodcontact
     use iso_fortran_env, only: output_unit
     use config_m, only: config_t, read_config
     use validate_m, only: validate_config
     use run_m, only: run_simulation
+    use summary_m, only: summary_header, summary_row, summarise_file
+    use fsys_m, only: file_exists
     use errors_m, only: fatal, EXIT_INPUT
     use version_m, only: PROGRAM_VERSION
     implicit none
     type(config_t) :: cfg
-    character(len=:), allocatable :: source
+    character(len=:), allocatable :: source, summary_file
+    integer, allocatable :: set_arg(:), set_skip(:)
+    integer :: k, max_len
 
-    call parse_command_line(source)
-    call read_config(source, cfg)
+    call parse_command_line(source, set_arg, set_skip, summary_file)
+    if (allocated(summary_file)) then
+        if (.not. file_exists(summary_file)) call fatal(EXIT_INPUT, 'command line', &
+            "--summary: no such file '" // summary_file // "'")
+        write (output_unit, '(a)') summary_row(summarise_file(summary_file))
+        stop
+    end if
+    max_len = max_argument_length()
+    block
+        ! the --set values: argument set_arg(k) without its first set_skip(k) characters
+        character(len=max_len) :: overrides(size(set_arg))
+
+        do k = 1, size(set_arg)
+            overrides(k) = argument(set_arg(k))
+            overrides(k) = overrides(k)(set_skip(k) + 1:)
+        end do
+        call read_config(source, cfg, overrides)
+    end block
     call validate_config(cfg)
     call run_simulation(cfg)
 
 contains
 
-    subroutine parse_command_line(source)
+    !> The input source ('-' = standard input), where the --set values are (argument
+    !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
+    !> and the file of --summary (left unallocated without it). --help, --version and
+    !> --summary-header print and stop here.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_file)
         character(len=:), allocatable, intent(out) :: source
+        integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
+        character(len=:), allocatable, intent(out) :: summary_file
         character(len=:), allocatable :: arg
-        integer :: n_args, length
+        integer :: n_args, i
+        logical :: source_given
 
         n_args = command_argument_count()
         source = '-'
-        if (n_args == 0) return
-        if (n_args > 1) call fatal(EXIT_INPUT, 'command line', &
-                                   'expected at most one argument (the input file); try rodcontact --help')
-        call get_command_argument(1, length=length)
-        allocate (character(len=length) :: arg)
-        call get_command_argument(1, arg)
-        select case (arg)
-        case ('-h', '--help')
-            call print_help()
-            stop
-        case ('-V', '--version')
-            write (output_unit, '(a)') 'rodcontact '//PROGRAM_VERSION
-            stop
-        case default
-            if (len(arg) > 1) then
-                if (arg(1:1) == '-') call fatal(EXIT_INPUT, 'command line', "unknown option '"//arg// &
-                                                "'; allowed: --help, --version, or an input file")
-            end if
-            source = arg
-        end select
+        source_given = .false.
+        allocate (set_arg(0), set_skip(0))
+        i = 1
+        do while (i <= n_args)
+            arg = argument(i)
+            select case (arg)
+            case ('-h', '--help')
+                call print_help()
+                stop
+            case ('-V', '--version')
+                write (output_unit, '(a)') 'rodcontact '//PROGRAM_VERSION
+                stop
+            case ('--summary-header')
+                write (output_unit, '(a)') summary_header()
+                stop
+            case ('--summary')
+                if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--summary needs a file: ' // &
+                                            'rodcontact --summary <prefix>.h5')
+                i = i + 1
+                summary_file = argument(i)
+            case ('--set')
+                if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
+                                            'group.variable=value, e.g. --set model.varpi=0.3')
+                i = i + 1
+                set_arg = [set_arg, i]
+                set_skip = [set_skip, 0]
+            case default
+                if (len(arg) > 6) then
+                    if (arg(1:6) == '--set=') then
+                        set_arg = [set_arg, i]
+                        set_skip = [set_skip, 6]
+                        i = i + 1
+                        cycle
+                    end if
+                end if
+                if (len(arg) > 1) then
+                    if (arg(1:1) == '-') call fatal(EXIT_INPUT, 'command line', "unknown option '"//arg// &
+                        "'; allowed: --set group.variable=value, --summary file.h5, --summary-header, " // &
+                        '--help, --version, and one input file')
+                end if
+                if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
+                    "' after '" // source // "'; give one input file (or none: standard input)")
+                source = arg
+                source_given = .true.
+            end select
+            i = i + 1
+        end do
+        if (allocated(summary_file) .and. (source_given .or. size(set_arg) > 0)) &
+            call fatal(EXIT_INPUT, 'command line', '--summary takes only the HDF5 file, no input file and no --set')
     end subroutine parse_command_line
+
+    function argument(i) result(arg)
+        integer, intent(in) :: i
+        character(len=:), allocatable :: arg
+        integer :: length
+
+        call get_command_argument(i, length=length)
+        allocate (character(len=length) :: arg)
+        if (length > 0) call get_command_argument(i, arg)
+    end function argument
+
+    integer function max_argument_length() result(n)
+        integer :: i, length
+
+        n = 1
+        do i = 1, command_argument_count()
+            call get_command_argument(i, length=length)
+            n = max(n, length)
+        end do
+    end function max_argument_length
 
     subroutine print_help()
         write (output_unit, '(a)') &
@@ -59,6 +137,14 @@ contains
             'Usage:', &
             '  rodcontact < input.nml     read the namelist input from standard input', &
             '  rodcontact input.nml       read it from a file (- for standard input)', &
+            '  rodcontact input.nml --set group.variable=value [--set ...]', &
+            '                             override input values after the file (also with stdin), e.g.', &
+            '                               --set model.varpi=0.3 --set output.prefix=runs/a', &
+            "                               --set initial.theta0_step=5,0.1 --set 'initial.p0_step(1)=5'", &
+            '                             strings need no quotes; same checks and messages as the file', &
+            '  rodcontact --summary f.h5  one CSV row about a run: status, contact times, max penetration,', &
+            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds', &
+            '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &
             '  rodcontact --help          this text', &
             '  rodcontact --version       the program version', &
             '', &
@@ -68,6 +154,7 @@ contains
             '', &
             'Output: <prefix>.h5 (HDF5: /mesh/x, /series/*, /snapshots/*, root attributes),', &
             '  written as <prefix>.h5.part and renamed when complete.', &
+            'Parameter scans: scripts/scan.sh (docs/scans.md).', &
             '', &
             'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure.'
     end subroutine print_help

@@ -2,7 +2,9 @@
 !> into the types (the paper's values (7.1) and discretisation), and the namelist reader.
 !> The reader takes the whole text into memory, finds the groups itself (so that an unknown
 !> group, a group given twice or stray text is an error, in any order of the groups), then
-!> reads each group by a namelist read from the internal text.
+!> reads each group by a namelist read from the internal text. Command-line overrides
+!> ('--set group.variable=value') are read the same way, one assignment at a time, after
+!> the text, so they pass the same checks and name themselves in any error.
 module config_m
     use, intrinsic :: iso_fortran_env, only: input_unit, output_unit, iostat_end, iostat_eor
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
@@ -116,6 +118,8 @@ module config_m
         type(output_t) :: output
         type(material_t) :: material
         character(len=LEN_PATH) :: source = ''   !< where the namelist came from ('-' = stdin)
+        !> the --set overrides applied after it, as given ('' if none; truncated with '...')
+        character(len=LEN_PATH) :: overrides = ''
     end type config_t
 
     integer, parameter :: LEN_MSG = 512         !< iomsg buffers
@@ -160,6 +164,7 @@ module config_m
         integer :: body(2) = 0                 !< just after the name
         integer :: term(2) = 0                 !< the terminator '/' or '&end'
         integer :: last(2) = 0                 !< the terminator's last character
+        logical :: from_set = .false.          !< made from a --set override (named so in errors)
     end type group_t
 
     !> The assignments 'lhs = value' of one group: body(first(k):eq(k)-1) = lhs of the k-th.
@@ -168,7 +173,15 @@ module config_m
         character(len=:), allocatable :: body   !< text between the name and the terminator
         integer, allocatable :: first(:)        !< where the k-th left-hand side begins
         integer, allocatable :: eq(:)           !< its '='
+        logical :: from_set = .false.           !< made from a --set override
     end type assignments_t
+
+    !> One command-line override 'group.variable=value', split and checked by parse_override.
+    type :: override_t
+        character(len=:), allocatable :: group   !< lower case
+        character(len=:), allocatable :: lhs     !< 'variable' or 'variable(i)', as given
+        character(len=:), allocatable :: value   !< namelist value text (strings quoted)
+    end type override_t
 
     !> A line of text.
     type :: string_t
@@ -178,42 +191,47 @@ module config_m
 contains
 
     !> Read the run configuration from `source` (a file path, or '-' for standard input)
-    !> into cfg: every group present overrides the defaults of its type. Only what the
-    !> reader alone can know is checked here (text, syntax, names, types, &material);
-    !> value ranges are checked by validate_m.
-    subroutine read_config(source, cfg)
+    !> into cfg: every group present overrides the defaults of its type. Then each of
+    !> `overrides` ('group.variable=value', as after --set on the command line) is applied
+    !> in turn, as if it were the only assignment of a group '&group ... /' read after the
+    !> text (so a group the text does not have is fine, and an override of one array
+    !> element keeps the others). Only what the reader alone can know is checked here
+    !> (text, syntax, names, types, &material); value ranges are checked by validate_m.
+    subroutine read_config(source, cfg, overrides)
         character(len=*), intent(in) :: source
         type(config_t), intent(out) :: cfg
+        character(len=*), intent(in), optional :: overrides(:)
         type(string_t), allocatable :: lines(:)
         type(group_t), allocatable :: groups(:)
+        type(override_t), allocatable :: sets(:)
+        type(string_t) :: set_line(1)
+        type(group_t) :: set_group
         integer :: k
 
         cfg%source = source
+        ! the overrides are checked first: a misspelt --set fails before stdin is read
+        if (present(overrides)) then
+            allocate (sets(size(overrides)))
+            do k = 1, size(overrides)
+                sets(k) = parse_override(overrides(k), sets(:k - 1))
+            end do
+            cfg%overrides = override_summary(overrides)
+        else
+            allocate (sets(0))
+        end if
         call read_source(source, lines)
         call strip_comments(lines)
         call find_groups(lines, groups)
-        if (any(groups%name == 'material') .and. any(groups%name == 'model')) &
-            call fatal(EXIT_INPUT, 'material', '&material and &model are both given, which is ambiguous: ' // &
-                       '&material computes the &model values by (2.10)-(2.11); give one of the two groups')
+        call check_model_material(groups, sets)
         do k = 1, size(groups)
-            select case (groups(k)%name)
-            case ('model')
-                call read_model(lines, groups(k), cfg%model)
-            case ('contact')
-                call read_contact(lines, groups(k), cfg%contact)
-            case ('mesh')
-                call read_mesh(lines, groups(k), cfg%mesh)
-            case ('time')
-                call read_time(lines, groups(k), cfg%time)
-            case ('initial')
-                call read_initial(lines, groups(k), cfg%initial)
-            case ('solver')
-                call read_solver(lines, groups(k), cfg%solver)
-            case ('output')
-                call read_output(lines, groups(k), cfg%output)
-            case ('material')
-                call read_material(lines, groups(k), cfg%material)
-            end select
+            call read_group(lines, groups(k), cfg)
+        end do
+        do k = 1, size(sets)
+            ! '&group lhs = value /' on a line of its own, read like a group of the text
+            set_line(1)%s = '&' // sets(k)%group // ' ' // sets(k)%lhs // ' = ' // sets(k)%value // ' /'
+            set_group = group_t(name=sets(k)%group, first=[1, 1], body=[1, 2 + len(sets(k)%group)], &
+                                term=[1, len(set_line(1)%s)], last=[1, len(set_line(1)%s)], from_set=.true.)
+            call read_group(set_line, set_group, cfg)
         end do
         if (cfg%material%present) then
             call check_material(cfg%material)
@@ -221,6 +239,130 @@ contains
             call echo_material(cfg%material, nondim_groups(cfg%material), cfg%model)
         end if
     end subroutine read_config
+
+    !> Read group `grp` of `lines` into its part of cfg, over the values already there.
+    subroutine read_group(lines, grp, cfg)
+        type(string_t), intent(in) :: lines(:)
+        type(group_t), intent(in) :: grp
+        type(config_t), intent(inout) :: cfg
+
+        select case (grp%name)
+        case ('model')
+            call read_model(lines, grp, cfg%model)
+        case ('contact')
+            call read_contact(lines, grp, cfg%contact)
+        case ('mesh')
+            call read_mesh(lines, grp, cfg%mesh)
+        case ('time')
+            call read_time(lines, grp, cfg%time)
+        case ('initial')
+            call read_initial(lines, grp, cfg%initial)
+        case ('solver')
+            call read_solver(lines, grp, cfg%solver)
+        case ('output')
+            call read_output(lines, grp, cfg%output)
+        case ('material')
+            call read_material(lines, grp, cfg%material)
+        end select
+    end subroutine read_group
+
+    !> &material and &model together are ambiguous, whether from the text or from --set.
+    subroutine check_model_material(groups, sets)
+        type(group_t), intent(in) :: groups(:)
+        type(override_t), intent(in) :: sets(:)
+        character(len=:), allocatable :: where
+        logical :: has_model, has_material
+        integer :: k
+
+        has_model = any(groups%name == 'model')
+        has_material = any(groups%name == 'material')
+        where = 'material'
+        do k = 1, size(sets)
+            if (sets(k)%group == 'model' .or. sets(k)%group == 'material') then
+                if (sets(k)%group == 'model') has_model = .true.
+                if (sets(k)%group == 'material') has_material = .true.
+                if (where == 'material') where = '--set ' // sets(k)%group // '.' // lower(sets(k)%lhs)
+            end if
+        end do
+        if (has_model .and. has_material) &
+            call fatal(EXIT_INPUT, where, '&material and &model are both given, which is ambiguous: ' // &
+                       '&material computes the &model values by (2.10)-(2.11); give one of the two groups')
+    end subroutine check_model_material
+
+    !> Split the override `text` ('group.variable=value' or 'group.variable(i)=value') and
+    !> check what can be checked before reading it: a known group and variable, a subscript
+    !> only on an array, a value that stays inside one assignment, not given twice. The
+    !> value of a string variable is quoted here unless it is quoted already (--set
+    !> output.prefix=runs/a), so that the shell need not pass the quotes.
+    function parse_override(text, earlier) result(set)
+        character(len=*), intent(in) :: text
+        type(override_t), intent(in) :: earlier(:)
+        type(override_t) :: set
+        character(len=:), allocatable :: lhs, name, subscript, value, where, vars
+        character :: code
+        integer :: eq, dot, k
+
+        eq = index(text, '=')
+        lhs = trim(adjustl(text(:max(0, eq - 1))))
+        dot = index(lhs, '.')
+        if (eq == 0 .or. dot == 0) call fatal(EXIT_INPUT, '--set ' // excerpt(text), &
+            "expected group.variable=value, e.g. --set model.varpi=0.3 or --set 'initial.theta0_step(1)=5'; " // &
+            'groups: ' // group_list())
+        set%group = lower(trim(lhs(:dot - 1)))
+        set%lhs = trim(adjustl(lhs(dot + 1:)))
+        where = '--set ' // set%group // '.' // lower(set%lhs)
+        if (.not. any(GROUP_NAMES == set%group)) call fatal(EXIT_INPUT, where, "unknown namelist group '" // &
+            set%group // "'; allowed groups: " // group_list())
+        vars = group_vars(set%group)
+        name = identifier_at(set%lhs, 1)
+        code = ' '
+        if (len(name) > 0) code = var_kind(vars, name)
+        if (code == ' ') call fatal(EXIT_INPUT, where, "unknown variable '" // set%lhs // "' in &" // &
+            set%group // '; allowed: ' // var_list(vars))
+        subscript = squeeze(set%lhs(len(name) + 1:))
+        if (len(subscript) > 0) then
+            if (code /= 'a' .and. code /= '2') call fatal(EXIT_INPUT, where, "'" // name // "' is not an array; " // &
+                'give ' // set%group // '.' // lower(name) // '=value (must be ' // kind_description(code) // ')')
+            if (len(subscript) < 3 .or. subscript(1:1) /= '(' .or. subscript(len(subscript):) /= ')') &
+                call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
+                           excerpt(set%lhs) // "'")
+            if (verify(subscript(2:len(subscript) - 1), '0123456789') /= 0) &
+                call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
+                           excerpt(set%lhs) // "'")
+        end if
+        do k = 1, size(earlier)
+            if (earlier(k)%group == set%group .and. lower(squeeze(earlier(k)%lhs)) == lower(squeeze(set%lhs))) &
+                call fatal(EXIT_INPUT, where, 'given twice on the command line; each --set variable at most once')
+        end do
+        value = trim(adjustl(text(eq + 1:)))
+        if (code == 's') then
+            if (len(value) == 0) then
+                value = "''"
+            else if (scan(value(1:1), '''"') == 0) then
+                value = quoted_string(value)
+            end if
+        else if (scan(value, '/&$=!''"') > 0) then
+            ! any of these would end the assignment or the group early in the namelist text
+            call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(code))
+        end if
+        set%value = value
+    end function parse_override
+
+    !> '--set a=1 --set b=2', the record of the overrides in cfg%overrides.
+    pure function override_summary(overrides) result(text)
+        character(len=*), intent(in) :: overrides(:)
+        character(len=LEN_PATH) :: text
+        character(len=:), allocatable :: all
+        integer :: k
+
+        all = ''
+        do k = 1, size(overrides)
+            all = all // ' --set ' // trim(adjustl(overrides(k)))
+        end do
+        all = trim(adjustl(all))
+        if (len(all) > LEN_PATH) all = all(:LEN_PATH - 3) // '...'
+        text = all
+    end function override_summary
 
     !> The nondimensional groups of (2.10) for the physical quantities `mat`.
     pure function nondim_groups(mat) result(nd)
@@ -504,6 +646,7 @@ contains
         integer :: j, k, p, n
 
         asg%group = grp%name
+        asg%from_set = grp%from_set
         asg%body = group_body(lines, grp)
         allocate (asg%first(0), asg%eq(0))
         associate (body => asg%body)
@@ -530,17 +673,18 @@ contains
             n = size(asg%eq)
             p = len(body) + 1
             if (n > 0) p = asg%first(1)
-            if (verify(body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, trim(grp%name), "expected 'variable = " // &
-                "value' in &" // trim(grp%name) // ", got '" // excerpt(body(:p - 1)) // "'; allowed variables: " // &
-                var_list(vars))
+            if (verify(body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), &
+                "expected 'variable = value' in &" // trim(grp%name) // ", got '" // excerpt(body(:p - 1)) // &
+                "'; allowed variables: " // var_list(vars))
         end associate
         do k = 1, n
             lhs = assignment_lhs(asg, k)
             name = identifier_at(lhs, 1)
             value = assignment_value(asg, k)
-            where = trim(grp%name) // '.' // lower(name)
-            if (len(name) == 0) call fatal(EXIT_INPUT, trim(grp%name), "'=' without a variable name in &" // &
-                trim(grp%name) // ": '" // excerpt(asg%body(asg%first(k):)) // "'; allowed variables: " // var_list(vars))
+            where = origin(asg) // trim(grp%name) // '.' // lower(name)
+            if (len(name) == 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), &
+                "'=' without a variable name in &" // trim(grp%name) // ": '" // &
+                excerpt(asg%body(asg%first(k):)) // "'; allowed variables: " // var_list(vars))
             if (var_kind(vars, name) == ' ') call fatal(EXIT_INPUT, where, "unknown variable '" // name // &
                 "' in &" // trim(grp%name) // '; allowed: ' // var_list(vars))
             do p = 1, k - 1
@@ -554,6 +698,18 @@ contains
                 'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // name // ' = ' // quoted(excerpt(value)))
         end do
     end subroutine split_group
+
+    !> '--set ' before group.variable in messages about an override, '' for the text.
+    pure function origin(asg) result(prefix)
+        type(assignments_t), intent(in) :: asg
+        character(len=:), allocatable :: prefix
+
+        if (asg%from_set) then
+            prefix = '--set '
+        else
+            prefix = ''
+        end if
+    end function origin
 
     !> The left-hand side 'name' or 'name(i)' of assignment k.
     pure function assignment_lhs(asg, k) result(lhs)
@@ -602,14 +758,15 @@ contains
         character(len=:), allocatable :: lhs, name, value
 
         if (ios == 0) return
-        if (k > size(asg%eq)) call fatal(EXIT_INPUT, trim(asg%group), 'cannot read &' // trim(asg%group) // ': ' // &
-                                         trim(msg))
+        if (k > size(asg%eq)) call fatal(EXIT_INPUT, origin(asg) // trim(asg%group), &
+                                         'cannot read &' // trim(asg%group) // ': ' // trim(msg))
         lhs = assignment_lhs(asg, k)
         name = identifier_at(lhs, 1)
         value = assignment_value(asg, k)
         if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
-        call fatal(EXIT_INPUT, trim(asg%group) // '.' // lower(name), 'got ' // quoted(excerpt(value)) // '; must be ' // &
-                   kind_description(var_kind(vars, name)) // ' (namelist read: ' // trim(msg) // ')')
+        call fatal(EXIT_INPUT, origin(asg) // trim(asg%group) // '.' // lower(name), &
+                   'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(var_kind(vars, name)) // &
+                   ' (namelist read: ' // trim(msg) // ')')
     end subroutine check_read
 
     ! ---------------------------------------------------------------- one reader per group
@@ -965,6 +1122,45 @@ contains
             q = "'" // text // "'"
         end if
     end function quoted
+
+    !> text as a namelist string in single quotes (an inner ' doubled).
+    pure function quoted_string(text) result(q)
+        character(len=*), intent(in) :: text
+        character(len=:), allocatable :: q
+        integer :: j
+
+        q = "'"
+        do j = 1, len(text)
+            q = q // text(j:j)
+            if (text(j:j) == "'") q = q // "'"
+        end do
+        q = q // "'"
+    end function quoted_string
+
+    !> The 'name:kind ...' table of group `group` (one of GROUP_NAMES).
+    pure function group_vars(group) result(vars)
+        character(len=*), intent(in) :: group
+        character(len=:), allocatable :: vars
+
+        select case (group)
+        case ('model')
+            vars = VARS_MODEL
+        case ('contact')
+            vars = VARS_CONTACT
+        case ('mesh')
+            vars = VARS_MESH
+        case ('time')
+            vars = VARS_TIME
+        case ('initial')
+            vars = VARS_INITIAL
+        case ('solver')
+            vars = VARS_SOLVER
+        case ('output')
+            vars = VARS_OUTPUT
+        case default
+            vars = VARS_MATERIAL
+        end select
+    end function group_vars
 
     pure function int_str(n) result(s)
         integer, intent(in) :: n

@@ -66,6 +66,7 @@ module output_m
         integer(hid_t) :: snap_field_ids(N_FIELDS) = -1
         integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
         integer(hsize_t) :: n_snap = 0             !< snapshots in the file
+        integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
         integer :: n_buf = 0                       !< series entries waiting in the buffer
         real(dp), allocatable :: buf_real(:, :)    !< (SERIES_BUFFER_SIZE, N_SERIES_REAL)
         integer, allocatable :: buf_iter(:)        !< (SERIES_BUFFER_SIZE)
@@ -387,10 +388,13 @@ contains
         call w%check(hdferr, 'h5tclose_f (string type) for attribute '//name)
     end subroutine writer_attr_str
 
-    !> Write (or overwrite) the restart data under /checkpoint: state (s+1, 6) with columns
-    !> u, q, theta, v, P, eta; counters (a real vector, see run_m); previous (s+1, 6), the
-    !> level before, for multistep schemes. Then flush the series buffer and the file, so
-    !> that a run killed afterwards leaves this checkpoint readable.
+    !> Write the restart data: state (s+1, 6) with columns u, q, theta, v, P, eta; counters
+    !> (a real vector, see restart_m); previous (s+1, 6), the level before, for multistep
+    !> schemes. Raw data reach the file as they are written, so a kill in the middle of a
+    !> checkpoint would leave a torn one; there are therefore two slots,
+    !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
+    !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
+    !> flushed). A run killed at any moment leaves the last complete checkpoint readable.
     subroutine writer_write_checkpoint(w, state, counters, previous)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: state(:, :)
@@ -399,20 +403,29 @@ contains
 
         integer(hid_t) :: group_id
         logical :: exists
-        integer :: hdferr
+        integer :: hdferr, k
+        character(len=*), parameter :: GROUPS(3) = [character(len=17) :: &
+            'checkpoint', 'checkpoint/slot0', 'checkpoint/slot1']
+        character(len=:), allocatable :: slot
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_checkpoint() on a closed writer')
-        call h5lexists_f(w%file_id, 'checkpoint', exists, hdferr)
-        call w%check(hdferr, 'h5lexists_f /checkpoint')
-        if (.not. exists) then
-            call h5gcreate_f(w%file_id, 'checkpoint', group_id, hdferr)
-            call w%check(hdferr, 'h5gcreate_f /checkpoint')
+        do k = 1, size(GROUPS)
+            call h5lexists_f(w%file_id, trim(GROUPS(k)), exists, hdferr)
+            call w%check(hdferr, 'h5lexists_f /'//trim(GROUPS(k)))
+            if (exists) cycle
+            call h5gcreate_f(w%file_id, trim(GROUPS(k)), group_id, hdferr)
+            call w%check(hdferr, 'h5gcreate_f /'//trim(GROUPS(k)))
             call h5gclose_f(group_id, hdferr)
-            call w%check(hdferr, 'h5gclose_f /checkpoint')
-        end if
-        call w%put_real('/checkpoint/state', state, [size(state, 1), size(state, 2)])
-        call w%put_real('/checkpoint/counters', counters, [size(counters), 1])
-        if (present(previous)) call w%put_real('/checkpoint/previous', previous, [size(previous, 1), size(previous, 2)])
+            call w%check(hdferr, 'h5gclose_f /'//trim(GROUPS(k)))
+        end do
+        w%checkpoint_slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
+        slot = '/checkpoint/slot0'
+        if (w%checkpoint_slot == 1) slot = '/checkpoint/slot1'
+        call w%put_real(slot//'/state', state, [size(state, 1), size(state, 2)])
+        call w%put_real(slot//'/counters', counters, [size(counters), 1])
+        if (present(previous)) call w%put_real(slot//'/previous', previous, [size(previous, 1), size(previous, 2)])
+        call w%flush()
+        call w%put_real('/checkpoint/current', [real(w%checkpoint_slot, dp)], [1, 1])
         call w%flush()
     end subroutine writer_write_checkpoint
 

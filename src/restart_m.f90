@@ -1,8 +1,9 @@
 !> Checkpoint contents and restart (&output checkpoint_every, &time restart_from).
 !>
-!> A checkpoint is the group /checkpoint of the output file: `state` (s+1, 6) with the
-!> columns u, q, theta, v, P, eta; `previous`, the same for the level before (BDF2 only);
-!> `counters`, the scalars the run needs to continue exactly (COUNTER_* below). A restart
+!> A checkpoint lives in the group /checkpoint of the output file, in one of two slots
+!> (slot0, slot1; /checkpoint/current says which is complete, see output_m): `state`
+!> (s+1, 6) with the columns u, q, theta, v, P, eta; `previous`, the same for the level
+!> before (BDF2 only); `counters`, the scalars the run needs to continue exactly (COUNTER_*). A restart
 !> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
 !> copies the series and snapshots up to it into the new file and continues the time loop
 !> from there, so the result is bit-for-bit that of an uninterrupted run.
@@ -46,11 +47,12 @@ contains
         type(state_t), intent(inout) :: state
         real(dp), intent(out) :: counters(N_COUNTERS)
         real(dp), allocatable :: packed(:, :), values(:)
+        character(len=:), allocatable :: slot
         integer :: s
 
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
-        if (.not. dataset_exists(file, '/checkpoint/state')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+        if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
         call require_same_int(file, 'mesh.n_elements', cfg%mesh%n_elements)
         call require_same_real(file, 'time.dt', cfg%time%dt)
@@ -58,18 +60,21 @@ contains
         call require_same_str(file, 'solver.method', trim(cfg%solver%method))
         call require_same_str(file, 'contact.law', trim(cfg%contact%law))
         s = cfg%mesh%n_elements
-        call read_real_2d(file, '/checkpoint/state', packed)
+        call read_real_1d(file, '/checkpoint/current', values)
+        slot = '/checkpoint/slot0'
+        if (nint(values(1)) == 1) slot = '/checkpoint/slot1'
+        call read_real_2d(file, slot//'/state', packed)
         if (any(shape(packed) /= [s + 1, 1 + N_FIELDS])) &
-            call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/state has the wrong shape")
+            call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/state has the wrong shape")
         state%u = packed(:, 1)
         state%w = packed(:, 2:)
-        if (dataset_exists(file, '/checkpoint/previous')) then
-            call read_real_2d(file, '/checkpoint/previous', packed)
+        if (dataset_exists(file, slot//'/previous')) then
+            call read_real_2d(file, slot//'/previous', packed)
             allocate (state%u_prev(0:s), state%w_prev(0:s, N_FIELDS))
             state%u_prev = packed(:, 1)
             state%w_prev = packed(:, 2:)
         end if
-        call read_real_1d(file, '/checkpoint/counters', values)
+        call read_real_1d(file, slot//'/counters', values)
         if (size(values) /= N_COUNTERS) call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/counters is not "// &
                                                    "from this version of rodcontact")
         counters = values

@@ -276,6 +276,7 @@ contains
         call writer%attr_int('output.checkpoint_every', cfg%output%checkpoint_every)
         call writer%attr_logical('output.quiet', cfg%output%quiet)
         call writer%attr_str('input.source', trim(cfg%source))
+        call writer%attr_str('input.overrides', trim(cfg%overrides))
     end subroutine record_inputs
 
     real(dp) function seconds_since(clock_start, clock_rate)

@@ -4,17 +4,52 @@
 #   scripts/test.sh                     # every test
 #   scripts/test.sh -L fast             # extra arguments go to ctest
 #   scripts/test.sh -R test_progress_m
+#   scripts/test.sh --debug             # then again in a Debug build (see below)
 #
-# Exit status: that of ctest (0 when every test passed), or 1 when setup fails.
-# Environment: BUILD_TYPE, BUILD_DIR as for scripts/setup.sh.
+# With --debug, or when the environment variable CI is set (continuous integration, .ci/run),
+# the suite runs a second time in a Debug build (build-debug/, or DEBUG_BUILD_DIR):
+# -fcheck=all (bounds, allocation, pointer checks) and -ffpe-trap=invalid,zero,overflow, so
+# that an out-of-bounds access or a NaN/Inf produced anywhere stops the test that caused
+# it. The Release run comes first; both always run.
+#
+# Exit status: 0 when every test passed in every build; otherwise that of the failing ctest
+# (the Release one if both failed), or 1 when a setup fails.
+# Environment: BUILD_TYPE, BUILD_DIR as for scripts/setup.sh (the first run); DEBUG_BUILD_DIR
+# (default build-debug) for the Debug run; CI.
 
-set -euo pipefail
+set -uo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-"$repo_root/scripts/setup.sh"
 cd "$repo_root"
+
+debug=no
+[[ -n "${CI:-}" ]] && debug=yes
+ctest_args=()
+for arg in "$@"; do
+    if [[ "$arg" == --debug ]]; then
+        debug=yes
+    else
+        ctest_args+=("$arg")
+    fi
+done
 
 build_dir="${BUILD_DIR:-build}"
 [[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
 
-exec ctest --test-dir "$build_dir" --output-on-failure -j 2 "$@"
+"$repo_root/scripts/setup.sh" || exit 1
+ctest --test-dir "$build_dir" --output-on-failure -j 2 "${ctest_args[@]}"
+status=$?
+
+if [[ $debug == yes ]]; then
+    debug_dir="${DEBUG_BUILD_DIR:-build-debug}"
+    [[ "$debug_dir" = /* ]] || debug_dir="$repo_root/$debug_dir"
+    echo "test.sh: running the suite again in a Debug build (-fcheck=all, floating-point traps) in $debug_dir/" >&2
+    BUILD_TYPE=Debug BUILD_DIR="$debug_dir" "$repo_root/scripts/setup.sh" || exit 1
+    ctest --test-dir "$debug_dir" --output-on-failure -j 2 "${ctest_args[@]}"
+    debug_status=$?
+    if [[ $status -eq 0 && $debug_status -ne 0 ]]; then
+        echo "test.sh: the Release suite passed, the Debug suite failed" >&2
+        status=$debug_status
+    fi
+fi
+exit $status

@@ -83,6 +83,8 @@ contains
     end subroutine read_checkpoint
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint.
+    !> Times must increase: a file left by a killed run can hold rows past its last flush
+    !> whose values were never written (zeros); the copy stops at the first such row.
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
@@ -102,6 +104,9 @@ contains
         call read_int_1d(file, '/series/iterations', iterations)
         do k = 1, size(t)
             if (t(k) > t_last) exit
+            if (k > 1) then
+                if (t(k) <= t(k - 1)) exit
+            end if
             call writer%append_series(t(k), energy(k), u_end(k), pen(k), stress(k), iterations(k))
         end do
         call read_real_1d(file, '/snapshots/t', snap_t)
@@ -113,6 +118,9 @@ contains
         call read_real_2d(file, '/snapshots/eta', eta)
         do k = 1, size(snap_t)
             if (snap_t(k) > t_last) exit
+            if (k > 1) then
+                if (snap_t(k) <= snap_t(k - 1)) exit
+            end if
             call writer%append_snapshot(snap_t(k), u(:, k), v(:, k), theta(:, k), p(:, k), q(:, k), eta(:, k))
         end do
     end subroutine copy_history

@@ -4,6 +4,7 @@
 module run_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
+    use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t
     use errors_m, only: fatal, EXIT_NUMERIC
     use fe_m, only: mesh_nodes
@@ -60,7 +61,7 @@ contains
         type(h5_writer_t) :: writer
         type(progress_t) :: progress
         type(energy_monitor_t) :: monitor
-        integer :: n, n_steps, first_step
+        integer :: n, n_steps, first_step, last_written
         integer(int64) :: clock_start, clock_rate
         real(dp) :: counters(N_COUNTERS)
         character(len=320) :: failure
@@ -96,25 +97,37 @@ contains
         failure = ''
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
         first_step = state%step + 1
+        last_written = 0
         call progress%start(n_steps, cfg%output%quiet)
         do n = first_step, n_steps
             if (failure /= '') exit
             call stepper%advance(state, result)
             if (.not. result%ok) then
-                write (failure, '(a,i0,a,es12.5,a)') 'step ', n, ' (t = ', real(n, dp) * cfg%time%dt, &
-                    '): '//trim(result%message)
+                failure = step_failure(n, cfg%time%dt, trim(result%message))
                 exit
             end if
             call monitor%observe(cfg, state)
+            if (.not. ieee_is_finite(monitor%energy)) then
+                failure = step_failure(n, cfg%time%dt, 'the discrete energy is not finite')
+                exit
+            end if
             if (mod(n, cfg%output%series_every) == 0 .or. n == n_steps) &
                 call write_series(writer, cfg, state, monitor%energy, result)
             if (mod(n, cfg%output%snapshot_every) == 0 .or. n == n_steps) call write_snapshot(writer, state)
+            last_written = n
             if (cfg%output%checkpoint_every > 0) then
                 if (mod(n, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, monitor)
             end if
             call progress%update(n, state%t, result%in_contact)
         end do
         call progress%finish()
+        if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
+            mod(last_written, cfg%output%series_every) /= 0) then
+            ! the last good step was skipped by series_every: keep it in the failed file
+            call write_series(writer, cfg, state, monitor%energy, result)
+        end if
+        if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
+            mod(last_written, cfg%output%snapshot_every) /= 0) call write_snapshot(writer, state)
 
         call writer%attr_int('steps', state%step)
         call writer%attr_real('t_final', state%t)
@@ -135,6 +148,18 @@ contains
         end if
         call writer%finish('complete')
     end subroutine run_simulation
+
+    !> 'step n (t = ...): reason' for the failure message and the status attribute.
+    function step_failure(n, dt, reason) result(text)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: dt
+        character(len=*), intent(in) :: reason
+        character(len=:), allocatable :: text
+        character(len=40) :: buf
+
+        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', real(n, dp) * dt, ')'
+        text = trim(buf)//': '//reason
+    end function step_failure
 
     !> The energy of the first level and the law it must obey from then on.
     subroutine monitor_init(self, cfg, state)

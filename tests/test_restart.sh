@@ -50,7 +50,7 @@ done
 
 # killed run: long enough (10^7 steps) that the kill lands mid-run; checkpoints every 250 steps
 make_input long.nml long 1000.0 euler
-timeout -s KILL 1.5 "$exe" long.nml
+timeout -s KILL 1 "$exe" long.nml
 status=$?
 [ $status -eq 137 ] || fail "killed run: expected exit 137 (SIGKILL), got $status"
 [ -f long.h5.part ] || fail "killed run: no long.h5.part left"
@@ -62,13 +62,13 @@ echo "killed run: last checkpoint at step ${step:-?}"
 t_end=$(awk -v n="${step:-0}" 'BEGIN { printf "%.4f", (n + 5000) * 1e-4 }')
 make_input long_rest.nml long_rest "$t_end" euler "restart_from='long.h5.part'"
 make_input long_ref.nml long_ref "$t_end" euler
-if [ "${step:-0}" -gt 0 ] && [ "${step:-0}" -lt 300000 ]; then
+if [ "${step:-0}" -gt 0 ]; then
     "$exe" long_rest.nml || fail "restart from the killed run: exit $?"
     "$exe" long_ref.nml || fail "reference run: exit $?"
     if out=$(same long_ref.h5 long_rest.h5); then echo "PASS: restart from a SIGKILLed run = uninterrupted ($out)"
     else fail "restart from the killed run differs:"; echo "$out"; fi
 else
-    fail "killed run: checkpoint step ${step:-none} not in (0, 300000): the kill did not land mid-run"
+    fail "killed run: no checkpoint step (${step:-none}): the kill landed before the first checkpoint"
 fi
 
 # bad restarts: exit 2, message naming time.restart_from, no output file

@@ -8,6 +8,7 @@
 module config_m
     use, intrinsic :: iso_fortran_env, only: input_unit, output_unit, iostat_end, iostat_eor
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+    use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT
     implicit none
@@ -207,7 +208,12 @@ contains
         type(string_t) :: set_line(1)
         type(group_t) :: set_group
         integer :: k
+        logical :: halt_on_overflow
 
+        ! A value like 1e400 reads as +Inf, which validation rejects with a message; a Debug
+        ! build's overflow trap must not turn that into a crash inside the namelist read.
+        call ieee_get_halting_mode(ieee_overflow, halt_on_overflow)
+        call ieee_set_halting_mode(ieee_overflow, .false.)
         cfg%source = source
         ! the overrides are checked first: a misspelt --set fails before stdin is read
         if (present(overrides)) then
@@ -238,6 +244,7 @@ contains
             cfg%model = model_from_material(cfg%material)
             call echo_material(cfg%material, nondim_groups(cfg%material), cfg%model)
         end if
+        call ieee_set_halting_mode(ieee_overflow, halt_on_overflow)
     end subroutine read_config
 
     !> Read group `grp` of `lines` into its part of cfg, over the values already there.

@@ -132,7 +132,7 @@ its G-energy (E_lin(X^n) + E_lin(2X^n - X^{n-1}))/2 + penalty never rises in the
 without contact (asserted: G-stability of BDF2 for the linear system); with an active
 penalty BDF2 has no proven energy law and a few sets show a rise (counted below).
 
-    $(grep -e '^parameter sets' -e '^bdf2:' "$tmp/energy.out")
+$(grep -e '^parameter sets' -e '^bdf2:' "$tmp/energy.out" | sed 's/^/    /')
 
 ## 3. Exponential decay on experiment 1 (\`tests/test_decay.f90\`)
 

@@ -30,7 +30,8 @@ program work_precision
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use scheme_m, only: N_FIELDS, F_THETA, F_V, F_P, is_dirichlet
-    use mms_m, only: mms_t, mms_no_contact, U_FIELD
+    use mms_m, only: mms_t, mms_no_contact, U_FIELD, N_EXACT
+    use convergence_m, only: level_errors
     use bench_timing_m, only: wall_seconds, median, num
     implicit none
 
@@ -210,37 +211,14 @@ contains
         end do
     end subroutine start_state
 
-    !> L2 of theta, v, P and H1 of u at state%t against the exact solution, 5-point Gauss.
+    !> L2 of theta, v, P and H1 of u at state%t against the exact solution (convergence_m).
     function errors_against_mms(state) result(e)
         type(state_t), intent(in) :: state
         real(dp) :: e(N_ERR)
-        real(dp), parameter :: gx(5) = [-0.9061798459386640_dp, -0.5384693101056831_dp, 0.0_dp, &
-                                        0.5384693101056831_dp, 0.9061798459386640_dp]
-        real(dp), parameter :: gw(5) = [0.2369268850561891_dp, 0.4786286704993665_dp, 0.5688888888888889_dp, &
-                                        0.4786286704993665_dp, 0.2369268850561891_dp]
-        integer, parameter :: FIELDS(3) = [F_THETA, F_V, F_P]
-        real(dp) :: h, x, wq, left, uh, uh_x, sq(N_ERR)
-        integer :: s, el, k, j
+        real(dp) :: all_errors(N_EXACT)
 
-        s = state%s
-        h = 1.0_dp / s
-        sq = 0.0_dp
-        do el = 1, s
-            do k = 1, 5
-                left = 0.5_dp * (1.0_dp - gx(k))
-                x = (el - 1 + 0.5_dp * (1.0_dp + gx(k))) * h
-                wq = 0.5_dp * h * gw(k)
-                do j = 1, 3
-                    sq(j) = sq(j) + wq * (left * state%w(el - 1, FIELDS(j)) + (1.0_dp - left) * state%w(el, FIELDS(j)) &
-                                          - mms%exact(FIELDS(j), state%t, x, 0))**2
-                end do
-                uh = left * state%u(el - 1) + (1.0_dp - left) * state%u(el)
-                uh_x = (state%u(el) - state%u(el - 1)) / h
-                sq(4) = sq(4) + wq * ((uh - mms%exact(U_FIELD, state%t, x, 0))**2 &
-                                      + (uh_x - mms%exact(U_FIELD, state%t, x, 1))**2)
-            end do
-        end do
-        e = sqrt(sq)
+        all_errors = level_errors(mms, state)
+        e = all_errors([F_THETA, F_V, F_P, U_FIELD])
     end function errors_against_mms
 
     !> L2 of theta, v, P and H1 of u of (state - ref), relative to the same norms of ref. The

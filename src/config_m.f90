@@ -17,7 +17,7 @@ module config_m
     public :: MAX_POLY_DEGREE, LEN_NAME, LEN_PATH
     public :: read_config
     public :: nondim_t, nondim_groups, model_from_material
-    public :: format_real
+    public :: format_real, int_str
 
     integer, parameter :: MAX_POLY_DEGREE = 8   !< *_poly coefficients 0..8 (constant term first)
     integer, parameter :: LEN_NAME = 32         !< length of keyword values ('penalty', 'euler', ...)

@@ -8,7 +8,7 @@ module validate_m
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
-                        format_real
+                        format_real, int_str
     use initial_data_m, only: profile
     implicit none
     private
@@ -355,16 +355,6 @@ contains
         s = ''
         if (present(text)) s = text
     end function optional_text
-
-    pure function int_str(n) result(s)
-        integer, intent(in) :: n
-        character(len=:), allocatable :: s
-        character(len=16) :: buf
-        integer :: ios
-
-        write (buf, '(i0)', iostat=ios) n
-        s = trim(buf)
-    end function int_str
 
     !> bytes in GiB with one decimal.
     pure function gib_str(bytes) result(s)

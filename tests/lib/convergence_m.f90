@@ -10,7 +10,7 @@ module convergence_m
     use mms_m, only: mms_t, U_FIELD, N_EXACT
     implicit none
     private
-    public :: mms_errors, observed_orders, ERROR_NAMES
+    public :: mms_errors, level_errors, observed_orders, ERROR_NAMES
 
     character(len=*), parameter :: ERROR_NAMES(N_EXACT) = [character(len=8) :: &
         'L2 q', 'L2 theta', 'L2 v', 'L2 P', 'L2 eta', 'H1 u']

@@ -9,8 +9,10 @@
 # Release), runs a temporary copy of input/exp1.nml with the discretisation and
 # `&output prefix=<tmp> quiet=.true.` set, and prints each wall time, the median and
 # what the number depends on: machine, compiler, the BLAS/LAPACK shared objects the
-# binary actually resolves (Debian may point libblas.so.3 at OpenBLAS, which is ~5x
-# slower for our tiny-band solves), and the git commit.
+# binary actually resolves (Debian may point libblas.so.3 at OpenBLAS; LAPACK's dgbtrs is
+# then 1.5-2x slower on our band, but a time step calls no BLAS/LAPACK routine, only the
+# set-up does: see docs/performance.md), and the git commit. scripts/bench.sh is the full
+# benchmark.
 
 set -euo pipefail
 

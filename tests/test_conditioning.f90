@@ -3,7 +3,8 @@
 !> reciprocal 1-norm condition number, rcond = 1 / (||A||_1 ||A^{-1}||_1) (dgbcon on the
 !> dgbtrf factors), the same after row and column equilibration (dgbequ), the relative
 !> residual of a solve, and how far the block-tridiagonal LU (block_tridiagonal_m, the
-!> per-step solver) is from the dgbtrf solution (stepper_m uses it only below 1e-9).
+!> per-step solver) is from the dgbtrf solution (cond(A) x round-off; stepper_m accepts the
+!> block LU by its residual, see stepper_m's blocks_agree).
 !> Prints the table of docs/robustness.md; checks only sane things: every rcond in (0, 1],
 !> a backward-stable solve (relative residual <= 1e-12), and the paper's case far from
 !> singular (rcond > 1e-14).

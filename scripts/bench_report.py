@@ -411,12 +411,9 @@ def main():
         if key in b_f and mon:
             energy = (b_f[key] - a_f.get(key, 0)) / 1000.0
             observe = (b_f[mon[0]] - a_f.get(mon[0], 0)) / 1000.0
-            w("**Not yet done:** with BDF2 the energy monitor (`run_m`'s "
-              "`monitor_observe`) takes %.0f%% of a step's instructions: it evaluates `discrete_energy` three "
-              "times per step (E^n, then E_lin(X^n) and E_lin(2X^n - X^{n-1}) inside `bdf2_energy`; the first two "
-              "differ only by the penalty term), besides forming 2X^n - X^{n-1} in its work arrays. Reusing E^n would save about "
-              "%.0f of %.0f instructions per step (about %.0f%%)." % (100 * observe / per_step, energy / 3,
-                                                                   per_step, 100 * energy / 3 / per_step))
+            w("With BDF2 the energy monitor (`run_m`'s `monitor_observe`) takes %.0f%% of a step's instructions: "
+              "`discrete_energy` twice per step (E_lin(X^n), reused for E^n, and E_lin(2X^n - X^{n-1}) for the "
+              "G-energy), %.0f instructions of %.0f per step." % (100 * observe / per_step, energy, per_step))
             w("")
 
     # ---------------------------------------------------------------- allocations

@@ -53,18 +53,25 @@ contains
     !> the current level, 1/(2 eps)[u^n(1) - g]_+^2. With an active penalty BDF2 has no such
     !> law (the nonlinear term is not G-stable); see docs/performance.md for what we measured.
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
-    subroutine bdf2_energy(model, eps, g, u, w, u_prev, w_prev, u_work, w_work, penalty, energy)
+    !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
+    subroutine bdf2_energy(model, eps, g, u, w, u_prev, w_prev, u_work, w_work, penalty, energy, lin_now)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: eps, g
         real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
         real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
         logical, intent(in) :: penalty
         real(dp), intent(out) :: energy
+        real(dp), intent(in), optional :: lin_now
+        real(dp) :: lin
 
+        if (present(lin_now)) then
+            lin = lin_now
+        else
+            lin = discrete_energy(model, eps, g, u, w, .false.)
+        end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
-        energy = 0.5_dp * (discrete_energy(model, eps, g, u, w, .false.) &
-                           + discrete_energy(model, eps, g, u_work, w_work, .false.))
+        energy = 0.5_dp * (lin + discrete_energy(model, eps, g, u_work, w_work, .false.))
         if (penalty) energy = energy + 0.5_dp / eps * penetration(u, g)**2
     end subroutine bdf2_energy
 

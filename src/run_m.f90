@@ -195,18 +195,21 @@ contains
         class(energy_monitor_t), intent(inout) :: self
         type(config_t), intent(in) :: cfg
         type(state_t), intent(in) :: state
-        real(dp) :: law_old
+        real(dp) :: law_old, energy_lin
         logical :: had_law
 
         law_old = self%law_energy
         had_law = self%have_law
-        self%energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, self%penalty)
+        ! E^n = E_lin(X^n) + the penalty term, the same operations as discrete_energy's
+        energy_lin = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, .false.)
+        self%energy = energy_lin
+        if (self%penalty) self%energy = self%energy + 0.5_dp / cfg%contact%eps * penetration(state%u, cfg%contact%g)**2
         self%law_energy = self%energy
         if (self%bdf2) then
             self%have_law = allocated(state%u_prev)
             if (self%have_law) call bdf2_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, &
                                                 state%u_prev, state%w_prev, self%u_work, self%w_work, &
-                                                self%penalty, self%law_energy)
+                                                self%penalty, self%law_energy, lin_now=energy_lin)
         end if
         if (had_law .and. self%have_law) &
             self%max_rise = max(self%max_rise, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))

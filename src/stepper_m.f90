@@ -68,7 +68,7 @@ module stepper_m
         type(band_t) :: mechanical     !< paper: v block, factored
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
-        real(dp), allocatable :: u_star(:), w_star(:, :)   !< the level the step starts from
+        real(dp), allocatable :: u_star(:), w_star(:, :)   !< BDF2: the extrapolated level a step starts from
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
@@ -168,26 +168,22 @@ contains
 
         logical :: second_order
 
-        ! the level the step starts from: X^{n-1} (Euler) or (4 X^{n-1} - X^{n-2}) / 3 (BDF2)
+        ! the level the step starts from: X^{n-1} (Euler: the state itself, no copy) or the
+        ! extrapolated (4 X^{n-1} - X^{n-2}) / 3 (BDF2, kept in u_star, w_star)
         second_order = self%bdf2 .and. state%step >= 1 .and. allocated(state%u_prev)
-        if (second_order) then
-            self%u_star = (4.0_dp * state%u - state%u_prev) / 3.0_dp
-            self%w_star = (4.0_dp * state%w - state%w_prev) / 3.0_dp
-        else
-            self%u_star = state%u
-            self%w_star = state%w
-        end if
         select case (self%method)
         case (METHOD_PAPER)
-            call start_rhs(self, self%dt, state)
+            call start_rhs(self, self%dt, state%step, state%u, state%w)
             call advance_paper(self, state, result)
         case default
             if (second_order) then
-                call start_rhs(self, self%bdf%dt_eff, state)
-                call advance_monolithic(self, self%bdf, state, result)
+                self%u_star = (4.0_dp * state%u - state%u_prev) / 3.0_dp
+                self%w_star = (4.0_dp * state%w - state%w_prev) / 3.0_dp
+                call start_rhs(self, self%bdf%dt_eff, state%step, self%u_star, self%w_star)
+                call advance_monolithic(self, self%bdf, state, .true., result)
             else
-                call start_rhs(self, self%euler%dt_eff, state)
-                call advance_monolithic(self, self%euler, state, result)
+                call start_rhs(self, self%euler%dt_eff, state%step, state%u, state%w)
+                call advance_monolithic(self, self%euler, state, .false., result)
             end if
         end select
         if (.not. result%ok) return
@@ -198,24 +194,29 @@ contains
         self%n_solves = self%n_solves + result%iterations
     end subroutine stepper_advance
 
-    !> Right-hand side of (6.1) with step dt_eff from the level (u_star, w_star), plus sources.
-    subroutine start_rhs(self, dt_eff, state)
+    !> Right-hand side of (6.1) with step dt_eff from the level (u_from, w_from), plus the
+    !> sources at t_{step+1}.
+    subroutine start_rhs(self, dt_eff, step, u_from, w_from)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
-        type(state_t), intent(in) :: state
+        integer, intent(in) :: step
+        real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(self%model, dt_eff, self%u_star, self%w_star, self%b_old, self%work)
+        call old_state_rhs(self%model, dt_eff, u_from, w_from, self%b_old, self%work)
         if (allocated(self%source)) &
-            call add_source_terms(self%source, self%model, real(state%step + 1, dp) * self%dt, dt_eff, self%b_old)
+            call add_source_terms(self%source, self%model, real(step + 1, dp) * self%dt, dt_eff, self%b_old)
     end subroutine start_rhs
 
-    subroutine advance_monolithic(self, sys, state, result)
+    !> One monolithic step from the state itself (from_star = .false., Euler) or from the
+    !> extrapolated level u_star (from_star = .true., BDF2).
+    subroutine advance_monolithic(self, sys, state, from_star, result)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys
         type(state_t), intent(inout) :: state
+        logical, intent(in) :: from_star
         type(step_result_t), intent(inout) :: result
         integer :: info
-        real(dp) :: gap, force
+        real(dp) :: gap, force, u_end_from
 
         call scatter_fields(MONOLITHIC_SLOTS, self%b_old, self%x)
         if (sys%use_blocks) then
@@ -228,8 +229,13 @@ contains
         ! The scaled momentum row carries dt*lambda, so x = y - dt*lambda*z with
         !   penalty (3.4):  lambda = (1/eps)(gap - dt^2 z_s lambda)  (u^n(1) - g = gap - dt^2 z_s lambda)
         !   Signorini:      u^n(1) = g, i.e. dt^2 z_s lambda = gap.
+        if (from_star) then
+            u_end_from = self%u_star(self%s)
+        else
+            u_end_from = state%u(self%s)
+        end if
         associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof))
-            gap = self%u_star(self%s) + dt * self%x(sys%contact_dof) - self%g
+            gap = u_end_from + dt * self%x(sys%contact_dof) - self%g
             result%contact_force = 0.0_dp
             if (gap > 0.0_dp) then
                 if (self%signorini) then
@@ -247,7 +253,11 @@ contains
         end if
         if (self%bdf2) call keep_previous_level(state)
         call gather_fields(MONOLITHIC_SLOTS, self%x, state%w)
-        state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
+        if (from_star) then
+            state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
+        else
+            state%u = state%u + sys%dt_eff * state%w(:, F_V)
+        end if
     end subroutine advance_monolithic
 
     subroutine advance_paper(self, state, result)

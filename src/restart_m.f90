@@ -82,9 +82,8 @@ contains
         state%t = counters(COUNTER_T)
     end subroutine read_checkpoint
 
-    !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint.
-    !> Times must increase: a file left by a killed run can hold rows past its last flush
-    !> whose values were never written (zeros); the copy stops at the first such row.
+    !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
+    !> (see rows_to_copy).
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
@@ -102,11 +101,7 @@ contains
         call read_real_1d(file, '/series/penetration', pen)
         call read_real_1d(file, '/series/contact_stress', stress)
         call read_int_1d(file, '/series/iterations', iterations)
-        do k = 1, size(t)
-            if (t(k) > t_last) exit
-            if (k > 1) then
-                if (t(k) <= t(k - 1)) exit
-            end if
+        do k = 1, rows_to_copy(t, t_last)
             call writer%append_series(t(k), energy(k), u_end(k), pen(k), stress(k), iterations(k))
         end do
         call read_real_1d(file, '/snapshots/t', snap_t)
@@ -116,37 +111,49 @@ contains
         call read_real_2d(file, '/snapshots/P', p)
         call read_real_2d(file, '/snapshots/q', q)
         call read_real_2d(file, '/snapshots/eta', eta)
-        do k = 1, size(snap_t)
-            if (snap_t(k) > t_last) exit
-            if (k > 1) then
-                if (snap_t(k) <= snap_t(k - 1)) exit
-            end if
+        do k = 1, rows_to_copy(snap_t, t_last)
             call writer%append_snapshot(snap_t(k), u(:, k), v(:, k), theta(:, k), p(:, k), q(:, k), eta(:, k))
         end do
     end subroutine copy_history
+
+    !> How many leading rows to copy: times up to t_last and strictly increasing (a file left
+    !> by a killed run can hold rows past its last flush whose values were never written).
+    pure integer function rows_to_copy(times, t_last)
+        real(dp), intent(in) :: times(:), t_last
+        integer :: k
+
+        rows_to_copy = 0
+        do k = 1, size(times)
+            if (times(k) > t_last) exit
+            if (k > 1) then
+                if (times(k) <= times(k - 1)) exit
+            end if
+            rows_to_copy = k
+        end do
+    end function rows_to_copy
 
     subroutine require_same_int(file, name, expected)
         character(len=*), intent(in) :: file, name
         integer, intent(in) :: expected
         integer :: value
-        character(len=64) :: buf
+        character(len=32) :: was, now
 
         call read_attr_int(file, name, value)
-        write (buf, '(a,i0,a,i0)') ' was ', value, ', this run has ', expected
-        if (value /= expected) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//trim(buf)// &
-                                          '; a restart must keep the mesh, dt, scheme, method and contact law')
+        write (was, '(i0)') value
+        write (now, '(i0)') expected
+        if (value /= expected) call refuse(file, name, trim(was), trim(now))
     end subroutine require_same_int
 
     subroutine require_same_real(file, name, expected)
         character(len=*), intent(in) :: file, name
         real(dp), intent(in) :: expected
         real(dp) :: value
-        character(len=64) :: buf
+        character(len=32) :: was, now
 
         call read_attr_real(file, name, value)
-        write (buf, '(a,es12.5,a,es12.5)') ' was ', value, ', this run has ', expected
-        if (value /= expected) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//trim(buf)// &
-                                          '; a restart must keep the mesh, dt, scheme, method and contact law')
+        write (was, '(es12.5)') value
+        write (now, '(es12.5)') expected
+        if (value /= expected) call refuse(file, name, trim(adjustl(was)), trim(adjustl(now)))
     end subroutine require_same_real
 
     subroutine require_same_str(file, name, expected)
@@ -154,9 +161,15 @@ contains
         character(len=:), allocatable :: value
 
         call read_attr_str(file, name, value)
-        if (value /= expected) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//" was '"//value// &
-                                          "', this run has '"//expected// &
-                                          "'; a restart must keep the mesh, dt, scheme, method and contact law")
+        if (value /= expected) call refuse(file, name, "'"//value//"'", "'"//expected//"'")
     end subroutine require_same_str
+
+    !> The checkpointed run and this one differ in `name`: stop with an input error.
+    subroutine refuse(file, name, was, now)
+        character(len=*), intent(in) :: file, name, was, now
+
+        call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//' was '//was//', this run has '//now// &
+                   '; a restart must keep the mesh, dt, scheme, method and contact law')
+    end subroutine refuse
 
 end module restart_m

@@ -5,6 +5,7 @@
 !>   rodcontact input.nml        namelist file as argument ('-' for standard input)
 !>   rodcontact input.nml --set group.variable=value ...   overrides after the file
 !>   rodcontact --summary file.h5 | --summary-header       one CSV row about a finished run
+!>   rodcontact --check input.nml [--set ...]              read and validate only: exit 0 or 2
 !>   rodcontact --help | --version
 program rodcontact
     use iso_fortran_env, only: output_unit
@@ -20,8 +21,9 @@ program rodcontact
     character(len=:), allocatable :: source, summary_file
     integer, allocatable :: set_arg(:), set_skip(:)
     integer :: k, max_len
+    logical :: check_only
 
-    call parse_command_line(source, set_arg, set_skip, summary_file)
+    call parse_command_line(source, set_arg, set_skip, summary_file, check_only)
     if (allocated(summary_file)) then
         if (.not. file_exists(summary_file)) call fatal(EXIT_INPUT, 'command line', &
             "--summary: no such file '" // summary_file // "'")
@@ -40,18 +42,21 @@ program rodcontact
         call read_config(source, cfg, overrides)
     end block
     call validate_config(cfg)
+    ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
+    if (check_only) stop
     call run_simulation(cfg)
 
 contains
 
     !> The input source ('-' = standard input), where the --set values are (argument
     !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
-    !> and the file of --summary (left unallocated without it). --help, --version and
-    !> --summary-header print and stop here.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_file)
+    !> the file of --summary (left unallocated without it) and whether --check was given.
+    !> --help, --version and --summary-header print and stop here.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_file, check_only)
         character(len=:), allocatable, intent(out) :: source
         integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
         character(len=:), allocatable, intent(out) :: summary_file
+        logical, intent(out) :: check_only
         character(len=:), allocatable :: arg
         integer :: n_args, i
         logical :: source_given
@@ -59,6 +64,7 @@ contains
         n_args = command_argument_count()
         source = '-'
         source_given = .false.
+        check_only = .false.
         allocate (set_arg(0), set_skip(0))
         i = 1
         do while (i <= n_args)
@@ -78,6 +84,8 @@ contains
                                             'rodcontact --summary <prefix>.h5')
                 i = i + 1
                 summary_file = argument(i)
+            case ('--check')
+                check_only = .true.
             case ('--set')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
                                             'group.variable=value, e.g. --set model.varpi=0.3')
@@ -96,7 +104,7 @@ contains
                 if (len(arg) > 1) then
                     if (arg(1:1) == '-') call fatal(EXIT_INPUT, 'command line', "unknown option '"//arg// &
                         "'; allowed: --set group.variable=value, --summary file.h5, --summary-header, " // &
-                        '--help, --version, and one input file')
+                        '--check, --help, --version, and one input file')
                 end if
                 if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
                     "' after '" // source // "'; give one input file (or none: standard input)")
@@ -105,8 +113,8 @@ contains
             end select
             i = i + 1
         end do
-        if (allocated(summary_file) .and. (source_given .or. size(set_arg) > 0)) &
-            call fatal(EXIT_INPUT, 'command line', '--summary takes only the HDF5 file, no input file and no --set')
+        if (allocated(summary_file) .and. (source_given .or. size(set_arg) > 0 .or. check_only)) &
+            call fatal(EXIT_INPUT, 'command line', '--summary takes only the HDF5 file, no input file, --set or --check')
     end subroutine parse_command_line
 
     function argument(i) result(arg)
@@ -142,6 +150,9 @@ contains
             '                               --set model.varpi=0.3 --set output.prefix=runs/a', &
             "                               --set initial.theta0_step=5,0.1 --set 'initial.p0_step(1)=5'", &
             '                             strings need no quotes; same checks and messages as the file', &
+            '  rodcontact --check input.nml [--set ...]', &
+            '                             the input checks of a run (not those of the output file or of', &
+            '                             restart_from), no file written: exit 0, or 2 with the message', &
             '  rodcontact --summary f.h5  one CSV row about a run: status, contact times, max penetration,', &
             '                             max u(1,t), energy ratio and decay rate, steps, wall seconds', &
             '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &

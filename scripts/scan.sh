@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Parameter scans with rodcontact: the Cartesian product of value lists, run in parallel,
-# resumable, every point accounted for in one CSV. Documentation: docs/scans.md.
+# Parameter scans with rodcontact: the Cartesian product of value lists, run in parallel by
+# GNU parallel, resumable, every point accounted for in one CSV. Documentation: docs/scans.md.
 #
 #   scripts/scan.sh INPUT --set AXIS [--set AXIS ...] --out DIR [-j N]   run the scan
 #   scripts/scan.sh INPUT --set AXIS ... --list                          print the points
-#   scripts/scan.sh INPUT --set AXIS ... --out DIR --task K              run point K only
+#   scripts/scan.sh INPUT --set AXIS ... --out DIR [--batch B] --task T  run task T only
+#   scripts/scan.sh INPUT --set AXIS ... --out DIR [--batch B] --array   print task indices
 #   scripts/scan.sh INPUT --set AXIS ... --out DIR --collect             write DIR/summary.csv
 #
 # AXIS is TARGET=VALUES:
@@ -14,24 +15,36 @@
 #   VALUES   a:b:n        n values from a to b, evenly spaced, both ends included
 #            a:b:n:log    n values from a to b, evenly spaced in log (a, b > 0)
 #            v1,v2,...    a list
-#            x1;x2;...    a list whose items may hold commas: whole arrays, 'theta0_step=5,0.1;10,0.1'
+#            x1;x2;...    a list whose items may hold commas or colons: whole arrays,
+#                         'theta0_step=5,0.1;10,0.1'
 #            v            one value: the same at every point
 # The points are numbered 0..N-1, the last --set varying fastest. Point K runs
 #   rodcontact DIR/input.nml --set TARGET=value ... --set output.prefix=DIR/point_K --set output.quiet=.true.
 # and leaves DIR/point_K.h5 (when the run got that far), DIR/point_K.err (its stderr) and
 # DIR/point_K.status (line 1: exit status, line 2: its error message, if any).
 #
-# Options: -j N / --jobs N   points run at once (default: the number of cores, nproc)
+# Before any point runs, every axis is checked: each target a group.variable, each range
+# well formed, and every point to run read and validated by 'rodcontact --check' (no file
+# written); a scan that fails a check exits 2 naming the axis (or the point) and runs nothing.
+#
+# Options: -j N / --jobs N   points run at once (default: the number of cores, nproc; with
+#                            --task: $SLURM_CPUS_PER_TASK, else 1)
+#          --batch B         points per task of --task and --array (default 1): task T runs
+#                            points T*B .. T*B+B-1
 #          --exe PATH        the rodcontact executable (default: $RODCONTACT, else build/rodcontact)
-# A rerun of the same command skips the points whose .h5 has status 'complete' and runs the
-# others (failed, never run, or interrupted). DIR keeps a copy of INPUT (input.nml) and the
-# point list (points.txt): a rerun with another input or other axes is refused.
+# The points run under GNU parallel (Debian package 'parallel'); DIR/joblog is its job log
+# of the latest run. A rerun of the same command skips the points whose .h5 has status
+# 'complete' and runs the others (failed, never run, or interrupted). DIR keeps a copy of
+# INPUT (input.nml) and the point list (points.txt): a rerun with another input or other
+# axes is refused. --array prints the Slurm array indices of the tasks that still have
+# points to run ('0-9', '2,5-7'; nothing when every point is complete).
 # Exit status: 0 every point run is complete; 1 some point failed (recorded, see the CSV);
-# 2 usage error; 130/143 interrupted (rerun the same command to resume).
+# 2 usage error or a scan that fails its checks; 130/143 interrupted (rerun to resume).
 
 set -uo pipefail
 
-repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+script="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/$(basename "${BASH_SOURCE[0]}")"
+repo_root="$(cd "$(dirname "$script")/.." && pwd)"
 
 die() {
     echo "scan: error: $*" >&2
@@ -39,13 +52,135 @@ die() {
 }
 
 usage() {
-    sed -n '2,/^$/s/^# \{0,1\}//p' "${BASH_SOURCE[0]}"
+    sed -n '2,/^$/s/^# \{0,1\}//p' "$script"
 }
+
+# ---------------------------------------------------------------- one point (GNU parallel's job)
+# scan.sh --point-run DIR K ARGS...    run point K of the scan in DIR (K zero-padded) with the
+#                                      --set arguments ARGS, record its exit status
+# scan.sh --point-check INPUT K ARGS...  rodcontact --check of INPUT with ARGS; on failure prints
+#                                      'K<TAB>message' on stdout
+# Both use $RODCONTACT, exported by the scan.
+
+# record_status STEM RC: STEM.status = exit status and the run's error message
+record_status() {
+    local stem=$1 rc=$2 message
+    message=$(grep -m 1 '^rodcontact: error' "$stem.err" || tail -n 1 "$stem.err")
+    printf '%s\n%s\n' "$rc" "$message" > "$stem.status.tmp" && mv -f "$stem.status.tmp" "$stem.status"
+    [[ -s $stem.out ]] || rm -f "$stem.out"
+}
+
+# run_point DIR K ARGS...: run the point in the foreground; record its exit status and message
+run_point() {
+    local dir=$1 k=$2 stem child="" rc=""
+    shift 2
+    stem=$dir/point_$k
+    rm -f "$stem.h5" "$stem.h5.part" "$stem.status" "$stem.err" "$stem.out"
+    # TERM: from GNU parallel (it stops its jobs so on Ctrl-C, SIGTERM, or when the scan is
+    # told to stop) or from Slurm. rodcontact, started with &, ignores INT.
+    trap 'on_point_term' TERM INT
+    "$RODCONTACT" "$dir/input.nml" "$@" --set "output.prefix=$stem" --set output.quiet=.true. \
+        > "$stem.out" 2> "$stem.err" < /dev/null &
+    child=$!
+    wait "$child"
+    rc=$?
+    record_status "$stem" "$rc"
+    trap - TERM INT
+    if ((rc != 0)); then
+        echo "scan: point $k failed (exit $rc): $(sed -n 2p "$stem.status")" >&2
+    fi
+    return "$rc"
+}
+
+# The TERM trap of run_point (it sees run_point's locals stem, child, rc). A run that had
+# ended is recorded as usual; a run cut short is not recorded at all (its .part removed),
+# so that the point counts as not run and the next rerun does it again.
+on_point_term() {
+    trap '' TERM INT
+    if [[ -n $rc ]]; then
+        record_status "$stem" "$rc"
+        exit "$rc"
+    fi
+    if [[ -z $child ]]; then
+        # TERM came between the start of the run and 'child=$!': the run is this
+        # process's only job
+        child=$(jobs -p)
+        [[ -n $child ]] || exit 143
+    fi
+    kill -TERM "$child" 2> /dev/null
+    wait "$child"
+    rc=$?
+    if [[ ! -f $stem.h5 ]]; then
+        rm -f "$stem.h5.part" "$stem.out"
+        exit 143
+    fi
+    # the run got to its end (the .h5 is renamed last) just before the signal; when the
+    # interrupted wait lost its exit status, it follows from the file: rodcontact exits 0
+    # exactly when it writes status 'complete', 3 after a numerical failure
+    if ((rc != 0 && rc != 3)); then
+        rc=3
+        complete_file "$stem.h5" && rc=0
+    fi
+    record_status "$stem" "$rc"
+    exit "$rc"
+}
+
+# check_point INPUT K ARGS...: the input checks of the point, nothing written
+check_point() {
+    local input=$1 k=$2 message rc
+    shift 2
+    message=$("$RODCONTACT" --check "$input" "$@" 2>&1 > /dev/null)
+    rc=$?
+    if ((rc != 0)); then
+        message=$(grep -m 1 '^rodcontact: error' <<< "$message" || tail -n 1 <<< "$message")
+        printf '%s\t%s\n' "$k" "${message:-rodcontact --check exited with status $rc}"
+    fi
+    return "$rc"
+}
+
+# parse_csv LINE: CSV = the fields of one RFC 4180 line
+parse_csv() {
+    local line=$1
+    CSV=()
+    while :; do
+        if [[ $line == \"* ]]; then
+            [[ $line =~ ^\"(([^\"]|\"\")*)\"(,|$) ]] || return 1
+            CSV+=("${BASH_REMATCH[1]//\"\"/\"}")
+            line=${line:${#BASH_REMATCH[0]}}
+            [[ -n ${BASH_REMATCH[3]} ]] || break
+        else
+            CSV+=("${line%%,*}")
+            [[ $line == *,* ]] || break
+            line=${line#*,}
+        fi
+    done
+}
+
+# complete_file FILE.h5: true when FILE.h5 exists with status 'complete'
+complete_file() {
+    local row
+    [[ -f $1 ]] || return 1
+    row=$("$RODCONTACT" --summary "$1" 2> /dev/null) || return 1
+    parse_csv "$row" || return 1
+    [[ ${CSV[1]:-} == complete ]]
+}
+
+case ${1:-} in
+    --point-run)
+        (($# >= 3)) || die "--point-run DIR K ARGS...: internal, run by GNU parallel"
+        run_point "${@:2}"
+        exit ;;
+    --point-check)
+        (($# >= 3)) || die "--point-check INPUT K ARGS...: internal, run by GNU parallel"
+        check_point "${@:2}"
+        exit ;;
+esac
 
 # ---------------------------------------------------------------- command line
 input=""
 out=""
 jobs=""
+batch=1
 exe="${RODCONTACT:-$repo_root/build/rodcontact}"
 mode=run
 task=""
@@ -60,11 +195,14 @@ while (($# > 0)); do
         -j|--jobs) (($# >= 2)) || die "$1 needs a number"; jobs=$2; shift 2 ;;
         -j*) jobs=${1#-j}; shift ;;
         --jobs=*) jobs=${1#--jobs=}; shift ;;
+        --batch) (($# >= 2)) || die "--batch needs a number of points per task"; batch=$2; shift 2 ;;
+        --batch=*) batch=${1#--batch=}; shift ;;
         --exe) (($# >= 2)) || die "--exe needs a path"; exe=$2; shift 2 ;;
         --exe=*) exe=${1#--exe=}; shift ;;
         --list) mode=list; shift ;;
         --collect) mode=collect; shift ;;
-        --task) (($# >= 2)) || die "--task needs a point number"; mode=task; task=$2; shift 2 ;;
+        --array) mode=array; shift ;;
+        --task) (($# >= 2)) || die "--task needs a task number"; mode=task; task=$2; shift 2 ;;
         --task=*) mode=task; task=${1#--task=}; shift ;;
         -h|--help) usage; exit 0 ;;
         -*) die "unknown option '$1'; see scripts/scan.sh --help" ;;
@@ -76,12 +214,19 @@ done
 [[ -f $input ]] || die "cannot read input file '$input'"
 ((${#specs[@]} > 0)) || die "no --set TARGET=VALUES: nothing to scan"
 if [[ -z $jobs ]]; then
-    jobs=$(nproc 2>/dev/null || echo 1)
+    if [[ $mode == task ]]; then
+        jobs=${SLURM_CPUS_PER_TASK:-1}
+    else
+        jobs=$(nproc 2>/dev/null || echo 1)
+    fi
 fi
 [[ $jobs =~ ^[1-9][0-9]*$ ]] || die "-j: expected a positive integer, got '$jobs'"
+[[ $batch =~ ^[1-9][0-9]*$ ]] || die "--batch: expected a positive integer, got '$batch'"
+batch=$((10#$batch))
 
 # ---------------------------------------------------------------- the axes
-# Axis i: targets axis_targets[i] ('+'-joined), values values[axis_first[i] ...] (axis_count[i]).
+# Axis i: spec specs[i], targets axis_targets[i] ('+'-joined), values values[axis_first[i] ...]
+# (axis_count[i]).
 axis_targets=()
 axis_first=()
 axis_count=()
@@ -102,26 +247,28 @@ print_items() {
     return 0
 }
 
-# expand_values SPEC: the values of SPEC, one per line (runs in a subshell: errors print
+# expand_values AXIS SPEC: the values of SPEC, one per line (runs in a subshell: errors print
 # their message and give no values)
 expand_values() {
-    local spec=$1
+    local axis=$1 spec=$2
     if [[ $spec == *';'* ]]; then
         print_items ';' "$spec"
-    elif [[ $spec =~ ^($number):($number):([0-9]+)(:log)?$ ]]; then
+    elif [[ $spec == *:* ]]; then
+        [[ $spec =~ ^($number):($number):([0-9]+)(:log)?$ ]] ||
+            die "--set '$axis': '$spec' is not a range a:b:n or a:b:n:log (a, b numbers, n a count; a value that holds ':' goes in a ';' list: '$spec;')"
         local a=${BASH_REMATCH[1]} b=${BASH_REMATCH[4]} n=$((10#${BASH_REMATCH[7]})) log=${BASH_REMATCH[8]}
         a=${a//[dD]/e}
         b=${b//[dD]/e}
-        ((n >= 1)) || die "range '$spec': n must be >= 1"
+        ((n >= 1)) || die "--set '$axis': range '$spec': n must be >= 1"
         awk -v a="$a" -v b="$b" -v n="$n" -v log_spaced="${log:+1}" 'BEGIN {
-            if (log_spaced && (a <= 0 || b <= 0)) { print "log range needs a, b > 0" > "/dev/stderr"; exit 1 }
+            if (log_spaced && (a <= 0 || b <= 0)) exit 1
             for (i = 0; i < n; i++) {
                 f = (n == 1) ? 0 : i / (n - 1)
                 if (log_spaced) v = (i == n - 1 && n > 1) ? b : exp(log(a) + f * (log(b) - log(a)))
                 else v = (i == n - 1 && n > 1) ? b : a + f * (b - a)
                 printf "%.10g\n", v
             }
-        }' || die "range '$spec': log spacing needs a, b > 0"
+        }' || die "--set '$axis': range '$spec': log spacing needs a, b > 0"
     else
         print_items ',' "$spec"
     fi
@@ -131,6 +278,7 @@ for spec in "${specs[@]}"; do
     [[ $spec == *=* ]] || die "--set '$spec': expected TARGET=VALUES, e.g. model.varpi=0:1:11"
     lhs=${spec%%=*}
     rhs=${spec#*=}
+    [[ $rhs != *[$'\t\n']* ]] || die "--set '$spec': a value may not hold a tab or a newline"
     IFS='+' read -r -a targets <<< "$lhs"
     ((${#targets[@]} > 0)) || die "--set '$spec': no target before '='"
     for target in "${targets[@]}"; do
@@ -145,7 +293,9 @@ for spec in "${specs[@]}"; do
         done
         all_targets+=("$target")
     done
-    mapfile -t axis_values < <(expand_values "$rhs")
+    axis_values=()
+    expanded=$(expand_values "$spec" "$rhs") || exit 2
+    [[ -n $expanded ]] && mapfile -t axis_values <<< "$expanded"
     ((${#axis_values[@]} > 0)) || die "--set '$spec': no values after '='"
     axis_targets+=("$lhs")
     axis_first+=("${#values[@]}")
@@ -158,6 +308,7 @@ for count in "${axis_count[@]}"; do
     n_points=$((n_points * count))
 done
 width=$(( ${#n_points} > 4 ? ${#n_points} : 4 ))
+n_tasks=$(( (n_points + batch - 1) / batch ))
 
 # point_values K: POINT_VALUES[i] = value of axis i at point K (last axis fastest)
 point_values() {
@@ -213,48 +364,51 @@ fi
 # ---------------------------------------------------------------- the scan directory
 [[ -n $out ]] || die "no --out DIR: where the points' files go"
 [[ -x $exe ]] || die "rodcontact not found at '$exe': build it with scripts/setup.sh, or pass --exe PATH (or set RODCONTACT)"
+exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
+export RODCONTACT=$exe
 mkdir -p "$out" || die "cannot create '$out'"
 
-# install_or_compare NEW DEST WHAT: DEST := NEW the first time; afterwards they must agree
-install_or_compare() {
+# same_or_new NEW DEST WHAT: a scan directory that holds another DEST is refused
+same_or_new() {
     local new=$1 dest=$2 what=$3
-    if [[ -f $dest ]]; then
-        cmp -s "$new" "$dest" || die "'$out' holds a scan with another $what ($dest differs); rerun with the same input and --set, or use another --out"
-        rm -f "$new"
+    [[ ! -f $dest ]] || cmp -s "$new" "$dest" ||
+        die "'$out' holds a scan with another $what ($dest differs); rerun with the same input and --set, or use another --out"
+}
+# install NEW DEST: DEST := NEW the first time (then NEW is removed)
+install() {
+    if [[ -f $2 ]]; then
+        rm -f "$1"
     else
-        mv -f "$new" "$dest" || die "cannot write '$dest'"
+        mv -f "$1" "$2" || die "cannot write '$2'"
     fi
 }
 tmp_input=$(mktemp "$out/.input.XXXXXX") || die "cannot write in '$out'"
-cp "$input" "$tmp_input" || die "cannot copy '$input' into '$out'"
-install_or_compare "$tmp_input" "$out/input.nml" "input file"
 tmp_points=$(mktemp "$out/.points.XXXXXX") || die "cannot write in '$out'"
+jobfile=$(mktemp "$out/.jobs.XXXXXX") || die "cannot write in '$out'"
+checks=$(mktemp "$out/.checks.XXXXXX") || die "cannot write in '$out'"
+trap 'rm -f "$tmp_input" "$tmp_points" "$jobfile" "$checks"' EXIT
+cp "$input" "$tmp_input" || die "cannot copy '$input' into '$out'"
+same_or_new "$tmp_input" "$out/input.nml" "input file"
 for ((k = 0; k < n_points; k++)); do
     point_line "$k"
 done > "$tmp_points"
-install_or_compare "$tmp_points" "$out/points.txt" "list of points"
+same_or_new "$tmp_points" "$out/points.txt" "list of points"
 
 # point_stem K: STEM = DIR/point_K (K zero-padded), the prefix of the point's files
 point_stem() {
     printf -v STEM "%s/point_%0${width}d" "$out" "$1"
 }
 
-# parse_csv LINE: CSV = the fields of one RFC 4180 line
-parse_csv() {
-    local line=$1
-    CSV=()
-    while :; do
-        if [[ $line == \"* ]]; then
-            [[ $line =~ ^\"(([^\"]|\"\")*)\"(,|$) ]] || return 1
-            CSV+=("${BASH_REMATCH[1]//\"\"/\"}")
-            line=${line:${#BASH_REMATCH[0]}}
-            [[ -n ${BASH_REMATCH[3]} ]] || break
-        else
-            CSV+=("${line%%,*}")
-            [[ $line == *,* ]] || break
-            line=${line#*,}
-        fi
-    done
+# point_complete K: true when point K is finished: DIR/point_K.h5 with status 'complete'.
+# Fast path: the .status of a run that exited 0 (rodcontact exits 0 exactly when it wrote
+# status 'complete'); else the file's own status attribute.
+point_complete() {
+    local rc=""
+    point_stem "$1"
+    [[ -f $STEM.h5 ]] || return 1
+    [[ -f $STEM.status ]] && read -r rc < "$STEM.status"
+    [[ $rc == 0 ]] && return 0
+    complete_file "$STEM.h5"
 }
 
 # csv_escape TEXT: FIELD = TEXT as one CSV field (RFC 4180)
@@ -264,82 +418,6 @@ csv_escape() {
     else
         FIELD=$1
     fi
-}
-
-# point_complete_file FILE.h5: true when FILE.h5 exists with status 'complete'
-point_complete_file() {
-    local row
-    [[ -f $1 ]] || return 1
-    row=$("$exe" --summary "$1" 2> /dev/null) || return 1
-    parse_csv "$row" || return 1
-    [[ ${CSV[1]:-} == complete ]]
-}
-
-# point_complete K: true when point K is finished: DIR/point_K.h5 with status 'complete'
-point_complete() {
-    point_stem "$1"
-    point_complete_file "$STEM.h5"
-}
-
-# record_status STEM RC: DIR/point_K.status = exit status and the run's error message
-record_status() {
-    local stem=$1 rc=$2 message
-    message=$(grep -m 1 '^rodcontact: error' "$stem.err" || tail -n 1 "$stem.err")
-    printf '%s\n%s\n' "$rc" "$message" > "$stem.status.tmp" && mv -f "$stem.status.tmp" "$stem.status"
-    [[ -s $stem.out ]] || rm -f "$stem.out"
-}
-
-# run_point K: run point K in the foreground; record its exit status and message
-run_point() {
-    local k=$1 stem child="" rc=""
-    point_stem "$k"
-    stem=$STEM
-    point_args "$k"
-    rm -f "$stem.h5" "$stem.h5.part" "$stem.status" "$stem.err" "$stem.out"
-    # on TERM (from the scan's interrupt handler, or Slurm) or INT (Ctrl-C reaches the whole
-    # process group; rodcontact, started with &, ignores it) on_point_term stops the run
-    trap 'on_point_term' TERM INT
-    "$exe" "$out/input.nml" "${POINT_ARGS[@]}" --set "output.prefix=$stem" --set output.quiet=.true. \
-        > "$stem.out" 2> "$stem.err" < /dev/null &
-    child=$!
-    wait "$child"
-    rc=$?
-    record_status "$stem" "$rc"
-    trap - TERM INT
-    return "$rc"
-}
-
-# The TERM trap of run_point (it sees run_point's locals stem, child, rc). A run that had
-# ended is recorded as usual; a run cut short is not recorded at all (its .part removed),
-# so that the point counts as not run and the next rerun does it again.
-on_point_term() {
-    trap '' TERM INT
-    if [[ -n $rc ]]; then
-        record_status "$stem" "$rc"
-        exit "$rc"
-    fi
-    if [[ -z $child ]]; then
-        # TERM came between the start of the run and 'child=$!': the run is this
-        # subshell's only job
-        child=$(jobs -p)
-        [[ -n $child ]] || exit 143
-    fi
-    kill -TERM "$child" 2> /dev/null
-    wait "$child"
-    rc=$?
-    if [[ ! -f $stem.h5 ]]; then
-        rm -f "$stem.h5.part" "$stem.out"
-        exit 143
-    fi
-    # the run got to its end (the .h5 is renamed last) just before the signal; when the
-    # interrupted wait lost its exit status, it follows from the file: rodcontact exits 0
-    # exactly when it writes status 'complete', 3 after a numerical failure
-    if ((rc != 0 && rc != 3)); then
-        rc=3
-        point_complete_file "$stem.h5" && rc=0
-    fi
-    record_status "$stem" "$rc"
-    exit "$rc"
 }
 
 hms() {
@@ -424,110 +502,156 @@ collect() {
 }
 
 if [[ $mode == collect ]]; then
+    install "$tmp_input" "$out/input.nml"
+    install "$tmp_points" "$out/points.txt"
     collect
     exit 0
 fi
 
-# ---------------------------------------------------------------- --task K
+# ---------------------------------------------------------------- the points to run
+command -v parallel > /dev/null && parallel --version 2> /dev/null | grep -q '^GNU parallel' ||
+    die "GNU parallel not found (the 'parallel' of moreutils is another program): apt-get install parallel (scripts/setup.sh installs it)"
+
 if [[ $mode == task ]]; then
-    [[ $task =~ ^[0-9]+$ ]] || die "--task: expected a point number 0..$((n_points - 1)), got '$task'"
+    [[ $task =~ ^[0-9]+$ ]] || die "--task: expected a task number 0..$((n_tasks - 1)), got '$task'"
     task=$((10#$task))
-    ((task < n_points)) || die "--task $task: the scan has points 0..$((n_points - 1))"
-    if point_complete "$task"; then
-        point_stem "$task"
-        echo "scan: point $task already complete ($STEM.h5), skipped" >&2
-        exit 0
-    fi
-    run_point "$task"
-    rc=$?
-    if ((rc != 0)); then
-        point_stem "$task"
-        echo "scan: point $task failed (exit $rc): $(sed -n 2p "$STEM.status")" >&2
-    fi
-    exit "$rc"
+    ((task < n_tasks)) || die "--task $task: the scan has tasks 0..$((n_tasks - 1)) ($n_points points, --batch $batch)"
+    first=$((task * batch))
+    last=$(( first + batch - 1 < n_points - 1 ? first + batch - 1 : n_points - 1 ))
+else
+    first=0
+    last=$((n_points - 1))
 fi
-
-# ---------------------------------------------------------------- run: a pool of -j jobs
-((BASH_VERSINFO[0] > 5 || (BASH_VERSINFO[0] == 5 && BASH_VERSINFO[1] >= 1))) ||
-    die "running points in parallel needs bash >= 5.1 (wait -n -p); this is $BASH_VERSION: use --task K per point"
-
 pending=()
-for ((k = 0; k < n_points; k++)); do
+for ((k = first; k <= last; k++)); do
     point_complete "$k" || pending+=("$k")
 done
 n_run=${#pending[@]}
-n_skipped=$((n_points - n_run))
-echo "scan: $n_points points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
+n_skipped=$((last - first + 1 - n_run))
 
-declare -A running=()
-n_ok=0
-n_bad=0
-start=$SECONDS
-tty=0
-[[ -t 2 ]] && tty=1
-last_decile=0
-
-progress() {
-    local done=$((n_ok + n_bad)) elapsed=$((SECONDS - start)) eta="?" line decile
-    ((done > 0)) && eta=$(hms $((elapsed * (n_run - done) / done)))
-    line="scan: $done/$n_run run ($n_ok complete, $n_bad failed), ${#running[@]} running, $((n_run - done)) remaining, $(hms "$elapsed") elapsed, ETA $eta"
-    if ((tty)); then
-        printf '\r\033[K%s' "$line" >&2
-    else
-        decile=$((n_run > 0 ? 10 * done / n_run : 10))
-        if ((decile > last_decile || done == n_run)); then
-            last_decile=$decile
-            echo "$line" >&2
-        fi
-    fi
-}
-
-on_interrupt() {
-    local sig=$1 pid
-    trap '' INT TERM
-    # every point running: the table, and any job started just before the signal but not
-    # entered in the table yet
-    for pid in "${!running[@]}" $(jobs -p); do
-        kill -TERM "$pid" 2> /dev/null
+# The jobs for GNU parallel, one line per point: K, then its --set arguments, tab-separated
+# (--colsep); no value holds a tab (checked above).
+for k in "${pending[@]}"; do
+    point_args "$k"
+    printf -v line "%0${width}d" "$k"
+    for arg in "${POINT_ARGS[@]}"; do
+        line+=$'\t'$arg
     done
+    printf '%s\n' "$line"
+done > "$jobfile"
+
+# run_parallel WHAT ARGS...: GNU parallel with ARGS, in the background so that INT and TERM
+# reach our trap at once; the trap stops it (GNU parallel sends TERM to its jobs and waits
+# for them) and exits 130/143
+parallel_pid=""
+on_interrupt() {
+    local sig=$1
+    trap '' INT TERM
+    [[ -n $parallel_pid ]] || parallel_pid=$(jobs -p)
+    [[ -n $parallel_pid ]] && kill -TERM $parallel_pid 2> /dev/null
     wait 2> /dev/null
-    ((tty)) && echo >&2
-    echo "scan: interrupted ($sig): $n_ok complete, $n_bad failed, $((n_run - n_ok - n_bad)) not finished; rerun the same command to resume" >&2
+    echo "scan: interrupted (signal $sig) while $what; every point that ended is recorded; rerun the same command to resume" >&2
     exit $((sig == 2 ? 130 : 143))
 }
-trap 'on_interrupt 2' INT
-trap 'on_interrupt 15' TERM
-
-reap_one() {
-    local pid="" rc stem
-    wait -n -p pid
-    rc=$?
-    [[ -n $pid ]] || return 0
-    point_stem "${running[$pid]}"
-    stem=$STEM
-    if ((rc == 0)); then
-        n_ok=$((n_ok + 1))
-    else
-        n_bad=$((n_bad + 1))
-        ((tty)) && printf '\r\033[K' >&2
-        echo "scan: point ${running[$pid]} failed (exit $rc): $(sed -n 2p "$stem.status" 2>/dev/null)" >&2
-    fi
-    unset "running[$pid]"
-    progress
+run_parallel() {
+    what=$1
+    shift
+    parallel_pid=""
+    trap 'on_interrupt 2' INT
+    trap 'on_interrupt 15' TERM
+    parallel "$@" &
+    parallel_pid=$!
+    wait "$parallel_pid"
+    local rc=$?
+    trap - INT TERM
+    parallel_pid=""
+    return "$rc"
 }
 
-for k in "${pending[@]}"; do
-    while ((${#running[@]} >= jobs)); do
-        reap_one
+# ---------------------------------------------------------------- checks before any run
+# Every point to run, read and validated by rodcontact --check (nothing written). The first
+# failure stops the checks; its message names the variable, which names the axis.
+if ((n_run > 0)); then
+    if ! run_parallel "checking the points" --jobs "$jobs" --colsep '\t' --halt now,fail=1 -a "$jobfile" \
+            "$BASH" "$script" --point-check "$tmp_input" > "$checks" 2> /dev/null; then
+        IFS=$'\t' read -r bad_point message < "$checks" ||
+            die "the checks of the points failed without a message (GNU parallel: $(parallel --version | head -n 1))"
+        bad=$((10#$bad_point))
+        point_values "$bad"
+        variable=""
+        [[ $message =~ error\ in\ (--set\ )?([A-Za-z0-9_]+\.[A-Za-z0-9_]+) ]] && variable=${BASH_REMATCH[2],,}
+        for ((i = 0; i < n_axes; i++)); do
+            IFS='+' read -r -a targets <<< "${axis_targets[i]}"
+            for target in "${targets[@]}"; do
+                target=${target%%(*}
+                if [[ -n $variable && ${target,,} == "$variable" ]]; then
+                    die "axis --set '${specs[i]}': value '${POINT_VALUES[i]}' (point $bad) is not valid input: ${message#rodcontact: }; nothing was run"
+                fi
+            done
+        done
+        point_line "$bad" > "$checks"
+        die "point $bad ($(cut -d' ' -f2- "$checks")) is not valid input: ${message#rodcontact: }; nothing was run"
+    fi
+fi
+# the scan's definition, kept in DIR once its points passed the checks
+install "$tmp_input" "$out/input.nml"
+install "$tmp_points" "$out/points.txt"
+
+# ---------------------------------------------------------------- --array
+# The Slurm array indices of the tasks with a point to run, as ranges: '0-3,5,7-9'
+if [[ $mode == array ]]; then
+    ranges=""
+    range_first=-1
+    range_last=-1
+    for k in "${pending[@]}"; do
+        t=$((k / batch))
+        ((t == range_last)) && continue
+        if ((range_first < 0)); then
+            range_first=$t
+        elif ((t != range_last + 1)); then
+            ranges+=${ranges:+,}$range_first$( ((range_last > range_first)) && echo "-$range_last")
+            range_first=$t
+        fi
+        range_last=$t
     done
-    run_point "$k" &
-    running[$!]=$k
+    ((range_first >= 0)) && ranges+=${ranges:+,}$range_first$( ((range_last > range_first)) && echo "-$range_last")
+    [[ -n $ranges ]] && echo "$ranges"
+    echo "scan: $n_points points in $n_tasks tasks of --batch $batch; $n_run points to run" >&2
+    exit 0
+fi
+
+# ---------------------------------------------------------------- run
+if [[ $mode == task ]]; then
+    echo "scan: task $task: points $first..$last of $n_points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
+else
+    echo "scan: $n_points points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
+fi
+start=$SECONDS
+parallel_args=(--jobs "$jobs" --colsep '\t' -a "$jobfile"
+               --term-seq TERM,200,TERM,10000,KILL,25)
+# GNU parallel's job log of a local run (one per scan directory; a task of an array leaves
+# its log to Slurm)
+[[ $mode == run ]] && parallel_args+=(--joblog "$out/joblog")
+[[ -t 2 ]] && parallel_args+=(--eta)
+if ((n_run > 0)); then
+    run_parallel "running the points" "${parallel_args[@]}" "$BASH" "$script" --point-run "$out"
+fi
+n_ok=0
+n_bad=0
+n_lost=0
+for k in "${pending[@]}"; do
+    point_stem "$k"
+    rc=""
+    [[ -f $STEM.status ]] && read -r rc < "$STEM.status"
+    case $rc in
+        0) n_ok=$((n_ok + 1)) ;;
+        '') n_lost=$((n_lost + 1)) ;;
+        *) n_bad=$((n_bad + 1)) ;;
+    esac
 done
-while ((${#running[@]} > 0)); do
-    reap_one
-done
-((tty && n_run > 0)) && echo >&2
-trap - INT TERM
-echo "scan: done in $(hms $((SECONDS - start))): $n_ok complete, $n_bad failed (messages in $out/point_*.status, .err)" >&2
-collect
-((n_bad == 0))
+lost=""
+((n_lost > 0)) && lost=", $n_lost not run"
+echo "scan: done in $(hms $((SECONDS - start))): $n_ok complete, $n_bad failed$lost (messages in $out/point_*.status, .err)" >&2
+[[ $mode == run ]] && collect
+((n_bad == 0 && n_lost == 0)) || exit 1
+exit 0

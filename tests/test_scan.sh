@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
-# scripts/scan.sh: --list, --task (the path of a Slurm array task), a parallel run that is
-# interrupted and resumed, the collector's CSV (every point exactly once, with a status),
-# points that fail with bad input (exit 2) and numerically (exit 3) recorded with their
-# messages, and the refusal to mix two scans in one directory.
+# scripts/scan.sh: --list, the checks before any run (unknown variable, malformed range,
+# a value that does not parse or is out of range, a bad combination: exit 2 naming the axis
+# or the point, nothing run), --task and --batch (the path of a Slurm array task), --array,
+# a parallel run under GNU parallel that is interrupted and resumed, the collector's CSV
+# (every point exactly once, with a status), points that fail at run time with bad input
+# (exit 2) and numerically (exit 3) recorded with their messages, and the refusal to mix two
+# scans in one directory.
 #
 #   bash tests/test_scan.sh <path to rodcontact> <source dir> <scratch dir>
-# Exit status: 0 all passed, 1 a check failed, 77 skipped (no program).
+# Exit status: 0 all passed, 1 a check failed, 77 skipped (no program, or no GNU parallel
+# outside CI).
 set -u
 
 prog=${1:-}
@@ -15,8 +19,10 @@ if [[ -z "$prog" || ! -x "$prog" ]]; then
     echo "SKIP: rodcontact not found at '$prog'"
     exit 77
 fi
-if ((BASH_VERSINFO[0] < 5 || (BASH_VERSINFO[0] == 5 && BASH_VERSINFO[1] < 1))); then
-    echo "SKIP: scripts/scan.sh needs bash >= 5.1 for parallel runs, this is $BASH_VERSION"
+if ! parallel --version 2> /dev/null | grep -q '^GNU parallel'; then
+    # scripts/setup.sh installs it (Debian package parallel): in CI its absence is a failure
+    [[ -n ${CI:-} ]] && { echo "FAIL: GNU parallel not found (scripts/setup.sh should have installed it)"; exit 1; }
+    echo "SKIP: scripts/scan.sh needs GNU parallel (apt-get install parallel, or scripts/setup.sh)"
     exit 77
 fi
 [[ -n "$scratch" ]] || scratch=$(mktemp -d)
@@ -45,10 +51,10 @@ equals() {  # equals <expected> <got>
 }
 
 # 3 x 2 points of experiment 2 at its own mesh and time step, t_end = 0.6 (contact at
-# t ~ 0.3 for amplitude 20): ~0.2-0.5 s per point. varpi = -1 is bad input (2 points).
+# t ~ 0.3 for amplitude 20): ~0.2-0.5 s per point.
 dir=myscan
-rm -rf "$dir" scan_*.log
-args=("$src/input/exp2.nml" --set model.varpi=0.1,0.5,-1
+rm -rf "$dir" scan_*.log bad_*
+args=("$src/input/exp2.nml" --set model.varpi=0.1,0.5,1
       --set 'initial.theta0_step(1)+initial.p0_step(1)=5:20:2'
       --set time.t_end=0.6 --set output.snapshot_every=1000 --set output.series_every=10)
 
@@ -58,28 +64,71 @@ check "--list prints 6 points" equals 6 "$(wc -l <<< "$list")"
 check "--list point 0" equals \
     "0000 --set model.varpi=0.1 --set 'initial.theta0_step(1)=5' --set 'initial.p0_step(1)=5' --set time.t_end=0.6 --set output.snapshot_every=1000 --set output.series_every=10" \
     "$(sed -n 1p <<< "$list")"
-check "--list point 5" equals "0005 --set model.varpi=-1 --set 'initial.theta0_step(1)=20' --set 'initial.p0_step(1)=20'" \
+check "--list point 5" equals "0005 --set model.varpi=1 --set 'initial.theta0_step(1)=20' --set 'initial.p0_step(1)=20'" \
     "$(sed -n 6p <<< "$list" | cut -d' ' -f1-7)"
 check "a:b:n:log range" equals "0.01 0.1 1" \
     "$(bash "$scan" "$src/input/exp2.nml" --set model.varpi=0.01:1:3:log --list | awk '{sub(/.*=/, "", $3); printf "%s%s", (NR > 1 ? " " : ""), $3}')"
 check "a;b list of whole arrays" equals "initial.theta0_step=5,0.1 initial.theta0_step=10,0.2" \
     "$(bash "$scan" "$src/input/exp2.nml" --set 'initial.theta0_step=5,0.1;10,0.2' --list | awk '{printf "%s%s", (NR > 1 ? " " : ""), $3}')"
 
-# --- --task K: what a Slurm array task runs
-bash "$scan" "${args[@]}" --out "$dir" --task 4 2> scan_task4.log
-check "--task 4 (varpi = -1) exits 2" equals 2 "$?"
-check "--task 4 recorded exit status 2" equals 2 "$(sed -n 1p "$dir/point_0004.status")"
-check "--task 4 recorded the message" equals "rodcontact: error in model.varpi: got -1; must be >= 0" \
-    "$(sed -n 2p "$dir/point_0004.status")"
+# --- the checks before any run: exit 2 naming the axis (or the point), nothing run
+refused() {   # refused <dir> <expected message part> <scan arguments ...>
+    local d=$1 part=$2 status
+    shift 2
+    bash "$scan" "$@" --out "$d" 2> "scan_$d.log"
+    status=$?
+    [[ $status == 2 ]] || { echo "  exit status $status, expected 2"; return 1; }
+    grep -q -F -- "$part" "scan_$d.log" || { echo "  no '$part' in: $(cat "scan_$d.log")"; return 1; }
+    ! ls "$d"/point_* > /dev/null 2>&1 || { echo "  point files written: $(ls "$d")"; return 1; }
+    [[ ! -f $d/points.txt ]] || { echo "  $d/points.txt written"; return 1; }
+}
+e2=$src/input/exp2.nml
+check "unknown variable: exit 2 naming the axis" \
+    refused bad_name "is not valid input: error in --set model.varpii: unknown variable 'varpii' in &model" \
+    "$e2" --set time.t_end=0.2 --set model.varpii=0.1,0.2
+check "unknown variable: the message names the axis" \
+    refused bad_name "axis --set 'model.varpii=0.1,0.2': value '0." \
+    "$e2" --set time.t_end=0.2 --set model.varpii=0.1,0.2
+check "malformed range: exit 2 naming the axis" \
+    refused bad_range "--set 'model.varpi=0.1:1:x': '0.1:1:x' is not a range a:b:n" "$e2" --set model.varpi=0.1:1:x
+check "range inside a list: exit 2 naming the axis" \
+    refused bad_list "--set 'model.varpi=0:1:3,5': '0:1:3,5' is not a range" "$e2" --set model.varpi=0:1:3,5
+check "a value that does not parse: exit 2 naming the axis and the value" \
+    refused bad_parse "axis --set 'model.varpi=0.1,abc': value 'abc' (point 1)" "$e2" --set model.varpi=0.1,abc
+check "a value out of range at the last point: exit 2 naming the axis" \
+    refused bad_value "axis --set 'model.varpi=0.1,0.5,-1': value '-1' (point " \
+    "${args[@]/#model.varpi=0.1,0.5,1/model.varpi=0.1,0.5,-1}"
+check "a value out of range: the message says why" \
+    grep -q -F "is not valid input: error in model.varpi: got -1; must be >= 0; nothing was run" scan_bad_value.log
+check "a bad combination of two axes' values: exit 2 naming the axis the message names" \
+    refused bad_pair "axis --set 'model.d=0,0.00251': value '0.00251' (point 3) is not valid input: error in model.d: got d = 0.00251 with c = 0.001" \
+    "$e2" --set model.c=1,0.001 --set model.d=0,0.00251
+check "a bad value whose message names no axis: exit 2 naming the point" \
+    refused bad_point "point 1 (--set model.c=0.001 --set time.t_end=0.2) is not valid input: error in model.d" \
+    "$e2" --set model.c=1,0.001 --set time.t_end=0.2
+check "a bad subscript: exit 2 naming the axis" \
+    refused bad_index "axis --set 'initial.theta0_step(3)=1'" "$e2" --set 'initial.theta0_step(3)=1'
+
+# --- --task T: what a Slurm array task runs (here one point per task)
 bash "$scan" "${args[@]}" --out "$dir" --task 1 2> scan_task1.log
 check "--task 1 exits 0" equals 0 "$?"
 check "--task 1 wrote point_0001.h5" test -f "$dir/point_0001.h5"
 stamp=$(stat -c %Y.%s "$dir/point_0001.h5")
 bash "$scan" "${args[@]}" --out "$dir" --task 0001 2> scan_task1b.log
 check "--task 1 again: skipped, file untouched" \
-    bash -c "grep -q 'already complete' scan_task1b.log && [[ \$(stat -c %Y.%s '$dir/point_0001.h5') == '$stamp' ]]"
+    bash -c "grep -q '1 already complete, 0 to run' scan_task1b.log && [[ \$(stat -c %Y.%s '$dir/point_0001.h5') == '$stamp' ]]"
 bash "$scan" "${args[@]}" --out "$dir" --task 6 2> /dev/null
 check "--task 6 (out of range) exits 2" equals 2 "$?"
+bash "$scan" "${args[@]}" --out "$dir" --task 4 --task bad 2> /dev/null
+check "--task bad exits 2" equals 2 "$?"
+
+# --- --batch B --array: the task indices with points to run (task t = points tB .. tB+B-1)
+check "--array --batch 4: tasks 0-1 (6 points, point 1 complete)" equals 0-1 \
+    "$(bash "$scan" "${args[@]}" --out "$dir" --batch 4 --array 2> /dev/null)"
+check "--array --batch 1: every task but 1" equals 0,2-5 \
+    "$(bash "$scan" "${args[@]}" --out "$dir" --array 2> /dev/null)"
+bash "$scan" "${args[@]}" --out "$dir" --batch 4 --task 2 2> /dev/null
+check "--batch 4 --task 2 (out of range: 2 tasks) exits 2" equals 2 "$?"
 
 # --- a parallel run, interrupted while point 3 runs (it starts when point 0 or 2 is done)
 bash "$scan" "${args[@]}" --out "$dir" -j 2 2> scan_run1.log &
@@ -129,7 +178,7 @@ n_done=$(ls "$dir"/point_*.h5 2> /dev/null | wc -l)
 # --- resume: only what is not complete runs; failed points are run again and recorded
 bash "$scan" "${args[@]}" --out "$dir" -j 2 2> scan_run2.log
 status=$?
-check "resumed scan exits 1 (failed points)" equals 1 "$status"
+check "resumed scan exits 0" equals 0 "$status"
 check "resumed scan skipped the complete points" grep -q "6 points in $dir/, $n_done already complete, $((6 - n_done)) to run" scan_run2.log
 csv="$dir/summary.csv"
 check "CSV header" equals \
@@ -138,19 +187,28 @@ check "CSV header" equals \
 check "CSV: every point exactly once" equals "0 1 2 3 4 5" \
     "$(tail -n +2 "$csv" | cut -d, -f1 | tr '\n' ' ' | sed 's/ $//')"
 check "CSV: every row has a status" equals 6 "$(tail -n +2 "$csv" | cut -d, -f8 | grep -c -E '^(complete|failed: .+|missing)$')"
-check "CSV: points 0-3 complete with exit status 0" equals "complete,0 complete,0 complete,0 complete,0" \
-    "$(sed -n '2,5p' "$csv" | cut -d, -f8,9 | tr '\n' ' ' | sed 's/ $//')"
-check "CSV: points 4, 5 failed with exit status 2 and the message" equals \
-    "failed: exit 2: error in model.varpi: got -1; must be >= 0,2 failed: exit 2: error in model.varpi: got -1; must be >= 0,2" \
-    "$(sed -n '6,7p' "$csv" | cut -d, -f8,9 | tr '\n' ' ' | sed 's/ $//')"
-check "CSV: contact only for varpi = 0.1, amplitude 20 (paper: 20 contact, 5 none)" equals "no yes no no" \
-    "$(sed -n '2,5p' "$csv" | cut -d, -f11 | tr '\n' ' ' | sed 's/ $//')"
-check "CSV: the failed points have empty summary fields" equals ",,,,,,,,,,,,,,,," \
-    "$(sed -n 6p "$csv" | cut -d, -f10-)"
+check "CSV: every point complete with exit status 0" equals "complete,0 complete,0 complete,0 complete,0 complete,0 complete,0" \
+    "$(tail -n +2 "$csv" | cut -d, -f8,9 | tr '\n' ' ' | sed 's/ $//')"
+check "CSV: contact only for varpi = 0.1, amplitude 20 (paper: 20 contact, 5 none)" equals "no yes no no no no" \
+    "$(tail -n +2 "$csv" | cut -d, -f11 | tr '\n' ' ' | sed 's/ $//')"
+check "GNU parallel's job log: one line per point run, exit value 0" equals "$((6 - n_done)) 0" \
+    "$(tail -n +2 "$dir/joblog" | wc -l) $(tail -n +2 "$dir/joblog" | cut -f7 | sort -u | tr '\n' ' ' | sed 's/ $//')"
 
-# --- a rerun runs only the failed points
+# --- a rerun runs nothing
 bash "$scan" "${args[@]}" --out "$dir" -j 2 2> scan_run3.log
-check "rerun: 4 already complete, the 2 failed ones run again" grep -q "4 already complete, 2 to run" scan_run3.log
+check "rerun: 6 already complete, 0 to run, exit 0" \
+    bash -c "grep -q '6 already complete, 0 to run' scan_run3.log && ! grep -q failed: '$csv'"
+
+# --- bad input found only at run time (a restart file that does not exist: --check does not
+# open files): the point is recorded as failed with exit status 2 and the message
+rt=rtscan
+rm -rf "$rt"
+bash "$scan" "$e2" --set time.t_end=0.2 --set "time.restart_from=none.h5;''" --out "$rt" -j 2 2> scan_rt.log
+check "a point that fails at run time: scan exits 1" equals 1 "$?"
+check "a point that fails at run time: recorded with exit status 2 and the message" \
+    grep -q "^0,0.2,none.h5,failed: exit 2: error in time.restart_from: got 'none.h5': no such file.*,2,,,," "$rt/summary.csv"
+check "a point that fails at run time: the other point is complete" grep -q "^1,0.2,'',complete,0," "$rt/summary.csv"
+check "a point that fails at run time: its line on stderr" grep -q "scan: point 0000 failed (exit 2): rodcontact: error in time.restart_from" scan_rt.log
 
 # --- another scan into the same directory is refused
 bash "$scan" "$src/input/exp2.nml" --set model.varpi=0.2,0.3 --out "$dir" 2> scan_other.log

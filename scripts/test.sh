@@ -10,7 +10,9 @@
 # the suite runs a second time in a Debug build (build-debug/, or DEBUG_BUILD_DIR):
 # -fcheck=all (bounds, allocation, pointer checks) and -ffpe-trap=invalid,zero,overflow, so
 # that an out-of-bounds access or a NaN/Inf produced anywhere stops the test that caused
-# it. The Release run comes first; both always run.
+# it. The Release run comes first; both always run. The Debug run leaves out the tests
+# labelled slurm (tests/test_slurm.sh: a Slurm cluster running scan scripts, nothing that
+# the Debug build checks) when it is given no ctest arguments.
 #
 # Exit status: 0 when every test passed in every build; otherwise that of the failing ctest
 # (the Release one if both failed), or 1 when a setup fails.
@@ -45,7 +47,9 @@ if [[ $debug == yes ]]; then
     [[ "$debug_dir" = /* ]] || debug_dir="$repo_root/$debug_dir"
     echo "test.sh: running the suite again in a Debug build (-fcheck=all, floating-point traps) in $debug_dir/" >&2
     BUILD_TYPE=Debug BUILD_DIR="$debug_dir" "$repo_root/scripts/setup.sh" || exit 1
-    ctest --test-dir "$debug_dir" --output-on-failure -j 2 "${ctest_args[@]}"
+    debug_args=("${ctest_args[@]}")
+    ((${#ctest_args[@]} == 0)) && debug_args=(-LE '^slurm$')
+    ctest --test-dir "$debug_dir" --output-on-failure -j 2 "${debug_args[@]}"
     debug_status=$?
     if [[ $status -eq 0 && $debug_status -ne 0 ]]; then
         echo "test.sh: the Release suite passed, the Debug suite failed" >&2

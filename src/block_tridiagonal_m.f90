@@ -1,7 +1,8 @@
-!> Block-tridiagonal LU for the interleaved monolithic system: with NB = 5 unknowns per
-!> node, node i couples only to nodes i-1 and i+1, so A is block tridiagonal with 5 x 5
-!> blocks D_i (diagonal), E_i (row i, column i+1) and F_i (row i+1, column i). The block
-!> size is a compile-time constant so that the 5 x 5 kernels are fully unrolled.
+!> Block-tridiagonal LU for the interleaved monolithic system: with nb unknowns per node
+!> (the fields in the system, at most NB_MAX = 5), node i couples only to nodes i-1 and
+!> i+1, so A is block tridiagonal with nb x nb blocks D_i (diagonal), E_i (row i, column
+!> i+1) and F_i (row i+1, column i). The 5 x 5 kernel (all fields) is written out so that
+!> it is fully unrolled; smaller blocks (fields left out, scheme_m's active_fields) use a loop.
 !>
 !> Why: the per-step solve with the band LU of dgbtrf is latency-bound (every unknown waits
 !> for the previous one, one store/load/FMA chain per column). Block elimination makes the
@@ -22,6 +23,13 @@ module block_tridiagonal_m
     implicit none
     private
     public :: block_tridiagonal_t
+    abstract interface
+        pure function block_product(a, x) result(y)
+            import :: dp
+            real(dp), intent(in) :: a(:, :), x(:)
+            real(dp) :: y(size(x))
+        end function block_product
+    end interface
     interface
         subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: dp
@@ -38,9 +46,10 @@ module block_tridiagonal_m
             integer, intent(out) :: info
         end subroutine dgetri
     end interface
-    integer, parameter, public :: NB = 5      !< unknowns per node
+    integer, parameter, public :: NB_MAX = 5   !< the most unknowns per node (N_FIELDS)
 
     type :: block_tridiagonal_t
+        integer :: nb = 0                    !< unknowns per node
         integer :: last = -1                 !< nodes are 0..last
         real(dp), allocatable :: g(:, :, :)  !< g(:,:,i) = S_i^{-1}
         real(dp), allocatable :: l(:, :, :)  !< l(:,:,i) = F_{i-1} S_{i-1}^{-1}, i >= 1
@@ -52,20 +61,26 @@ module block_tridiagonal_m
     end type block_tridiagonal_t
 
 contains
-    !> Factor the block-tridiagonal matrix held (unfactored) in band a. info = 0 on success,
-    !> else the node (1-based) whose pivot block is singular.
-    subroutine block_factor(self, a, info)
+    !> Factor the block-tridiagonal matrix held (unfactored) in band a, with nb unknowns per
+    !> node. info = 0 on success; -1 if a is not block tridiagonal with nb x nb blocks; else
+    !> the node (1-based) whose pivot block is singular.
+    subroutine block_factor(self, a, nb, info)
         class(block_tridiagonal_t), intent(inout) :: self
         type(band_t), intent(in) :: a
+        integer, intent(in) :: nb
         integer, intent(out) :: info
-        real(dp) :: f(NB, NB), work(NB * NB)
-        integer :: i, ipiv(NB), lapack_info
+        real(dp) :: f(nb, nb), work(nb * nb)
+        integer :: i, ipiv(nb), lapack_info
 
-        if (mod(a%n, NB) /= 0 .or. a%kl > 2 * NB - 1 .or. a%ku > 2 * NB - 1) &
-            error stop 'block_factor: matrix is not block tridiagonal with 5 x 5 blocks'
-        self%last = a%n / NB - 1
+        info = -1
+        if (nb < 1 .or. nb > NB_MAX) return
+        if (mod(a%n, nb) /= 0 .or. a%kl > 2 * nb - 1 .or. a%ku > 2 * nb - 1) return
+        self%nb = nb
+        self%last = a%n / nb - 1
         if (allocated(self%g)) deallocate (self%g, self%l, self%e, self%h)
-        allocate (self%g(NB, NB, 0:self%last), self%l(NB, NB, 1:self%last), self%e(NB, NB, 0:self%last - 1))
+        allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%e(nb, nb, 0:self%last - 1), &
+                  self%h(nb, nb, 0:self%last - 1), stat=lapack_info)
+        if (lapack_info /= 0) return
         info = 0
         do i = 0, self%last
             self%g(:, :, i) = block(a, i, i)
@@ -75,14 +90,13 @@ contains
                 self%g(:, :, i) = self%g(:, :, i) - matmul(self%l(:, :, i), self%e(:, :, i - 1))
             end if
             if (i < self%last) self%e(:, :, i) = block(a, i, i + 1)
-            call dgetrf(NB, NB, self%g(:, :, i), NB, ipiv, lapack_info)
-            if (lapack_info == 0) call dgetri(NB, self%g(:, :, i), NB, ipiv, work, size(work), lapack_info)
+            call dgetrf(nb, nb, self%g(:, :, i), nb, ipiv, lapack_info)
+            if (lapack_info == 0) call dgetri(nb, self%g(:, :, i), nb, ipiv, work, size(work), lapack_info)
             if (lapack_info /= 0) then
                 info = i + 1
                 return
             end if
         end do
-        allocate (self%h(NB, NB, 0:self%last - 1))
         do i = 0, self%last - 1
             self%h(:, :, i) = matmul(self%g(:, :, i), self%e(:, :, i))
         end do
@@ -90,11 +104,11 @@ contains
         pure function block(a, row_node, col_node) result(blk)
             type(band_t), intent(in) :: a
             integer, intent(in) :: row_node, col_node
-            real(dp) :: blk(NB, NB)
+            real(dp) :: blk(nb, nb)
             integer :: p, q
-            do q = 1, NB
-                do p = 1, NB
-                    blk(p, q) = a%get(NB * row_node + p, NB * col_node + q)
+            do q = 1, nb
+                do p = 1, nb
+                    blk(p, q) = a%get(nb * row_node + p, nb * col_node + q)
                 end do
             end do
         end function block
@@ -103,33 +117,61 @@ contains
     subroutine block_solve(self, b)
         class(block_tridiagonal_t), intent(in) :: self
         real(dp), intent(inout) :: b(:)
-        real(dp) :: y(NB), x(NB)
-        integer :: i, lo
 
-        ! forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain)
-        x = b(1:NB)
-        b(1:NB) = matvec5(self%g(:, :, 0), x)
-        do i = 1, self%last
-            lo = NB * i
-            y = b(lo + 1:lo + NB) - matvec5(self%l(:, :, i), x)
-            b(lo + 1:lo + NB) = matvec5(self%g(:, :, i), y)
+        if (self%nb == NB_MAX) then
+            call solve_nodes(self%g, self%l, self%h, self%last, matvec5, b)
+        else
+            call solve_nodes(self%g, self%l, self%h, self%last, matvec_loop, b)
+        end if
+    end subroutine block_solve
+
+    !> The two sweeps, with the block product kernel `times` (the caller's choice is
+    !> known at compile time in each call, so it is inlined).
+    !> forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain);
+    !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i.
+    subroutine solve_nodes(g, l, h, last, times, b)
+        real(dp), intent(in) :: g(:, :, 0:), l(:, :, :), h(:, :, 0:)
+        integer, intent(in) :: last
+        procedure(block_product) :: times
+        real(dp), intent(inout) :: b(:)
+        real(dp) :: y(size(g, 1)), x(size(g, 1))
+        integer :: i, lo, nb
+
+        nb = size(g, 1)
+        x = b(1:nb)
+        b(1:nb) = times(g(:, :, 0), x)
+        do i = 1, last
+            lo = nb * i
+            y = b(lo + 1:lo + nb) - times(l(:, :, i), x)
+            b(lo + 1:lo + nb) = times(g(:, :, i), y)
             x = y
         end do
-        ! back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i
-        x = b(NB * self%last + 1:NB * self%last + NB)
-        do i = self%last - 1, 0, -1
-            lo = NB * i
-            x = b(lo + 1:lo + NB) - matvec5(self%h(:, :, i), x)
-            b(lo + 1:lo + NB) = x
+        x = b(nb * last + 1:nb * last + nb)
+        do i = last - 1, 0, -1
+            lo = nb * i
+            x = b(lo + 1:lo + nb) - times(h(:, :, i), x)
+            b(lo + 1:lo + nb) = x
         end do
-    end subroutine block_solve
+    end subroutine solve_nodes
 
     !> a x for a 5 x 5 block, summed as a tree (depth 3) to shorten the dependency chain.
     pure function matvec5(a, x) result(y)
-        real(dp), intent(in) :: a(NB, NB), x(NB)
-        real(dp) :: y(NB)
+        real(dp), intent(in) :: a(:, :), x(:)
+        real(dp) :: y(size(x))
 
         y = (a(:, 1) * x(1) + a(:, 2) * x(2)) + (a(:, 3) * x(3) + a(:, 4) * x(4)) + a(:, 5) * x(5)
     end function matvec5
+
+    !> a x for any block size.
+    pure function matvec_loop(a, x) result(y)
+        real(dp), intent(in) :: a(:, :), x(:)
+        real(dp) :: y(size(x))
+        integer :: k
+
+        y = a(:, 1) * x(1)
+        do k = 2, size(x)
+            y = y + a(:, k) * x(k)
+        end do
+    end function matvec_loop
 
 end module block_tridiagonal_m

@@ -12,6 +12,7 @@ program test_energy_property
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: discrete_energy, bdf2_energy
+    use contact_law_m, only: contact_law
     use testing_m, only: check_true, test_summary
     implicit none
     integer, parameter :: N_SETS = 50, N_STEPS = 150
@@ -24,7 +25,6 @@ program test_energy_property
     real(dp) :: energy, energy_old, rise, worst
     integer :: k, n, n_contact_sets, n_contact_steps, seed_size
     integer, allocatable :: seed(:)
-    logical :: penalty
     character(len=400) :: detail
     integer :: n_bdf2_contact_rises, n_bdf2_free
     real(dp) :: worst_bdf2_contact
@@ -37,18 +37,19 @@ program test_energy_property
     worst = -huge(1.0_dp)
     do k = 1, N_SETS
         call random_configuration(cfg)
-        penalty = cfg%contact%law == 'penalty'
         call initial_state(cfg, state)
         call stepper%init(cfg, result)
         call check_true('set-up', result%ok, result%message)
-        energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
+        energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                      state%u, state%w)
         rise = -huge(1.0_dp)
         n_contact_steps = 0
         do n = 1, N_STEPS
             call stepper%advance(state, result)
             if (.not. result%ok) exit
             energy_old = energy
-            energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
+            energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                      state%u, state%w)
             rise = max(rise, (energy - energy_old) / energy_old)
             if (result%in_contact) n_contact_steps = n_contact_steps + 1
         end do
@@ -82,7 +83,6 @@ contains
         do k = 1, N_SETS
             call random_configuration(cfg)
             cfg%time%scheme = 'bdf2'
-            penalty = cfg%contact%law == 'penalty'
             call initial_state(cfg, state)
             call stepper%init(cfg, result)
             if (allocated(u_work)) deallocate (u_work, w_work)
@@ -95,8 +95,8 @@ contains
                 if (.not. result%ok) exit
                 contact = contact .or. result%in_contact
                 law_old = law
-                call bdf2_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, state%u_prev, &
-                                 state%w_prev, u_work, w_work, penalty, law)
+                call bdf2_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                 state%u, state%w, state%u_prev, state%w_prev, u_work, w_work, law)
                 if (n >= 2) rise = max(rise, (law - law_old) / law_old)
             end do
             call check_true('bdf2 steps succeed', result%ok, result%message)

@@ -23,13 +23,6 @@ module block_tridiagonal_m
     implicit none
     private
     public :: block_tridiagonal_t
-    abstract interface
-        pure function block_product(a, x) result(y)
-            import :: dp
-            real(dp), intent(in) :: a(:, :), x(:)
-            real(dp) :: y(size(x))
-        end function block_product
-    end interface
     interface
         subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: dp
@@ -114,64 +107,87 @@ contains
         end function block
     end subroutine block_factor
     !> Solve A x = b in place with the block factors. No allocation: called every step.
+    !> Every field in the system (nb = 5): products written out for the fixed block size,
+    !> so that they are fully unrolled. Fewer fields (scheme_m's active_fields): a loop.
     subroutine block_solve(self, b)
         class(block_tridiagonal_t), intent(in) :: self
-        real(dp), intent(inout) :: b(:)
+        real(dp), intent(inout), contiguous :: b(:)
 
         if (self%nb == NB_MAX) then
-            call solve_nodes(self%g, self%l, self%h, self%last, matvec5, b)
+            call solve_full(self%g, self%l, self%h, self%last, b)
         else
-            call solve_nodes(self%g, self%l, self%h, self%last, matvec_loop, b)
+            call solve_reduced(self%g, self%l, self%h, self%last, self%nb, b)
         end if
     end subroutine block_solve
 
-    !> The two sweeps, with the block product kernel `times` (the caller's choice is
-    !> known at compile time in each call, so it is inlined).
     !> forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain);
-    !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i.
-    subroutine solve_nodes(g, l, h, last, times, b)
-        real(dp), intent(in) :: g(:, :, 0:), l(:, :, :), h(:, :, 0:)
+    !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i. b(:, i) is node i.
+    subroutine solve_full(g, l, h, last, b)
         integer, intent(in) :: last
-        procedure(block_product) :: times
-        real(dp), intent(inout) :: b(:)
-        real(dp) :: y(size(g, 1)), x(size(g, 1))
-        integer :: i, lo, nb
+        real(dp), intent(in) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        real(dp), intent(inout) :: b(NB_MAX, 0:last)
+        real(dp) :: y(NB_MAX), x(NB_MAX)
+        integer :: i
 
-        nb = size(g, 1)
-        x = b(1:nb)
-        b(1:nb) = times(g(:, :, 0), x)
+        x = b(:, 0)
+        b(:, 0) = matvec5(g(:, :, 0), x)
         do i = 1, last
-            lo = nb * i
-            y = b(lo + 1:lo + nb) - times(l(:, :, i), x)
-            b(lo + 1:lo + nb) = times(g(:, :, i), y)
+            y = b(:, i) - matvec5(l(:, :, i), x)
+            b(:, i) = matvec5(g(:, :, i), y)
             x = y
         end do
-        x = b(nb * last + 1:nb * last + nb)
+        x = b(:, last)
         do i = last - 1, 0, -1
-            lo = nb * i
-            x = b(lo + 1:lo + nb) - times(h(:, :, i), x)
-            b(lo + 1:lo + nb) = x
+            x = b(:, i) - matvec5(h(:, :, i), x)
+            b(:, i) = x
         end do
-    end subroutine solve_nodes
+    end subroutine solve_full
+
+    !> The same sweeps for nb < 5 unknowns per node, one row at a time.
+    subroutine solve_reduced(g, l, h, last, nb, b)
+        integer, intent(in) :: last, nb
+        real(dp), intent(in) :: g(nb, nb, 0:last), l(nb, nb, last), h(nb, nb, 0:last - 1)
+        real(dp), intent(inout) :: b(nb, 0:last)
+        real(dp) :: before(NB_MAX), now(NB_MAX), acc
+        integer :: i, r, k
+
+        before(1:nb) = b(:, 0)
+        do i = 0, last
+            if (i > 0) then
+                do r = 1, nb
+                    acc = b(r, i)
+                    do k = 1, nb
+                        acc = acc - l(r, k, i) * before(k)
+                    end do
+                    now(r) = acc
+                end do
+                before(1:nb) = now(1:nb)
+            end if
+            do r = 1, nb
+                acc = 0.0_dp
+                do k = 1, nb
+                    acc = acc + g(r, k, i) * before(k)
+                end do
+                b(r, i) = acc
+            end do
+        end do
+        do i = last - 1, 0, -1
+            do r = 1, nb
+                acc = b(r, i)
+                do k = 1, nb
+                    acc = acc - h(r, k, i) * b(k, i + 1)
+                end do
+                b(r, i) = acc
+            end do
+        end do
+    end subroutine solve_reduced
 
     !> a x for a 5 x 5 block, summed as a tree (depth 3) to shorten the dependency chain.
     pure function matvec5(a, x) result(y)
-        real(dp), intent(in) :: a(:, :), x(:)
-        real(dp) :: y(size(x))
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), x(NB_MAX)
+        real(dp) :: y(NB_MAX)
 
         y = (a(:, 1) * x(1) + a(:, 2) * x(2)) + (a(:, 3) * x(3) + a(:, 4) * x(4)) + a(:, 5) * x(5)
     end function matvec5
-
-    !> a x for any block size.
-    pure function matvec_loop(a, x) result(y)
-        real(dp), intent(in) :: a(:, :), x(:)
-        real(dp) :: y(size(x))
-        integer :: k
-
-        y = a(:, 1) * x(1)
-        do k = 2, size(x)
-            y = y + a(:, k) * x(k)
-        end do
-    end function matvec_loop
 
 end module block_tridiagonal_m

@@ -24,6 +24,8 @@ module contact_law_m
         procedure :: lagged_impulse => law_lagged_impulse
         procedure :: energy => law_energy
         procedure :: implicit_impulse => law_implicit_impulse
+        procedure :: midpoint_impulse => law_midpoint_impulse
+        procedure :: discrete_gradient => law_discrete_gradient
     end type contact_law_t
 
 contains
@@ -100,5 +102,80 @@ contains
             law_implicit_impulse = dt * gap / (self%eps + dt**2 * z_s)
         end if
     end function law_implicit_impulse
+
+    !> The contact step of the midpoint rule (time_scheme_m), solved for the half level Y
+    !> with step dt = dt_n / 2. Without a contact force the end would reach u_Y(1) = a, so
+    !> u^n(1) = 2 u_Y(1) - u_old; a force lambda moves it to u^n(1) = 2 a - u_old - 2 dt^2 z_s lambda.
+    !> Returns dt lambda with
+    !>   penalty: lambda = the discrete gradient (phi(u^n(1)) - phi(u_old)) / (u^n(1) - u_old)
+    !>            of phi(u) = 1/(2 eps)[u - g]_+^2, so that the contact work equals
+    !>            phi(u^n(1)) - phi(u_old) exactly: the energy identity holds through impacts.
+    !>            lambda - DG(lambda) is strictly increasing in lambda, so the root in
+    !>            [0, DG(0)] is unique; it is found by bisection with the Illinois secant
+    !>            to round-off.
+    !>   Signorini: u^n(1) <= g, lambda >= 0, lambda (u^n(1) - g) = 0 at the end of the step;
+    !>            the closed form lambda = (2 a - u_old - g) / (2 dt^2 z_s) when positive.
+    function law_midpoint_impulse(self, a, u_old, dt, z_s) result(impulse)
+        class(contact_law_t), intent(in) :: self
+        real(dp), intent(in) :: a, u_old, dt, z_s
+        real(dp) :: impulse
+        real(dp) :: c, lo, hi, f_lo, f_hi, lambda, f, u_free
+        integer :: k, side
+
+        impulse = 0.0_dp
+        c = 2.0_dp * dt**2 * z_s
+        u_free = 2.0_dp * a - u_old
+        if (self%kind == LAW_SIGNORINI) then
+            if (u_free > self%g) impulse = dt * (u_free - self%g) / c
+            return
+        end if
+        hi = self%discrete_gradient(u_old, u_free)
+        if (.not. (hi > 0.0_dp)) return
+        lo = 0.0_dp
+        f_lo = -hi                                        ! lambda - DG at lambda = 0
+        f_hi = hi - self%discrete_gradient(u_old, u_free - c * hi)
+        side = 0
+        lambda = hi
+        do k = 1, 200
+            if (f_hi == 0.0_dp) then
+                lambda = hi
+                exit
+            end if
+            lambda = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
+            if (.not. (lambda > lo .and. lambda < hi)) lambda = 0.5_dp * (lo + hi)
+            f = lambda - self%discrete_gradient(u_old, u_free - c * lambda)
+            if (f > 0.0_dp) then
+                hi = lambda
+                f_hi = f
+                if (side == 1) f_lo = 0.5_dp * f_lo       ! Illinois: halve the stale end
+                side = 1
+            else
+                lo = lambda
+                f_lo = f
+                if (side == -1) f_hi = 0.5_dp * f_hi
+                side = -1
+            end if
+            if (f == 0.0_dp .or. hi - lo <= 4.0_dp * epsilon(1.0_dp) * hi) exit
+        end do
+        impulse = dt * lambda
+    end function law_midpoint_impulse
+
+    !> (phi(q) - phi(p)) / (q - p) for phi(u) = 1/(2 eps)[u - g]_+^2, written per case so
+    !> that no difference of nearly equal values is divided (phi'(p) when q = p).
+    pure real(dp) function law_discrete_gradient(self, p, q) result(dg)
+        class(contact_law_t), intent(in) :: self
+        real(dp), intent(in) :: p, q
+        real(dp) :: low, high
+
+        low = min(p, q)
+        high = max(p, q)
+        if (high <= self%g) then
+            dg = 0.0_dp
+        else if (low >= self%g) then
+            dg = 0.5_dp * ((p - self%g) + (q - self%g)) / self%eps
+        else
+            dg = 0.5_dp * (high - self%g)**2 / (self%eps * (high - low))
+        end if
+    end function law_discrete_gradient
 
 end module contact_law_m

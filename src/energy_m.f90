@@ -15,8 +15,10 @@ module energy_m
     !> scheme's law is stated for (time_scheme_m: E^n for Euler, the G-energy for BDF2).
     type :: energy_monitor_t
         type(model_t) :: model
+        type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
         type(contact_law_t) :: law
         logical :: bdf2 = .false.
+        logical :: own_law_model = .false.   !< law_model differs from model
         real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
@@ -95,18 +97,23 @@ contains
     end subroutine bdf2_energy
 
     !> The energy of the first level and the law it must obey from then on.
-    subroutine monitor_init(self, model, law, scheme, state)
+    subroutine monitor_init(self, model, law, scheme, state, law_model)
         class(energy_monitor_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
+        type(model_t), intent(in), optional :: law_model   !< default: model
 
         self%model = model
+        self%law_model = model
+        if (present(law_model)) self%law_model = law_model
+        self%own_law_model = present(law_model)
         self%law = law
         self%bdf2 = scheme%is_bdf2()
         self%energy = discrete_energy(model, law, state%u, state%w)
         self%law_energy = self%energy
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w)
         self%have_law = .not. self%bdf2
         self%max_rise = 0.0_dp
         if (self%bdf2) allocate (self%u_work, mold=state%u)
@@ -127,6 +134,7 @@ contains
         energy_lin = linear_energy(self%model, state%u, state%w)
         self%energy = energy_lin + self%law%energy(state%u(state%s))
         self%law_energy = self%energy
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w)
         if (self%bdf2) then
             self%have_law = allocated(state%u_prev)
             if (self%have_law) call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &

@@ -58,7 +58,11 @@ contains
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
         call initial_state(cfg, state)
         call stepper%init(cfg, result)
-        call monitor%init(cfg%model, stepper%law, stepper%scheme, state)
+        if (stepper%scheme%is_midpoint()) then
+            call monitor%init(cfg%model, stepper%law, stepper%scheme, state, law_model=stepper%step_model)
+        else
+            call monitor%init(cfg%model, stepper%law, stepper%scheme, state)
+        end if
         if (cfg%time%restart_from /= '') then
             ! everything the restart needs is read and checked before the new file exists
             call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters)

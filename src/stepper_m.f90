@@ -62,7 +62,9 @@ module stepper_m
     end type monolithic_system_t
 
     type :: stepper_t
-        type(model_t) :: model
+        type(model_t) :: model         !< the paper's coefficients (&model)
+        type(model_t) :: step_model    !< what the steps use (time_scheme_m's stiff_limit)
+        logical :: algebraic(N_FIELDS) = .false.   !< no time derivative in step_model
         type(contact_law_t) :: law
         type(time_scheme_t) :: scheme
         real(dp) :: dt = 0.0_dp        !< the step size when advance() is given none (&time dt)
@@ -105,6 +107,7 @@ contains
         self%dt = cfg%time%dt
         self%law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
         self%scheme = time_scheme(cfg%time%scheme)
+        call self%scheme%stiff_limit(self%model, self%dt, cfg%mesh%n_elements, self%step_model, self%algebraic)
         self%tol = cfg%solver%tol
         self%max_iter = cfg%solver%max_iter
         self%s = cfg%mesh%n_elements
@@ -120,7 +123,7 @@ contains
             call setup_paper(self, self%dt, result)
         case default
             self%method = METHOD_MONOLITHIC
-            self%active = active_fields(self%model, initial_data_present(cfg) .or. present(source))
+            self%active = active_fields(self%step_model, initial_data_present(cfg) .or. present(source))
             self%slots = slots_of(self%active)
             allocate (self%x(count(self%active) * (s + 1)), stat=stat, errmsg=message)
             if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate the system: '//trim(message))
@@ -187,7 +190,7 @@ contains
         type(band_t) :: unfactored
         integer :: info
 
-        call assemble_matrix(self%model, self%s, dt_eff, self%slots, sys%a)
+        call assemble_matrix(self%step_model, self%s, dt_eff, self%slots, sys%a)
         call sys%blocks%factor(sys%a, count(self%active), info)
         sys%use_blocks = info == 0
         unfactored = sys%a
@@ -234,7 +237,7 @@ contains
         type(step_result_t), intent(out) :: result
         real(dp), intent(in), optional :: dt
         type(step_plan_t) :: plan
-        real(dp) :: step_size, t_new
+        real(dp) :: step_size, t_new, t_source
         integer :: k
 
         step_size = self%dt
@@ -244,20 +247,24 @@ contains
         case (METHOD_PAPER)
             if (step_size /= self%paper_dt) call setup_paper(self, step_size, result)
             if (.not. result%ok) return
-            call start_rhs(self, step_size, t_new, state%u, state%w)
+            call start_rhs(self, self%model, step_size, t_new, state%u, state%w)
             call advance_paper(self, state, step_size, result)
         case default
-            plan = self%scheme%plan(step_size, state%dt_last, allocated(state%u_prev))
+            plan = self%scheme%plan(step_size, state%dt_last, allocated(state%u_prev), state%step)
+            t_source = t_new - plan%source_back * step_size
             call find_system(self, plan%dt_eff, k, result)
             if (.not. result%ok) return
             if (plan%from_history) then
                 ! the level the step starts from, e.g. (4 X^{n-1} - X^{n-2}) / 3 (BDF2)
                 self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
                 self%w_star = (plan%a * state%w - plan%b * state%w_prev) / plan%d
-                call start_rhs(self, plan%dt_eff, t_new, self%u_star, self%w_star)
+                call start_rhs(self, self%step_model, plan%dt_eff, t_source, self%u_star, self%w_star)
                 call advance_monolithic(self, self%systems(k), state, .true., result)
+            else if (plan%midpoint) then
+                call start_rhs(self, self%step_model, plan%dt_eff, t_source, state%u, state%w)
+                call advance_midpoint(self, self%systems(k), state, result)
             else
-                call start_rhs(self, plan%dt_eff, t_new, state%u, state%w)
+                call start_rhs(self, self%step_model, plan%dt_eff, t_source, state%u, state%w)
                 call advance_monolithic(self, self%systems(k), state, .false., result)
             end if
         end select
@@ -274,15 +281,16 @@ contains
         self%n_solves = self%n_solves + result%iterations
     end subroutine stepper_advance
 
-    !> Right-hand side of (6.1) with step dt_eff from the level (u_from, w_from), plus the
-    !> sources at t_new.
-    subroutine start_rhs(self, dt_eff, t_new, u_from, w_from)
+    !> Right-hand side of (6.1) for `model` with step dt_eff from the level (u_from, w_from),
+    !> plus the sources at t_source.
+    subroutine start_rhs(self, model, dt_eff, t_source, u_from, w_from)
         type(stepper_t), intent(inout) :: self
-        real(dp), intent(in) :: dt_eff, t_new
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(self%model, dt_eff, u_from, w_from, self%b_old, self%work, self%active)
-        if (allocated(self%source)) call add_source_terms(self%source, self%model, t_new, dt_eff, self%b_old)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%b_old, self%work, self%active)
+        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%b_old)
     end subroutine start_rhs
 
     !> One monolithic step from the state itself (from_star = .false.) or from the level
@@ -295,12 +303,7 @@ contains
         type(step_result_t), intent(inout) :: result
         real(dp) :: gap, impulse, u_end_from
 
-        call scatter_fields(self%slots, self%b_old, self%x)
-        if (sys%use_blocks) then
-            call sys%blocks%solve(self%x)
-        else
-            call sys%a%solve(self%x)
-        end if
+        call solve_trial(self, sys)
         result%iterations = 1
         ! The trial gap without contact force decides the contact state; the contact row
         ! carries dt*lambda, so x = y - dt*lambda*z (contact_law_m's implicit_impulse).
@@ -330,6 +333,57 @@ contains
             state%u = state%u + sys%dt_eff * state%w(:, F_V)
         end if
     end subroutine advance_monolithic
+
+    !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the
+    !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
+    !> force (contact_law_m's midpoint_impulse); then X^n = 2 Y - X^{n-1}, except for the
+    !> algebraic fields (X^n = Y), and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new.
+    subroutine advance_midpoint(self, sys, state, result)
+        type(stepper_t), intent(inout) :: self
+        type(monolithic_system_t), intent(in) :: sys
+        type(state_t), intent(inout) :: state
+        type(step_result_t), intent(inout) :: result
+        real(dp) :: impulse
+        integer :: f
+
+        call solve_trial(self, sys)
+        result%iterations = 1
+        associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), u_old => state%u(self%s))
+            impulse = self%law%midpoint_impulse(u_old + dt * self%x(sys%contact_dof), u_old, dt, z_s)
+            result%contact_force = 0.0_dp
+            if (impulse > 0.0_dp) then
+                self%x = self%x - impulse * sys%z
+                result%contact_force = impulse / dt
+            end if
+        end associate
+        if (.not. all(ieee_is_finite(self%x))) then
+            call fail(result, 'non-finite value in the solution')
+            return
+        end if
+        self%w_new = 0.0_dp
+        call gather_fields(self%slots, self%x, self%w_new)
+        do f = 1, N_FIELDS
+            if (self%algebraic(f)) then
+                state%w(:, f) = self%w_new(:, f)
+            else
+                state%w(:, f) = 2.0_dp * self%w_new(:, f) - state%w(:, f)
+            end if
+        end do
+        state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
+    end subroutine advance_midpoint
+
+    !> x = A^{-1} b_old: the step's solution without contact force.
+    subroutine solve_trial(self, sys)
+        type(stepper_t), intent(inout) :: self
+        type(monolithic_system_t), intent(in) :: sys
+
+        call scatter_fields(self%slots, self%b_old, self%x)
+        if (sys%use_blocks) then
+            call sys%blocks%solve(self%x)
+        else
+            call sys%a%solve(self%x)
+        end if
+    end subroutine solve_trial
 
     !> The paper's Section 7 iteration for one Euler step of size dt.
     subroutine advance_paper(self, state, dt, result)

@@ -111,7 +111,7 @@ contains
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
         n_steps = real(ceiling(time%t_end / time%dt), dp)
-        call require_one_of(time%scheme, [character(len=5) :: 'euler', 'bdf2'], 'time.scheme')
+        call require_one_of(time%scheme, [character(len=8) :: 'euler', 'bdf2', 'midpoint'], 'time.scheme')
     end subroutine validate_time
 
     !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:

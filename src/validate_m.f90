@@ -8,19 +8,22 @@ module validate_m
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
-                        format_real, int_str
+                        number_of_steps
+    use strings_m, only: format_real, int_str
     use initial_data_m, only: profile
     implicit none
     private
     public :: validate_config
 
     real(dp), parameter :: GIB = 1024.0_dp**3
+    ! TODO(lead): from the field/series tables
     !> Working memory per mesh node: ~60 reals of field and work arrays plus the band
     !> storage of the monolithic matrix (22 rows for 5 interleaved fields).
     real(dp), parameter :: REALS_PER_NODE = 60.0_dp + 22.0_dp * 5.0_dp
     real(dp), parameter :: MEMORY_LIMIT = 8.0_dp * GIB        !< refuse meshes needing more
     real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
     real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
+    ! TODO(lead): from the field/series tables (N_SNAPSHOT_FIELDS, N_SERIES)
     integer, parameter :: N_SNAPSHOT_FIELDS = 6               !< u, v, theta, P, q, eta
     integer, parameter :: N_SERIES = 6                        !< t, energy, u_end, penetration, ...
     !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
@@ -110,7 +113,7 @@ contains
         if (time%t_end / time%dt > real(huge(0), dp) - 1.0_dp) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
-        n_steps = real(ceiling(time%t_end / time%dt), dp)
+        n_steps = real(number_of_steps(time%dt, time%t_end), dp)
         call require_one_of(time%scheme, [character(len=5) :: 'euler', 'bdf2'], 'time.scheme')
     end subroutine validate_time
 

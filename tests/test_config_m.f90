@@ -5,8 +5,10 @@
 !> argv(1) = source dir, argv(2) = scratch dir.
 program test_config_m
     use kinds_m, only: dp
-    use config_m, only: config_t, material_t, model_t, nondim_t, read_config, nondim_groups, &
-                        model_from_material, format_real, MAX_POLY_DEGREE
+    use config_m, only: config_t, material_t, model_t, MAX_POLY_DEGREE
+    use config_reader_m, only: read_config
+    use material_m, only: nondim_t, nondim_groups, model_from_material
+    use strings_m, only: format_real
     use validate_m, only: validate_config
     use initial_data_m, only: profile
     use testing_m, only: check_close, check_true, test_summary

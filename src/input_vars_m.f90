@@ -12,6 +12,7 @@
 module input_vars_m
     use kinds_m, only: dp
     use config_m, only: config_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH
+    use errors_m, only: fatal, EXIT_OUTPUT
     use strings_m, only: lower, keyword, int_str
     implicit none
     private
@@ -115,10 +116,6 @@ module input_vars_m
     !> its name, or from that local back into config_t.
     integer, parameter :: TO_ITEM = 1, TO_LOCAL = 2, FROM_LOCAL = 3
 
-    interface link
-        module procedure link_real, link_reals, link_integer, link_string, link_logical
-    end interface link
-
 contains
 
     !> Index in INPUT_VARS of variable `name` (any case) of `group`; 0 if there is none.
@@ -160,13 +157,30 @@ contains
     function input_items(cfg) result(items)
         type(config_t), intent(in) :: cfg
         type(input_item_t), allocatable :: items(:)
-        integer :: k
+        character(len=512) :: msg
+        integer :: k, n, stat
 
-        items = [(input_item(cfg, k), k = 1, size(INPUT_VARS))]
-        items = pack(items, INPUT_VARS%group /= 'material')
-        items = [items, input_item_t(name='input.source', kind=KIND_STRING, text=trim(cfg%source)), &
-                 input_item_t(name='input.overrides', kind=KIND_STRING, text=trim(cfg%overrides))]
+        allocate (items(count(INPUT_VARS%group /= 'material') + 2), stat=stat, errmsg=msg)
+        if (stat /= 0) call fatal(EXIT_OUTPUT, 'input record', 'out of memory: ' // trim(msg))
+        n = 0
+        do k = 1, size(INPUT_VARS)
+            if (INPUT_VARS(k)%group == 'material') cycle
+            n = n + 1
+            items(n) = input_item(cfg, k)
+        end do
+        items(n + 1) = string_item('input.source', trim(cfg%source))
+        items(n + 2) = string_item('input.overrides', trim(cfg%overrides))
     end function input_items
+
+    !> An item of kind KIND_STRING.
+    function string_item(name, text) result(item)
+        character(len=*), intent(in) :: name, text
+        type(input_item_t) :: item
+
+        item%name = name
+        item%kind = KIND_STRING
+        item%text = text
+    end function string_item
 
     !> Read the namelist `text` ('&group ... /', assignments of variables of `group`) over
     !> the values of the group in cfg; ios and msg as from the namelist read.
@@ -222,22 +236,14 @@ contains
                 if (INPUT_VARS(j)%group == group) call visit(j, TO_LOCAL, work)
             end do
             select case (group)
-            case ('model')
-                read (text, nml=model, iostat=ios, iomsg=msg)
-            case ('contact')
-                read (text, nml=contact, iostat=ios, iomsg=msg)
-            case ('mesh')
-                read (text, nml=mesh, iostat=ios, iomsg=msg)
-            case ('time')
-                read (text, nml=time, iostat=ios, iomsg=msg)
-            case ('initial')
-                read (text, nml=initial, iostat=ios, iomsg=msg)
-            case ('solver')
-                read (text, nml=solver, iostat=ios, iomsg=msg)
-            case ('output')
-                read (text, nml=output, iostat=ios, iomsg=msg)
-            case ('material')
-                read (text, nml=material, iostat=ios, iomsg=msg)
+            case ('model'); read (text, nml=model, iostat=ios, iomsg=msg)
+            case ('contact'); read (text, nml=contact, iostat=ios, iomsg=msg)
+            case ('mesh'); read (text, nml=mesh, iostat=ios, iomsg=msg)
+            case ('time'); read (text, nml=time, iostat=ios, iomsg=msg)
+            case ('initial'); read (text, nml=initial, iostat=ios, iomsg=msg)
+            case ('solver'); read (text, nml=solver, iostat=ios, iomsg=msg)
+            case ('output'); read (text, nml=output, iostat=ios, iomsg=msg)
+            case ('material'); read (text, nml=material, iostat=ios, iomsg=msg)
             end select
             if (ios /= 0) return
             do j = 1, size(INPUT_VARS)
@@ -256,57 +262,57 @@ contains
             it%kind = INPUT_VARS(j)%kind
             it%keyword = INPUT_VARS(j)%keyword
             select case (it%name)
-            case ('model.rho'); call link(cfg%model%rho, rho, it, act)
-            case ('model.alpha'); call link(cfg%model%alpha, alpha, it, act)
-            case ('model.varpi'); call link(cfg%model%varpi, varpi, it, act)
-            case ('model.gamma1'); call link(cfg%model%gamma1, gamma1, it, act)
-            case ('model.gamma2'); call link(cfg%model%gamma2, gamma2, it, act)
-            case ('model.c'); call link(cfg%model%c, c, it, act)
-            case ('model.d'); call link(cfg%model%d, d, it, act)
-            case ('model.r'); call link(cfg%model%r, r, it, act)
-            case ('model.hbar'); call link(cfg%model%hbar, hbar, it, act)
-            case ('model.tau0'); call link(cfg%model%tau0, tau0, it, act)
-            case ('model.tau'); call link(cfg%model%tau, tau, it, act)
-            case ('contact.g'); call link(cfg%contact%g, g, it, act)
-            case ('contact.eps'); call link(cfg%contact%eps, eps, it, act)
-            case ('contact.law'); call link(cfg%contact%law, law, it, act)
-            case ('mesh.n_elements'); call link(cfg%mesh%n_elements, n_elements, it, act)
-            case ('time.dt'); call link(cfg%time%dt, dt, it, act)
-            case ('time.t_end'); call link(cfg%time%t_end, t_end, it, act)
-            case ('time.scheme'); call link(cfg%time%scheme, scheme, it, act)
-            case ('time.restart_from'); call link(cfg%time%restart_from, restart_from, it, act)
-            case ('initial.u0_poly'); call link(cfg%initial%u0_poly, u0_poly, it, act)
-            case ('initial.u1_poly'); call link(cfg%initial%u1_poly, u1_poly, it, act)
-            case ('initial.theta0_poly'); call link(cfg%initial%theta0_poly, theta0_poly, it, act)
-            case ('initial.p0_poly'); call link(cfg%initial%p0_poly, p0_poly, it, act)
-            case ('initial.q0_poly'); call link(cfg%initial%q0_poly, q0_poly, it, act)
-            case ('initial.eta0_poly'); call link(cfg%initial%eta0_poly, eta0_poly, it, act)
-            case ('initial.theta0_step'); call link(cfg%initial%theta0_step, theta0_step, it, act)
-            case ('initial.p0_step'); call link(cfg%initial%p0_step, p0_step, it, act)
-            case ('solver.method'); call link(cfg%solver%method, method, it, act)
-            case ('solver.tol'); call link(cfg%solver%tol, tol, it, act)
-            case ('solver.max_iter'); call link(cfg%solver%max_iter, max_iter, it, act)
-            case ('output.prefix'); call link(cfg%output%prefix, prefix, it, act)
-            case ('output.snapshot_every'); call link(cfg%output%snapshot_every, snapshot_every, it, act)
-            case ('output.series_every'); call link(cfg%output%series_every, series_every, it, act)
-            case ('output.checkpoint_every'); call link(cfg%output%checkpoint_every, checkpoint_every, it, act)
-            case ('output.quiet'); call link(cfg%output%quiet, quiet, it, act)
-            case ('material.T0'); call link(cfg%material%T0, T0, it, act)
-            case ('material.rho0'); call link(cfg%material%rho0, rho0, it, act)
-            case ('material.cE'); call link(cfg%material%cE, cE, it, act)
-            case ('material.kappa'); call link(cfg%material%kappa, kappa, it, act)
-            case ('material.lambda'); call link(cfg%material%lambda, lambda, it, act)
-            case ('material.mu'); call link(cfg%material%mu, mu, it, act)
-            case ('material.alpha_t'); call link(cfg%material%alpha_t, alpha_t, it, act)
-            case ('material.alpha_c'); call link(cfg%material%alpha_c, alpha_c, it, act)
-            case ('material.D'); call link(cfg%material%D, d, it, act)
-            case ('material.nu'); call link(cfg%material%nu, nu, it, act)
-            case ('material.varrho'); call link(cfg%material%varrho, varrho, it, act)
-            case ('material.ell'); call link(cfg%material%ell, ell, it, act)
-            case ('material.tau0'); call link(cfg%material%tau0, tau0, it, act)
-            case ('material.tau'); call link(cfg%material%tau, tau, it, act)
-            case ('material.lambda_v'); call link(cfg%material%lambda_v, lambda_v, it, act)
-            case ('material.mu_v'); call link(cfg%material%mu_v, mu_v, it, act)
+            case ('model.rho'); call link(it, act, r=cfg%model%rho, r_local=rho)
+            case ('model.alpha'); call link(it, act, r=cfg%model%alpha, r_local=alpha)
+            case ('model.varpi'); call link(it, act, r=cfg%model%varpi, r_local=varpi)
+            case ('model.gamma1'); call link(it, act, r=cfg%model%gamma1, r_local=gamma1)
+            case ('model.gamma2'); call link(it, act, r=cfg%model%gamma2, r_local=gamma2)
+            case ('model.c'); call link(it, act, r=cfg%model%c, r_local=c)
+            case ('model.d'); call link(it, act, r=cfg%model%d, r_local=d)
+            case ('model.r'); call link(it, act, r=cfg%model%r, r_local=r)
+            case ('model.hbar'); call link(it, act, r=cfg%model%hbar, r_local=hbar)
+            case ('model.tau0'); call link(it, act, r=cfg%model%tau0, r_local=tau0)
+            case ('model.tau'); call link(it, act, r=cfg%model%tau, r_local=tau)
+            case ('contact.g'); call link(it, act, r=cfg%contact%g, r_local=g)
+            case ('contact.eps'); call link(it, act, r=cfg%contact%eps, r_local=eps)
+            case ('contact.law'); call link(it, act, s=cfg%contact%law, s_local=law)
+            case ('mesh.n_elements'); call link(it, act, i=cfg%mesh%n_elements, i_local=n_elements)
+            case ('time.dt'); call link(it, act, r=cfg%time%dt, r_local=dt)
+            case ('time.t_end'); call link(it, act, r=cfg%time%t_end, r_local=t_end)
+            case ('time.scheme'); call link(it, act, s=cfg%time%scheme, s_local=scheme)
+            case ('time.restart_from'); call link(it, act, s=cfg%time%restart_from, s_local=restart_from)
+            case ('initial.u0_poly'); call link(it, act, a=cfg%initial%u0_poly, a_local=u0_poly)
+            case ('initial.u1_poly'); call link(it, act, a=cfg%initial%u1_poly, a_local=u1_poly)
+            case ('initial.theta0_poly'); call link(it, act, a=cfg%initial%theta0_poly, a_local=theta0_poly)
+            case ('initial.p0_poly'); call link(it, act, a=cfg%initial%p0_poly, a_local=p0_poly)
+            case ('initial.q0_poly'); call link(it, act, a=cfg%initial%q0_poly, a_local=q0_poly)
+            case ('initial.eta0_poly'); call link(it, act, a=cfg%initial%eta0_poly, a_local=eta0_poly)
+            case ('initial.theta0_step'); call link(it, act, a=cfg%initial%theta0_step, a_local=theta0_step)
+            case ('initial.p0_step'); call link(it, act, a=cfg%initial%p0_step, a_local=p0_step)
+            case ('solver.method'); call link(it, act, s=cfg%solver%method, s_local=method)
+            case ('solver.tol'); call link(it, act, r=cfg%solver%tol, r_local=tol)
+            case ('solver.max_iter'); call link(it, act, i=cfg%solver%max_iter, i_local=max_iter)
+            case ('output.prefix'); call link(it, act, s=cfg%output%prefix, s_local=prefix)
+            case ('output.snapshot_every'); call link(it, act, i=cfg%output%snapshot_every, i_local=snapshot_every)
+            case ('output.series_every'); call link(it, act, i=cfg%output%series_every, i_local=series_every)
+            case ('output.checkpoint_every'); call link(it, act, i=cfg%output%checkpoint_every, i_local=checkpoint_every)
+            case ('output.quiet'); call link(it, act, l=cfg%output%quiet, l_local=quiet)
+            case ('material.T0'); call link(it, act, r=cfg%material%T0, r_local=T0)
+            case ('material.rho0'); call link(it, act, r=cfg%material%rho0, r_local=rho0)
+            case ('material.cE'); call link(it, act, r=cfg%material%cE, r_local=cE)
+            case ('material.kappa'); call link(it, act, r=cfg%material%kappa, r_local=kappa)
+            case ('material.lambda'); call link(it, act, r=cfg%material%lambda, r_local=lambda)
+            case ('material.mu'); call link(it, act, r=cfg%material%mu, r_local=mu)
+            case ('material.alpha_t'); call link(it, act, r=cfg%material%alpha_t, r_local=alpha_t)
+            case ('material.alpha_c'); call link(it, act, r=cfg%material%alpha_c, r_local=alpha_c)
+            case ('material.D'); call link(it, act, r=cfg%material%D, r_local=d)
+            case ('material.nu'); call link(it, act, r=cfg%material%nu, r_local=nu)
+            case ('material.varrho'); call link(it, act, r=cfg%material%varrho, r_local=varrho)
+            case ('material.ell'); call link(it, act, r=cfg%material%ell, r_local=ell)
+            case ('material.tau0'); call link(it, act, r=cfg%material%tau0, r_local=tau0)
+            case ('material.tau'); call link(it, act, r=cfg%material%tau, r_local=tau)
+            case ('material.lambda_v'); call link(it, act, r=cfg%material%lambda_v, r_local=lambda_v)
+            case ('material.mu_v'); call link(it, act, r=cfg%material%mu_v, r_local=mu_v)
             case default
                 error stop 'input_vars_m: an entry of INPUT_VARS has no component of config_t in access'
             end select
@@ -316,87 +322,45 @@ contains
 
     ! ------------------------------------------------ a component, its namelist local, an item
 
-    subroutine link_real(component, local, item, act)
-        real(dp), intent(inout) :: component, local
+    !> With act TO_ITEM: item = the value of the component; TO_LOCAL: the namelist's local =
+    !> the component; FROM_LOCAL: the component = the local (a keyword as the code compares
+    !> it: lower case, left-adjusted). Exactly one pair of component and local is given: r
+    !> (a real), a (real coefficients or a pair), i (an integer), s (a string), l (a logical).
+    subroutine link(item, act, r, r_local, a, a_local, i, i_local, s, s_local, l, l_local)
         type(input_item_t), intent(inout) :: item
         integer, intent(in) :: act
+        real(dp), intent(inout), optional :: r, r_local, a(:), a_local(:)
+        integer, intent(inout), optional :: i, i_local
+        character(len=*), intent(inout), optional :: s, s_local
+        logical, intent(inout), optional :: l, l_local
+        character :: kind
 
-        call require_kind(item, KIND_REAL)
-        select case (act)
-        case (TO_ITEM)
-            item%reals = [component]
-        case (TO_LOCAL)
-            local = component
-        case default
-            component = local
-        end select
-    end subroutine link_real
-
-    subroutine link_reals(component, local, item, act)
-        real(dp), intent(inout) :: component(:), local(:)
-        type(input_item_t), intent(inout) :: item
-        integer, intent(in) :: act
-
-        call require_kind(item, merge(KIND_PAIR, KIND_COEFFS, size(component) == 2))
-        select case (act)
-        case (TO_ITEM)
-            item%reals = component
-        case (TO_LOCAL)
-            local = component
-        case default
-            component = local
-        end select
-    end subroutine link_reals
-
-    subroutine link_integer(component, local, item, act)
-        integer, intent(inout) :: component, local
-        type(input_item_t), intent(inout) :: item
-        integer, intent(in) :: act
-
-        call require_kind(item, KIND_INTEGER)
-        select case (act)
-        case (TO_ITEM)
-            item%int = component
-        case (TO_LOCAL)
-            local = component
-        case default
-            component = local
-        end select
-    end subroutine link_integer
-
-    !> A keyword is stored as the code compares it (lower case, left-adjusted).
-    subroutine link_string(component, local, item, act)
-        character(len=*), intent(inout) :: component, local
-        type(input_item_t), intent(inout) :: item
-        integer, intent(in) :: act
-
-        call require_kind(item, KIND_STRING)
-        select case (act)
-        case (TO_ITEM)
-            item%text = trim(component)
-        case (TO_LOCAL)
-            local = component
-        case default
-            component = local
-            if (item%keyword) component = keyword(local)
-        end select
-    end subroutine link_string
-
-    subroutine link_logical(component, local, item, act)
-        logical, intent(inout) :: component, local
-        type(input_item_t), intent(inout) :: item
-        integer, intent(in) :: act
-
-        call require_kind(item, KIND_LOGICAL)
-        select case (act)
-        case (TO_ITEM)
-            item%flag = component
-        case (TO_LOCAL)
-            local = component
-        case default
-            component = local
-        end select
-    end subroutine link_logical
+        kind = merge(KIND_REAL, ' ', present(r))
+        if (present(a)) kind = merge(KIND_PAIR, KIND_COEFFS, size(a) == 2)
+        if (present(i)) kind = KIND_INTEGER
+        if (present(s)) kind = KIND_STRING
+        if (present(l)) kind = KIND_LOGICAL
+        call require_kind(item, kind)
+        if (act == TO_ITEM) then
+            if (present(r)) item%reals = [r]
+            if (present(a)) item%reals = a
+            if (present(i)) item%int = i
+            if (present(s)) item%text = trim(s)
+            if (present(l)) item%flag = l
+        else if (act == TO_LOCAL) then
+            if (present(r)) r_local = r
+            if (present(a)) a_local = a
+            if (present(i)) i_local = i
+            if (present(s)) s_local = s
+            if (present(l)) l_local = l
+        else
+            if (present(r)) r = r_local
+            if (present(a)) a = a_local
+            if (present(i)) i = i_local
+            if (present(s)) s = merge(keyword(s_local), s_local, item%keyword)
+            if (present(l)) l = l_local
+        end if
+    end subroutine link
 
     !> INPUT_VARS and access must agree on the kind of each variable (a programming error).
     subroutine require_kind(item, kind)
@@ -411,27 +375,29 @@ contains
     !> '&model, &contact, ...'
     pure function group_list() result(list)
         character(len=:), allocatable :: list
-        integer :: k
 
-        list = '&' // trim(GROUP_NAMES(1))
-        do k = 2, size(GROUP_NAMES)
-            list = list // ', &' // trim(GROUP_NAMES(k))
-        end do
+        list = joined(GROUP_NAMES, '&')
     end function group_list
 
     !> 'rho, alpha, ...': the variables of `group`.
     pure function var_list(group) result(list)
         character(len=*), intent(in) :: group
         character(len=:), allocatable :: list
+
+        list = joined(pack(INPUT_VARS%name, INPUT_VARS%group == group), '')
+    end function var_list
+
+    !> The words, each after `mark`, separated by ', '.
+    pure function joined(words, mark) result(list)
+        character(len=*), intent(in) :: words(:), mark
+        character(len=:), allocatable :: list
         integer :: k
 
-        list = ''
-        do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group /= group) cycle
-            if (len(list) > 0) list = list // ', '
-            list = list // trim(INPUT_VARS(k)%name)
+        list = mark // trim(words(1))
+        do k = 2, size(words)
+            list = list // ', ' // mark // trim(words(k))
         end do
-    end function var_list
+    end function joined
 
     !> What a value of kind `kind` must be, for messages.
     pure function kind_description(kind) result(text)

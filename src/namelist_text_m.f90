@@ -36,13 +36,6 @@ module namelist_text_m
         logical :: from_set = .false.           !< made from a --set override
     end type assignments_t
 
-    !> One command-line override 'group.variable=value', split and checked by parse_override.
-    type :: override_t
-        character(len=:), allocatable :: group   !< lower case
-        character(len=:), allocatable :: lhs     !< 'variable' or 'variable(i)', as given
-        character(len=:), allocatable :: value   !< namelist value text (strings quoted)
-    end type override_t
-
     !> A line of text.
     type :: string_t
         character(len=:), allocatable :: s

@@ -150,12 +150,12 @@ contains
         character(len=:), allocatable :: q
         integer :: j
 
-        q = quote
+        q = ''
         do j = 1, len(text)
-            q = q // text(j:j)
             if (text(j:j) == quote) q = q // quote
+            q = q // text(j:j)
         end do
-        q = q // quote
+        q = quote // q // quote
     end function doubled_quotes
 
     pure function int_str(n) result(s)

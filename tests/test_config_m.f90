@@ -301,10 +301,10 @@ contains
     end subroutine test_input_table
 
     !> The one rule for the number of steps: t_end/dt to the nearest integer when it is one
-    !> to round-off (1.1/0.1 is 11.000000000000002 in floating point), else rounded up.
+    !> to round-off (0.07/0.01 is 7.000000000000001 in floating point), else rounded up.
     subroutine test_number_of_steps()
         call check_true('number_of_steps(1e-4, 1) = 10000', number_of_steps(1.0e-4_dp, 1.0_dp) == 10000)
-        call check_true('number_of_steps(0.1, 1.1) = 11', number_of_steps(0.1_dp, 1.1_dp) == 11)
+        call check_true('number_of_steps(0.01, 0.07) = 7', number_of_steps(0.01_dp, 0.07_dp) == 7)
         call check_true('number_of_steps(0.1, 0.3) = 3', number_of_steps(0.1_dp, 0.3_dp) == 3)
         call check_true('number_of_steps(0.3, 1) = 4', number_of_steps(0.3_dp, 1.0_dp) == 4)
         call check_true('number_of_steps(1, 1) = 1', number_of_steps(1.0_dp, 1.0_dp) == 1)

@@ -25,7 +25,8 @@
 !> dgbtrs in the same round), the fastest and slowest round.
 program bench_kernels
     use kinds_m, only: dp
-    use config_m, only: config_t, read_config
+    use config_m, only: config_t
+    use config_reader_m, only: read_config
     use banded_m, only: band_t, lapack_info_message
     use band_reference_m, only: solve_with_dgbtrs
     use block_tridiagonal_m, only: block_tridiagonal_t

@@ -5,7 +5,8 @@ module run_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use ieee_arithmetic, only: ieee_is_finite
-    use config_m, only: config_t
+    use config_m, only: config_t, number_of_steps
+    use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
     use errors_m, only: fatal, EXIT_NUMERIC
     use fe_m, only: mesh_nodes
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, &
@@ -21,23 +22,9 @@ module run_m
     use version_m, only: PROGRAM_VERSION
     implicit none
     private
-    public :: run_simulation, number_of_steps
+    public :: run_simulation
 
 contains
-
-    !> Number of time steps N: t_end/dt rounded to the nearest integer when t_end is a
-    !> multiple of dt to round-off, else rounded up; the run ends at t_N = N dt.
-    pure integer function number_of_steps(dt, t_end)
-        real(dp), intent(in) :: dt, t_end
-        real(dp) :: ratio
-
-        ratio = t_end / dt
-        if (abs(ratio - anint(ratio)) <= 1.0e-9_dp * ratio) then
-            number_of_steps = nint(ratio)
-        else
-            number_of_steps = ceiling(ratio)
-        end if
-    end function number_of_steps
 
     !> Run the validated configuration cfg and write <prefix>.h5. A numerical failure
     !> finishes the file with status 'failed: ...' and stops with EXIT_NUMERIC.
@@ -213,48 +200,26 @@ contains
     subroutine record_inputs(writer, cfg)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
+        type(input_item_t), allocatable :: items(:)
+        integer :: k
 
-        associate (m => cfg%model)
-            call writer%attr_real('model.rho', m%rho)
-            call writer%attr_real('model.alpha', m%alpha)
-            call writer%attr_real('model.varpi', m%varpi)
-            call writer%attr_real('model.gamma1', m%gamma1)
-            call writer%attr_real('model.gamma2', m%gamma2)
-            call writer%attr_real('model.c', m%c)
-            call writer%attr_real('model.d', m%d)
-            call writer%attr_real('model.r', m%r)
-            call writer%attr_real('model.hbar', m%hbar)
-            call writer%attr_real('model.tau0', m%tau0)
-            call writer%attr_real('model.tau', m%tau)
-        end associate
-        call writer%attr_real('contact.g', cfg%contact%g)
-        call writer%attr_real('contact.eps', cfg%contact%eps)
-        call writer%attr_str('contact.law', trim(cfg%contact%law))
-        call writer%attr_int('mesh.n_elements', cfg%mesh%n_elements)
-        call writer%attr_real('time.dt', cfg%time%dt)
-        call writer%attr_real('time.t_end', cfg%time%t_end)
-        call writer%attr_str('time.scheme', trim(cfg%time%scheme))
-        call writer%attr_str('time.restart_from', trim(cfg%time%restart_from))
-        associate (i => cfg%initial)
-            call writer%attr_real_array('initial.u0_poly', i%u0_poly)
-            call writer%attr_real_array('initial.u1_poly', i%u1_poly)
-            call writer%attr_real_array('initial.theta0_poly', i%theta0_poly)
-            call writer%attr_real_array('initial.p0_poly', i%p0_poly)
-            call writer%attr_real_array('initial.q0_poly', i%q0_poly)
-            call writer%attr_real_array('initial.eta0_poly', i%eta0_poly)
-            call writer%attr_real_array('initial.theta0_step', i%theta0_step)
-            call writer%attr_real_array('initial.p0_step', i%p0_step)
-        end associate
-        call writer%attr_str('solver.method', trim(cfg%solver%method))
-        call writer%attr_real('solver.tol', cfg%solver%tol)
-        call writer%attr_int('solver.max_iter', cfg%solver%max_iter)
-        call writer%attr_str('output.prefix', trim(cfg%output%prefix))
-        call writer%attr_int('output.snapshot_every', cfg%output%snapshot_every)
-        call writer%attr_int('output.series_every', cfg%output%series_every)
-        call writer%attr_int('output.checkpoint_every', cfg%output%checkpoint_every)
-        call writer%attr_logical('output.quiet', cfg%output%quiet)
-        call writer%attr_str('input.source', trim(cfg%source))
-        call writer%attr_str('input.overrides', trim(cfg%overrides))
+        items = input_items(cfg)
+        do k = 1, size(items)
+            associate (item => items(k))
+                select case (item%kind)
+                case (KIND_REAL)
+                    call writer%attr_real(item%name, item%reals(1))
+                case (KIND_INTEGER)
+                    call writer%attr_int(item%name, item%int)
+                case (KIND_STRING)
+                    call writer%attr_str(item%name, item%text)
+                case (KIND_LOGICAL)
+                    call writer%attr_logical(item%name, item%flag)
+                case default   ! polynomial coefficients, (amplitude, x_end)
+                    call writer%attr_real_array(item%name, item%reals)
+                end select
+            end associate
+        end do
     end subroutine record_inputs
 
     real(dp) function seconds_since(clock_start, clock_rate)

@@ -168,5 +168,24 @@ contraction x tol; the difference stays near 0.1 tol.
 
 EOF
 strip "$tmp/tolerance.out"
+cat <<'EOF'
+
+## 6. The midpoint rule through impacts (`scripts/impact.sh`, `tests/test_midpoint.f90`)
+
+An elastic bar (input/impact.nml: rho = alpha = 1, no viscosity, no coupling, u1 = x,
+g = 0.05, s = 1000, dt = 2.5e-4, t in [0, 4]) conserves its energy exactly in the PDE, and
+before contact u(1,t) = t - t^2/2, so contact starts at 1 - sqrt(0.9). Euler damps the waves
+(10 % by t = 4); BDF2 damps less, but with the Signorini law its E^n rises at an impact; the
+midpoint rule with the discrete-gradient penalty force keeps E^n within 4e-7 of E^0 (lost in
+the two damped Euler start-up steps) with no rise beyond round-off. With the Signorini law
+imposed at the end of the step, each impact removes energy and never adds it: the first
+impact removes 6.7e-4 E^0, about half the contact node's kinetic energy (rho h/2) v^2/2.
+tests/test_midpoint.f90 asserts the 0.1 % conservation, the onset step and that the Signorini
+energy never rises; tests/test_energy_property.f90 asserts the identity
+E^n - E^{n-1} = -dt D(X^{n-1/2}) to 1e-12 on the 50 random sets.
+
+EOF
+"$repo_root/scripts/impact.sh"
+printf '\n![impact energy](../figures/impact_energy.png)\n'
 } > docs/verification.md
 echo "verify: wrote docs/verification.md, figures/convergence.png, figures/penetration_eps.png" >&2

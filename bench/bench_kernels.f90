@@ -38,15 +38,16 @@ program bench_kernels
     implicit none
 
     integer, parameter :: K_COPY = 1, K_DGBTRS = 2, K_BAND = 3, K_BLOCK = 4, &
-                          K_EULER = 5, K_BDF2 = 6, K_PAPER = 7, N_CASES = 7
-    character(len=*), parameter :: CASE_NAMES(N_CASES) = [character(len=21) :: 'rhs_copy', 'dgbtrs', &
-        'band_solve', 'block_solve', 'step_monolithic_euler', 'step_monolithic_bdf2', 'step_paper_euler']
+                          K_EULER = 5, K_BDF2 = 6, K_PAPER = 7, K_MIDPOINT = 8, K_THERMO = 9, N_CASES = 9
+    character(len=*), parameter :: CASE_NAMES(N_CASES) = [character(len=24) :: 'rhs_copy', 'dgbtrs', &
+        'band_solve', 'block_solve', 'step_monolithic_euler', 'step_monolithic_bdf2', 'step_paper_euler', &
+        'step_monolithic_midpoint', 'step_thermoelastic_euler']
 
     type(config_t) :: cfg
     type(band_t) :: a
     type(block_tridiagonal_t) :: blocks
-    type(stepper_t) :: steppers(K_EULER:K_PAPER)
-    type(state_t) :: states(K_EULER:K_PAPER)
+    type(stepper_t) :: steppers(K_EULER:K_THERMO)
+    type(state_t) :: states(K_EULER:K_THERMO)
     type(step_result_t) :: result
     real(dp), allocatable :: rhs(:), x(:), x_ref(:)
     real(dp) :: setup_seconds, batch_seconds, per_call(N_CASES), sink, diff_band, diff_block
@@ -109,7 +110,7 @@ program bench_kernels
     diff_block = maxval(abs(x - x_ref)) / maxval(abs(x_ref))
 
     ! --- 2. the steppers, from exp1's initial data -----------------------------------------
-    do k = K_EULER, K_PAPER
+    do k = K_EULER, K_THERMO
         select case (k)
         case (K_EULER)
             cfg%time%scheme = 'euler'
@@ -120,6 +121,17 @@ program bench_kernels
         case (K_PAPER)
             cfg%time%scheme = 'euler'
             cfg%solver%method = 'paper'
+        case (K_MIDPOINT)
+            cfg%time%scheme = 'midpoint'
+            cfg%solver%method = 'monolithic'
+        case (K_THERMO)
+            ! thermoelastic scene: gamma2 = d = 0 and P0 = 0, so P and eta are left out
+            ! of the system (scheme_m's active_fields): 3 unknowns per node instead of 5
+            cfg%time%scheme = 'euler'
+            cfg%solver%method = 'monolithic'
+            cfg%model%gamma2 = 0.0_dp
+            cfg%model%d = 0.0_dp
+            cfg%initial%p0_poly = 0.0_dp
         end select
         call initial_state(cfg, states(k))
         call steppers(k)%init(cfg, result)

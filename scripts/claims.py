@@ -580,7 +580,8 @@ FIGURES = [
              "(7.4) dashed in the colour of their time (v_P for P, v_θ for θ; the P front of t = 0.05 would be "
              "at x = 1.008, outside the rod), bottom row later times."),
     ("fig6", "Figure 6: q and η for experiment 2 (as Figure 5: v_θ for q, v_P for η), and u(1,t) with the obstacle "
-             "and the contact interval."),
+             "and the contact interval. The thickened stretches of q and η are odd–even mesh oscillations (C13), "
+             "drawn as they are."),
     ("fig7", "Figure 7: u, P, θ for experiment 3 (τ = τ₀ = 0) at the times of Figure 5. The initial pulses "
              "(t = 0) leave the top of the P and θ panels so that the later, much smaller profiles stay readable."),
 ]
@@ -639,17 +640,24 @@ def write_doc(path, figdir, R, results, args):
     if args.accuracy_md:
         L.append(args.accuracy_md)
     L.append("## Figures\n")
-    L.append("Each field is drawn as a family of profiles x ↦ f(x,t) at marked times, coloured from dark (early) "
-             "to light (late), rather than as an x–t surface or heat map: the values can be read off; the wave "
-             "fronts of experiment 2 are sharp vertical steps whose positions can be compared with the predicted "
-             "ones (dashed); and the fast early dynamics (t ≤ 0.05) and the slow decay (t up to 2–3) of the same "
-             "run are shown in two rows with their own times, where a surface over [0, t_end] would squeeze the "
-             "fronts into a sliver. Experiments 2 and 3 use the same times so that Figures 5 and 7 compare "
-             "directly. Made by `scripts/figures.sh` (gnuplot, data from the HDF5 files through "
-             "`scripts/h5extract.py`); PDF versions next to the PNGs.\n")
+    L.append("Each figure comes in two forms, both made by `scripts/figures.sh` (gnuplot; data from the HDF5 "
+             "files through `scripts/h5extract.py` and `scripts/plotdata.py`; PDF versions next to the PNGs; "
+             "`scripts/plot.sh RUN.h5` draws the same for any run). **Surfaces over (x, t)** "
+             "(`fig<N>_surface.png`), the form of the paper's figures and its panel layout: experiment 1 over "
+             "t ≤ 1.5 (contact and release), experiments 2 and 3 over t ≤ 0.5 (the fronts, their reflections "
+             "and the first contact); sampled to at most 61 × 61 points so that the mesh stays readable; "
+             "sequential colours for one-signed fields, blue–white–red centred on 0 for fields that change "
+             "sign. **Families of profiles** x ↦ f(x,t) at marked times (`fig<N>.png`), coloured from dark blue "
+             "(early) through green and orange to dark red (late): values can be read off, and the fronts of "
+             "experiment 2 compared with the predicted ones (dashed); early (t ≤ 0.05) and late times in two "
+             "rows. Figure 4 (time series) has one form. The accuracy section above says how far each field is "
+             "from the solution of the model: the P and η panels of Figures 5–6 are qualitative.\n")
     for name, caption in FIGURES:
         L.append("![%s](%s/%s.png)\n" % (caption.split(":")[0], rel, name))
         L.append("*%s* ([PDF](%s/%s.pdf))\n" % (caption, rel, name))
+        if name != "fig4":
+            L.append("![%s, surfaces](%s/%s_surface.png)\n" % (caption.split(":")[0], rel, name))
+            L.append("*%s as surfaces over (x, t).* ([PDF](%s/%s_surface.pdf))\n" % (caption.split(":")[0], rel, name))
     os.makedirs(doc_dir, exist_ok=True)
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:

@@ -15,7 +15,7 @@
 set -euo pipefail
 
 REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
-                   gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-matplotlib
+                   gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-scipy python3-matplotlib
                    valgrind)
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -52,13 +52,15 @@ done
 
 if command -v gnuplot > /dev/null; then
     title() { awk -F'\t' -v i="$1" '$1 == i { t = $2; sub(/ *\(asserted\) *$/, "", t); print t }' "$tmp/titles.txt"; }
-    # every study of the report: one panel each, three per row; Euler studies first, then BDF2
+    # every study of the report: one panel each, three per row; the schemes in the order of
+    # tests/test_convergence.f90 (Euler, BDF2, midpoint), each with the same studies
     n_studies=$(wc -l <"$tmp/titles.txt")
     {
         echo "n = $n_studies"
         for ((i = 1; i <= n_studies; i++)); do
             t="$(title "$i" | sed 's/"/\\"/g')"
-            scheme=euler; ((i > n_studies / 2)) && scheme=bdf2
+            schemes=(euler bdf2 midpoint)
+            scheme=${schemes[$(((i - 1) * 3 / n_studies))]}
             case "$t" in
                 *"dt study"*) kind=1 ;;     # x = dt
                 *) kind=2 ;;                # x = h = 1/s

@@ -97,7 +97,7 @@ sx = 1.0/3; sy = top/$rows
 do for [i=1:n] {
     r = int((i - 1)/3); c = (i - 1) - 3*r
     set lmargin at screen c*sx + 0.065; set rmargin at screen (c + 1)*sx - 0.01
-    set tmargin at screen top - r*sy - 0.05; set bmargin at screen top - (r + 1)*sy + 0.04
+    set tmargin at screen top - r*sy - 60.0/$((rows * 330 + 90)); set bmargin at screen top - (r + 1)*sy + 48.0/$((rows * 330 + 90))
     set title value('title'.i) font ",13" noenhanced offset 0, -0.3
     k = value('kind'.i)
     set xlabel (k == 1 ? 'Δt' : 'h') offset 0, 0.6

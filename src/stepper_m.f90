@@ -315,16 +315,9 @@ contains
         associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof))
             gap = u_end_from + dt * self%x(sys%contact_dof) - self%law%g
             impulse = self%law%implicit_impulse(gap, dt, z_s)
-            result%contact_force = 0.0_dp
-            if (impulse > 0.0_dp) then
-                self%x = self%x - impulse * sys%z
-                result%contact_force = impulse / dt
-            end if
         end associate
-        if (.not. all(ieee_is_finite(self%x))) then
-            call fail(result, 'non-finite value in the solution')
-            return
-        end if
+        call apply_contact(self, sys, impulse, result)
+        if (.not. result%ok) return
         if (self%scheme%keeps_previous_level()) call keep_previous_level(state)
         call gather_fields(self%slots, self%x, state%w)
         if (from_star) then
@@ -350,16 +343,9 @@ contains
         result%iterations = 1
         associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), u_old => state%u(self%s))
             impulse = self%law%midpoint_impulse(u_old + dt * self%x(sys%contact_dof), u_old, dt, z_s)
-            result%contact_force = 0.0_dp
-            if (impulse > 0.0_dp) then
-                self%x = self%x - impulse * sys%z
-                result%contact_force = impulse / dt
-            end if
         end associate
-        if (.not. all(ieee_is_finite(self%x))) then
-            call fail(result, 'non-finite value in the solution')
-            return
-        end if
+        call apply_contact(self, sys, impulse, result)
+        if (.not. result%ok) return
         self%w_new = 0.0_dp
         call gather_fields(self%slots, self%x, self%w_new)
         do f = 1, N_FIELDS
@@ -371,6 +357,22 @@ contains
         end do
         state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
     end subroutine advance_midpoint
+
+    !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.
+    !> A non-finite solution fails the step.
+    subroutine apply_contact(self, sys, impulse, result)
+        type(stepper_t), intent(inout) :: self
+        type(monolithic_system_t), intent(in) :: sys
+        real(dp), intent(in) :: impulse
+        type(step_result_t), intent(inout) :: result
+
+        result%contact_force = 0.0_dp
+        if (impulse > 0.0_dp) then
+            self%x = self%x - impulse * sys%z
+            result%contact_force = impulse / sys%dt_eff
+        end if
+        if (.not. all(ieee_is_finite(self%x))) call fail(result, 'non-finite value in the solution')
+    end subroutine apply_contact
 
     !> x = A^{-1} b_old: the step's solution without contact force.
     subroutine solve_trial(self, sys)

@@ -9,7 +9,8 @@
 !>   rodcontact --help | --version
 program rodcontact
     use iso_fortran_env, only: output_unit
-    use config_m, only: config_t, read_config
+    use config_m, only: config_t
+    use config_reader_m, only: read_config
     use validate_m, only: validate_config
     use run_m, only: run_simulation
     use summary_m, only: summary_header, summary_row, summarise_file

@@ -8,7 +8,7 @@
 !>   1. assembles the monolithic matrix of (6.1) (5 fields interleaved, kl = ku = 7), factors
 !>      it with dgbtrf (band_t%factor) and the block-tridiagonal LU (block_tridiagonal_t%factor
 !>      on the unfactored band), and times on the same factors one
-!>        dgbtrs        LAPACK's band substitution (band_t%solve_lapack) - the floor
+!>        dgbtrs        LAPACK's band substitution (tests/lib band_reference_m) - the floor
 !>        band_solve    the same substitution as plain loops (band_t%solve)
 !>        block_solve   the block-tridiagonal substitution (block_tridiagonal_t%solve)
 !>      each on a fresh copy of the same right-hand side; the copy is timed on its own
@@ -25,25 +25,29 @@
 !> dgbtrs in the same round), the fastest and slowest round.
 program bench_kernels
     use kinds_m, only: dp
-    use config_m, only: config_t, read_config
+    use config_m, only: config_t
+    use config_reader_m, only: read_config
     use banded_m, only: band_t, lapack_info_message
+    use band_reference_m, only: solve_with_dgbtrs
     use block_tridiagonal_m, only: block_tridiagonal_t
-    use scheme_m, only: MONOLITHIC_SLOTS, N_FIELDS, assemble_matrix
+    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix
+    use fields_m, only: N_FIELDS
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use bench_timing_m, only: wall_seconds, median, num
     implicit none
 
     integer, parameter :: K_COPY = 1, K_DGBTRS = 2, K_BAND = 3, K_BLOCK = 4, &
-                          K_EULER = 5, K_BDF2 = 6, K_PAPER = 7, N_CASES = 7
-    character(len=*), parameter :: CASE_NAMES(N_CASES) = [character(len=21) :: 'rhs_copy', 'dgbtrs', &
-        'band_solve', 'block_solve', 'step_monolithic_euler', 'step_monolithic_bdf2', 'step_paper_euler']
+                          K_EULER = 5, K_BDF2 = 6, K_PAPER = 7, K_MIDPOINT = 8, K_THERMO = 9, N_CASES = 9
+    character(len=*), parameter :: CASE_NAMES(N_CASES) = [character(len=24) :: 'rhs_copy', 'dgbtrs', &
+        'band_solve', 'block_solve', 'step_monolithic_euler', 'step_monolithic_bdf2', 'step_paper_euler', &
+        'step_monolithic_midpoint', 'step_thermoelastic_euler']
 
     type(config_t) :: cfg
     type(band_t) :: a
     type(block_tridiagonal_t) :: blocks
-    type(stepper_t) :: steppers(K_EULER:K_PAPER)
-    type(state_t) :: states(K_EULER:K_PAPER)
+    type(stepper_t) :: steppers(K_EULER:K_THERMO)
+    type(state_t) :: states(K_EULER:K_THERMO)
     type(step_result_t) :: result
     real(dp), allocatable :: rhs(:), x(:), x_ref(:)
     real(dp) :: setup_seconds, batch_seconds, per_call(N_CASES), sink, diff_band, diff_block
@@ -80,7 +84,7 @@ program bench_kernels
     ! --- 1. the monolithic matrix, factored twice -----------------------------------------
     setup_seconds = wall_seconds()
     call assemble_matrix(cfg%model, s, cfg%time%dt, MONOLITHIC_SLOTS, a)
-    call blocks%factor(a, info)             ! on the unfactored band
+    call blocks%factor(a, N_FIELDS, info)             ! on the unfactored band
     if (info /= 0) then
         write (*, '(a,i0)') 'bench_kernels: block factorisation failed at node ', info
         stop 1
@@ -96,17 +100,17 @@ program bench_kernels
     end do
     ! the three substitutions must give the same answer (else the timings mean nothing)
     x_ref = rhs
-    call a%solve_lapack(x_ref, info)
+    call solve_with_dgbtrs(a, x_ref, info)
     if (info /= 0) stop 1
     x = rhs
-    call a%solve(x, info)
+    call a%solve(x)
     diff_band = maxval(abs(x - x_ref)) / maxval(abs(x_ref))
     x = rhs
     call blocks%solve(x)
     diff_block = maxval(abs(x - x_ref)) / maxval(abs(x_ref))
 
     ! --- 2. the steppers, from exp1's initial data -----------------------------------------
-    do k = K_EULER, K_PAPER
+    do k = K_EULER, K_THERMO
         select case (k)
         case (K_EULER)
             cfg%time%scheme = 'euler'
@@ -117,6 +121,17 @@ program bench_kernels
         case (K_PAPER)
             cfg%time%scheme = 'euler'
             cfg%solver%method = 'paper'
+        case (K_MIDPOINT)
+            cfg%time%scheme = 'midpoint'
+            cfg%solver%method = 'monolithic'
+        case (K_THERMO)
+            ! thermoelastic scene: gamma2 = d = 0 and P0 = 0, so P and eta are left out
+            ! of the system (scheme_m's active_fields): 3 unknowns per node instead of 5
+            cfg%time%scheme = 'euler'
+            cfg%solver%method = 'monolithic'
+            cfg%model%gamma2 = 0.0_dp
+            cfg%model%d = 0.0_dp
+            cfg%initial%p0_poly = 0.0_dp
         end select
         call initial_state(cfg, states(k))
         call steppers(k)%init(cfg, result)
@@ -194,13 +209,13 @@ contains
         case (K_DGBTRS)
             do r = 1, reps
                 x = rhs
-                call a%solve_lapack(x, info)
+                call solve_with_dgbtrs(a, x, info)
             end do
             iters = reps
         case (K_BAND)
             do r = 1, reps
                 x = rhs
-                call a%solve(x, info)
+                call a%solve(x)
             end do
             iters = reps
         case (K_BLOCK)

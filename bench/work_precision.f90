@@ -26,10 +26,11 @@
 !> 0.05 s, else 3) and the median is reported.
 program work_precision
     use kinds_m, only: dp
-    use config_m, only: config_t, model_t, read_config
+    use config_m, only: config_t, model_t
+    use config_reader_m, only: read_config
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
-    use scheme_m, only: N_FIELDS, F_THETA, F_V, F_P, is_dirichlet
+    use fields_m, only: N_FIELDS, F_THETA, F_V, F_P, is_dirichlet
     use mms_m, only: mms_t, mms_no_contact, U_FIELD, N_EXACT
     use convergence_m, only: level_errors
     use bench_timing_m, only: wall_seconds, median, num

@@ -18,7 +18,8 @@ TARGET_EXP1_SECONDS = 2.5
 TARGET_RSS_MB = 50.0
 TARGET_SPEEDUP = 5.0
 STEPS_CASES = [("step_monolithic_euler", "monolithic, Euler"), ("step_monolithic_bdf2", "monolithic, BDF2"),
-               ("step_paper_euler", "paper, Euler")]
+               ("step_paper_euler", "paper, Euler"), ("step_monolithic_midpoint", "monolithic, midpoint"),
+               ("step_thermoelastic_euler", "Euler, thermoelastic (P, eta left out)")]
 
 
 def kv(words):

@@ -4,10 +4,15 @@ the measured value, holds yes/no), the definitions behind each number, and the f
 
     <python with h5py> scripts/claims.py --out OUT_DIR --doc FILE --figdir DIR
                                          [--report-only] [--commit TEXT] [--note TEXT]
+                                         [--level LABEL=DIR ...] [--accuracy FILE]
 
 OUT_DIR holds exp1.h5, exp1_varpi05.h5, exp1_varpi1.h5, exp2.h5, exp2_amp5.h5, exp3.h5
 and exp1_long.h5 (experiment 1 up to t = 60), as scripts/figures.sh --with-long writes
 them; scripts/claims.sh does all of it. The figures are linked relative to the document.
+--level: the same runs at another resolution (scripts/accuracy.sh makes them): every claim
+is measured again there and a table says which claims hold at every resolution. The
+verdicts that decide the exit status are those of OUT_DIR. --accuracy: a markdown fragment
+(scripts/accuracy.py) put into the document as its accuracy section.
 
 Exit status: 0 every claim holds; 1 a claim does not hold (0 with --report-only, for
 shortened runs whose verdicts mean nothing); 2 usage error, a file is missing or
@@ -575,7 +580,8 @@ FIGURES = [
              "(7.4) dashed in the colour of their time (v_P for P, v_θ for θ; the P front of t = 0.05 would be "
              "at x = 1.008, outside the rod), bottom row later times."),
     ("fig6", "Figure 6: q and η for experiment 2 (as Figure 5: v_θ for q, v_P for η), and u(1,t) with the obstacle "
-             "and the contact interval."),
+             "and the contact interval. The thickened stretches of q and η are odd–even mesh oscillations (C13), "
+             "drawn as they are."),
     ("fig7", "Figure 7: u, P, θ for experiment 3 (τ = τ₀ = 0) at the times of Figure 5. The initial pulses "
              "(t = 0) leave the top of the P and θ panels so that the later, much smaller profiles stay readable."),
 ]
@@ -616,6 +622,8 @@ def write_doc(path, figdir, R, results, args):
              "%g %%; virtually the same = below %g %%; front = 5 %% edge within 3σ + 2h; smooth = kink indicator "
              "below %g; no sharp front = steepest slope %g times below experiment 2's. Each is explained below.\n"
              % (VANISH, 100 * STRONG, 100 * SAME, SMOOTH, NO_FRONT_RATIO))
+    if args.levels_results:
+        L.append(resolution_table(R, results, args.levels_results))
     L.append("## Runs\n")
     L.append("The six shipped inputs `input/exp*.nml` as they are (only `&output prefix` and `quiet` changed), and "
              "`exp1_long`, a copy of `input/exp1.nml` with a later final time for claims C2 and C4. Paper's "
@@ -629,23 +637,83 @@ def write_doc(path, figdir, R, results, args):
              "(7.2)–(7.3), the characteristic speeds of the hyperbolic part are the roots of "
              "(cr − d²)s⁴ − (r/τ₀ + cħ/τ)s² + ħ/(τ₀τ) = 0, which for (7.1) gives %s — within the tolerance of C7 "
              "and C8, so the measurements cannot tell the two apart.\n" % coupled_speeds(R["exp2"]))
+    if args.accuracy_md:
+        L.append(args.accuracy_md)
     L.append("## Figures\n")
-    L.append("Each field is drawn as a family of profiles x ↦ f(x,t) at marked times, coloured from dark (early) "
-             "to light (late), rather than as an x–t surface or heat map: the values can be read off; the wave "
-             "fronts of experiment 2 are sharp vertical steps whose positions can be compared with the predicted "
-             "ones (dashed); and the fast early dynamics (t ≤ 0.05) and the slow decay (t up to 2–3) of the same "
-             "run are shown in two rows with their own times, where a surface over [0, t_end] would squeeze the "
-             "fronts into a sliver. Experiments 2 and 3 use the same times so that Figures 5 and 7 compare "
-             "directly. Made by `scripts/figures.sh` (gnuplot, data from the HDF5 files through "
-             "`scripts/h5extract.py`); PDF versions next to the PNGs.\n")
+    L.append("Each figure comes in two forms, both made by `scripts/figures.sh` (gnuplot; data from the HDF5 "
+             "files through `scripts/h5extract.py` and `scripts/plotdata.py`; PDF versions next to the PNGs; "
+             "`scripts/plot.sh RUN.h5` draws the same for any run). **Surfaces over (x, t)** "
+             "(`fig<N>_surface.png`), the form of the paper's figures and its panel layout: experiment 1 over "
+             "t ≤ 1.5 (contact and release), experiments 2 and 3 over t ≤ 0.5 (the fronts, their reflections "
+             "and the first contact); sampled to at most 61 × 61 points so that the mesh stays readable; "
+             "sequential colours for one-signed fields, blue–white–red centred on 0 for fields that change "
+             "sign. **Families of profiles** x ↦ f(x,t) at marked times (`fig<N>.png`), coloured from dark blue "
+             "(early) through green and orange to dark red (late): values can be read off, and the fronts of "
+             "experiment 2 compared with the predicted ones (dashed); early (t ≤ 0.05) and late times in two "
+             "rows. Figure 4 (time series) has one form. The accuracy section above says how far each field is "
+             "from the solution of the model: the P and η panels of Figures 5–6 are qualitative.\n")
     for name, caption in FIGURES:
         L.append("![%s](%s/%s.png)\n" % (caption.split(":")[0], rel, name))
         L.append("*%s* ([PDF](%s/%s.pdf))\n" % (caption, rel, name))
+        if name != "fig4":
+            L.append("![%s, surfaces](%s/%s_surface.png)\n" % (caption.split(":")[0], rel, name))
+            L.append("*%s as surfaces over (x, t).* ([PDF](%s/%s_surface.pdf))\n" % (caption.split(":")[0], rel, name))
     os.makedirs(doc_dir, exist_ok=True)
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:
         f.write("\n".join(L))
     os.replace(tmp, path)
+
+
+def level_sort_key(item):
+    label, R = item
+    return (int(R["exp1"].a("mesh.n_elements")), -R["exp1"].a("time.dt"))
+
+
+def resolution_table(R, results, levels):
+    """Verdicts and measured values of every claim at every resolution, coarse to fine."""
+    cols = sorted([("s=%d, Δt=%g (the paper's runs above)" % (R["exp1"].a("mesh.n_elements"), R["exp1"].a("time.dt")),
+                    R, results)] + levels, key=lambda c: level_sort_key(c[:2]))
+    L = ["## The claims at every resolution\n"]
+    L.append("Every claim measured again, the same way, on the six inputs run with h and Δt refined (or "
+             "coarsened) together (`scripts/accuracy.sh`, runs in `out/res/`). The finest column is the most "
+             "accurate set of runs there is for every claim (its exp1_long, needed by C2 and C4, is the s = 1000 "
+             "copy where no finer one was run: a 60-time-unit run at s = 2000 takes about 7 minutes).\n")
+    L.append("| # | " + " | ".join(c[0] for c in cols) + " |")
+    L.append("|---|" + "---|" * len(cols))
+    by_id = [{c["id"]: c for c in col[2]} for col in cols]
+    dependent, always = [], []
+    for c in results:
+        verdicts = [d.get(c["id"], {}).get("holds") for d in by_id]
+        L.append("| %s | " % c["id"] + " | ".join(yes_no(v) for v in verdicts) + " |")
+        if c["holds"] is None:
+            continue
+        (always if all(v is True for v in verdicts) else dependent).append(c["id"])
+    L.append("")
+    L.append("**Hold at every resolution:** %s. **Resolution-dependent:** %s.\n"
+             % (", ".join(always) or "none", ", ".join(dependent) or "none"))
+    L.append("Measured values, coarse to fine (the numbers the verdicts come from; the definitions are in "
+             "\"How each claim is measured\" below):\n")
+    L.append("| # | resolution | measured | holds |")
+    L.append("|---|---|---|---|")
+    for c in results:
+        for col, d in zip(cols, by_id):
+            m = d.get(c["id"])
+            if m is not None:
+                L.append("| %s | %s | %s | %s |" % (c["id"], col[0], cell(m["measured"]), yes_no(m["holds"])))
+    L.append("")
+    return "\n".join(L)
+
+
+def measure(R):
+    results = []
+    for fn in CLAIMS:
+        try:
+            results.append(fn(R))
+        except (DataError, ValueError, IndexError, KeyError) as exc:
+            results.append(dict(id="C?", claim=fn.__name__, quote="", measured="could not be measured: %s" % exc,
+                                holds=False, detail="Error while measuring: %s" % exc))
+    return results
 
 
 def coupled_speeds(r):
@@ -670,20 +738,28 @@ def main(argv):
     p.add_argument("--commit", default="unknown", help="commit to state in the document")
     p.add_argument("--note", default="", help="a line to put at the top (e.g. shortened runs)")
     p.add_argument("--out-label", default=None, help="how to name the HDF5 directory in the document")
+    p.add_argument("--level", action="append", default=[], help="LABEL=DIR: the runs at another resolution")
+    p.add_argument("--accuracy", default=None, help="markdown fragment: the accuracy section")
     args = p.parse_args(argv[1:])
     args.out_label = args.out_label or args.out
     try:
         R = {name: Run(args.out, name) for name in RUNS}
-    except DataError as exc:
+        levels = []
+        for spec in args.level:
+            if "=" not in spec:
+                sys.stderr.write("claims.py: --level expects LABEL=DIR, got %r\n" % spec)
+                return 2
+            label, d = spec.rsplit("=", 1)
+            levels.append((label, {name: Run(d, name) for name in RUNS}))
+        args.accuracy_md = None
+        if args.accuracy:
+            with open(args.accuracy, encoding="utf-8") as f:
+                args.accuracy_md = f.read()
+    except (DataError, OSError) as exc:
         sys.stderr.write("claims.py: %s\n" % exc)
         return 2
-    results = []
-    for fn in CLAIMS:
-        try:
-            results.append(fn(R))
-        except (DataError, ValueError, IndexError, KeyError) as exc:
-            results.append(dict(id="C?", claim=fn.__name__, quote="", measured="could not be measured: %s" % exc,
-                                holds=False, detail="Error while measuring: %s" % exc))
+    results = measure(R)
+    args.levels_results = [(label, LR, measure(LR)) for label, LR in levels]
     write_doc(args.doc, args.figdir, R, results, args)
     width = max(len(c["claim"]) for c in results)
     for c in results:

@@ -15,10 +15,13 @@
 #   --force         rerun every input
 #   --quick         shortened runs (t_end = 0.3): verdicts mean nothing, exit 0 whatever they are
 #   --no-runs       use the HDF5 files as they are, run nothing
+#   --no-accuracy   leave out the accuracy study (scripts/accuracy.sh: the claims at other
+#                   resolutions and the accuracy section; about 10 minutes the first time)
 #
 # The runs are those of scripts/figures.sh plus exp1_long (input/exp1.nml up to t = 60,
-# about 20 s), made by `scripts/figures.sh --runs-only --with-long`. Figures are not
-# redrawn: run scripts/figures.sh for them.
+# about 20 s), made by `scripts/figures.sh --runs-only --with-long`, and those of
+# scripts/accuracy.sh (other resolutions, references; with --quick its coarse pipeline check).
+# Figures are not redrawn: run scripts/figures.sh for them.
 # Exit status: 0 every claim holds (or --quick); 1 a claim does not hold, or a run failed;
 # 2 usage error or missing data.
 
@@ -37,12 +40,13 @@ usage() {   # usage [status]: the header comment; on stdout for --help, else on 
 }
 say() { echo "claims: $*" >&2; }
 
-quick=0 no_runs=0 out_dir="" doc="" fig_dir="" run_args=()
+quick=0 no_runs=0 accuracy=1 out_dir="" doc="" fig_dir="" run_args=()
 while (($# > 0)); do
     case "$1" in
         --quick) quick=1; run_args+=(--quick) ;;
         --force) run_args+=(--force) ;;
         --no-runs) no_runs=1 ;;
+        --no-accuracy) accuracy=0 ;;
         --out | --doc | --figdir | --exe)
             (($# >= 2)) || { say "$1 needs a value"; usage; }
             case "$1" in
@@ -88,6 +92,18 @@ opts=(--out "$out_dir" --doc "$doc" --figdir "$fig_dir" --commit "$commit" --out
 if ((quick)); then
     opts+=(--report-only --note "Shortened runs (scripts/claims.sh --quick, t_end = 0.3): a check that the \
 pipeline works, not a reproduction. The verdicts below mean nothing.")
+fi
+if ((accuracy)); then
+    if ((quick)); then acc_out="$out_dir/acc"; else acc_out="$out_dir"; fi
+    if ((!no_runs)); then
+        "$scripts/accuracy.sh" --out "$acc_out" "${run_args[@]}" || exit 1
+    fi
+    [[ -s "$acc_out/accuracy.md" && -f "$acc_out/accuracy.levels" ]] ||
+        { say "no accuracy study in $acc_out (run scripts/accuracy.sh, or use --no-accuracy)"; exit 2; }
+    opts+=(--accuracy "$acc_out/accuracy.md")
+    while IFS= read -r level; do
+        [[ -n "$level" ]] && opts+=(--level "$level")
+    done <"$acc_out/accuracy.levels"
 fi
 status=0
 "$py" "$scripts/claims.py" "${opts[@]}" || status=$?

@@ -1,7 +1,15 @@
 #!/usr/bin/env bash
 # Reproduce the figures of Section 7 of the paper: run every input/exp*.nml that is not
 # up to date, then draw Figures 2-7 as PNG and PDF with gnuplot, from the HDF5 files
-# (through scripts/h5extract.py, which writes the plotted data as text).
+# (through scripts/h5extract.py, which writes the plotted data as text), in two forms:
+#   fig<N>.png           families of profiles at marked times (values can be read off;
+#                        fronts of experiment 2 against the predicted ones)
+#   fig<N>_surface.png   the same fields as surfaces over (x, t), the form of the paper's
+#                        figures, in its panel layout (scripts/plotdata.py and
+#                        scripts/gnuplot/run_surface.gp, as scripts/plot.sh draws any run)
+# Figure 4 (time series) has one form; it gains a panel with the parts of the energy when
+# the files hold them (/series/energy_<part>), and /snapshots/sigma, when present, is drawn
+# as a surface (fig2_surface adds it for experiment 1).
 #
 #   scripts/figures.sh                  # runs into out/, figures into figures/
 #   scripts/figures.sh --force          # rerun every input even if its output is up to date
@@ -17,6 +25,10 @@
 #   --quick         shortened copies of the inputs: t_end = 0.3 (a pipeline check, not the paper)
 #   --runs-only     only make the HDF5 files (used by scripts/claims.sh)
 #   --with-long     also run exp1_long: input/exp1.nml up to t = 60 (for scripts/claims.sh)
+#   --resolution S DT   run every input with n_elements = S and dt = DT instead of the
+#                   input's (the paper's 500 and 1e-4), snapshots every 0.01 (exp1_long:
+#                   every 0.1, series every 0.001) as in the shipped inputs; used by
+#                   scripts/accuracy.sh for the claims at other resolutions
 #
 # A run is skipped when <out>/<name>.h5 is newer than its input and the binary, is complete,
 # and was made from the same namelist (the copy <out>/<name>.nml that was run: the input with
@@ -42,7 +54,7 @@ usage() {   # usage [status]: the header comment; on stdout for --help, else on 
 }
 say() { echo "figures: $*" >&2; }
 
-force=0 quick=0 runs_only=0 with_long=0 out_dir="" fig_dir="" exe=""
+force=0 quick=0 runs_only=0 with_long=0 out_dir="" fig_dir="" exe="" res_s="" res_dt=""
 while (($# > 0)); do
     case "$1" in
         --force) force=1 ;;
@@ -57,11 +69,24 @@ while (($# > 0)); do
                 --exe) exe="$2" ;;
             esac
             shift ;;
+        --resolution)
+            (($# >= 3)) || { say "--resolution needs S and DT"; usage; }
+            res_s="$2" res_dt="$3"
+            [[ "$res_s" =~ ^[0-9]+$ ]] || { say "--resolution: S must be a whole number, got '$res_s'"; usage; }
+            awk -v d="$res_dt" 'BEGIN { exit !(d + 0 > 0) }' || { say "--resolution: DT must be > 0, got '$res_dt'"; usage; }
+            shift 2 ;;
         -h | --help) usage 0 ;;
         *) say "unknown argument '$1'"; usage ;;
     esac
     shift
 done
+every() { awk -v T="$1" -v d="$res_dt" 'BEGIN { n = int(T / d + 0.5); print (n < 1 ? 1 : n) }'; }
+res_opts=() res_long=()
+if [[ -n "$res_s" ]]; then
+    res_opts=(mesh.n_elements="$res_s" time.dt="$res_dt" output.snapshot_every="$(every 0.01)")
+    res_long=(mesh.n_elements="$res_s" time.dt="$res_dt" output.snapshot_every="$(every 0.1)"
+              output.series_every="$(every 0.001)")
+fi
 
 quick_base="${TMPDIR:-/tmp}/rodcontact-quick"
 if ((quick)); then
@@ -143,12 +168,12 @@ shopt -u nullglob
 quick_opts=()
 ((quick)) && quick_opts=(time.t_end=0.3)
 for input in "${inputs[@]}"; do
-    run_one "$(basename "$input" .nml)" "$input" "${quick_opts[@]}"
+    run_one "$(basename "$input" .nml)" "$input" "${quick_opts[@]}" "${res_opts[@]}"
 done
 if ((with_long)); then
     if ((quick)); then long_end=0.6; else long_end=60; fi
     run_one exp1_long "$repo_root/input/exp1.nml" time.t_end=$long_end \
-        output.snapshot_every=1000 output.series_every=10
+        output.snapshot_every=1000 output.series_every=10 "${res_long[@]}"
 fi
 ((runs_only)) && exit 0
 
@@ -178,6 +203,46 @@ for entry in "${sizes[@]}"; do
         fi
         if [[ -s "$data_dir/gnuplot.log" ]]; then   # warnings: show them, they are bugs here
             say "gnuplot said on fig$n.$fmt:"
+            cat "$data_dir/gnuplot.log" >&2
+        fi
+        mv "$tmp" "$target"
+        written+=("$target")
+    done
+done
+# surface forms: figure, run, fields, last time, title (the fields and order of the paper's panels)
+surfaces=(
+    "2|exp1|u,P,theta|1.5|Figure 2 (surfaces): experiment 1, ϖ = 0.1"
+    "3|exp1|q,eta|1.5|Figure 3 (surfaces): experiment 1, ϖ = 0.1 — heat flux and diffusion flux"
+    "5|exp2|u,P,theta|0.5|Figure 5 (surfaces): experiment 2 — second sound"
+    "6|exp2|q,eta|0.5|Figure 6 (surfaces): experiment 2 — heat flux, diffusion flux, contact point"
+    "7|exp3|u,P,theta|0.5|Figure 7 (surfaces): experiment 3 (τ = τ₀ = 0) — no second sound"
+)
+for entry in "${surfaces[@]}"; do
+    IFS='|' read -r n run flds tmax ftitle <<<"$entry"
+    if [[ "$n" == 2 ]] && "$py" -c 'import sys, h5py; sys.exit(0 if "snapshots/sigma" in h5py.File(sys.argv[1], "r") else 1)'             "$out_dir/$run.h5" 2>/dev/null; then
+        flds="$flds,sigma"
+    fi
+    sdata="$data_dir/surface$n"
+    "$py" "$scripts/plotdata.py" "$out_dir/$run.h5" "$sdata" --fields "$flds" --t-max "$tmax" ||
+        { say "extraction for fig${n}_surface failed"; exit 1; }
+    extra=""
+    [[ "$n" == 6 ]] && extra="with_uend = 1;"
+    nf=$(awk -F, '{ print NF }' <<<"$flds")
+    if ((nf > 3)); then h=1000; else h=560; fi
+    for fmt in png pdf; do
+        target="$fig_dir/fig${n}_surface.$fmt"
+        tmp="$target.tmp"
+        rm -f "$tmp"
+        if ! (cd "$scripts/gnuplot" &&
+              gnuplot -e "datadir='$sdata'; out='$tmp'; fmt='$fmt'; W=1500; H=$h; fig_title='$ftitle'; $extra" run_surface.gp) \
+              >"$data_dir/gnuplot.log" 2>&1 || [[ ! -s "$tmp" ]]; then
+            say "gnuplot failed on fig${n}_surface.$fmt:"
+            cat "$data_dir/gnuplot.log" >&2
+            rm -f "$tmp"
+            exit 1
+        fi
+        if [[ -s "$data_dir/gnuplot.log" ]]; then
+            say "gnuplot said on fig${n}_surface.$fmt:"
             cat "$data_dir/gnuplot.log" >&2
         fi
         mv "$tmp" "$target"

@@ -9,7 +9,9 @@ scripts/figures.sh). DATA_DIR receives
     <run>.<set>.<field>.dat   x and one column per marked time: the profiles field(x, t_k)
                               ('set' is 'all' for experiment 1, 'early' and 'late' for
                               experiments 2 and 3); first line: column titles
-    <run>.series.dat          t, energy E, u(1,t) (thinned to at most 4000 rows)
+    <run>.series.dat          t, energy E, u(1,t), then the parts of the energy when the
+                              file has them (/series/energy_<part>; thinned to at most
+                              4000 rows)
     params.gp                 gnuplot assignments: obstacle g, wave speeds (7.4), the
                               marked times and their colours, contact intervals, ...
 
@@ -41,14 +43,16 @@ PROFILE_SETS = {           # run -> (sets, fields)
 SERIES_RUNS = ["exp1", "exp1_varpi05", "exp1_varpi1", "exp2"]
 MAX_SERIES_ROWS = 4000
 
-# Curve colours, early (dark purple) to late (yellow-green): the 'viridis' colour map
-# without its pale yellow end, which does not show on white.
-VIRIDIS = ["#440154", "#3b528b", "#21918c", "#5ec962", "#b5de2b"]
+# Curve colours, early to late: dark blue, blue, cyan, green, gold, orange, red, dark red
+# (a 'turbo'-like ramp without its pale middle; the same as scripts/plotdata.py). Nine
+# times differ in hue, not only in lightness (the viridis ramp used before made t >= 0.5
+# hard to tell apart).
+RAMP = ["#30123b", "#4145ab", "#2d9bd6", "#1bbc8f", "#67b51e", "#d9a800", "#f36a00", "#d0190f", "#7a0403"]
 
 
 def colour(frac):
-    """Colour at frac in [0, 1] along VIRIDIS, as #rrggbb."""
-    stops = VIRIDIS
+    """Colour at frac in [0, 1] along RAMP, as #rrggbb."""
+    stops = RAMP
     pos = frac * (len(stops) - 1)
     k = min(int(pos), len(stops) - 2)
     w = pos - k
@@ -150,8 +154,14 @@ def main(argv):
                 stride = max(1, math.ceil(t.size / MAX_SERIES_ROWS))
                 keep = np.r_[np.arange(0, t.size, stride), t.size - 1]
                 keep = np.unique(keep)
+                parts = sorted(k for k in f["series"].keys()
+                               if k.startswith("energy_") and f["series/" + k].shape == t.shape)
                 write_columns(os.path.join(data_dir, f"{run}.series.dat"),
-                              ["t", "E", "u(1,t)"], [t[keep], energy[keep], u_end[keep]])
+                              ["t", "E", "u(1,t)"] + [k[7:] for k in parts],
+                              [t[keep], energy[keep], u_end[keep]] + [f["series/" + k][:][keep] for k in parts])
+                if run == "exp1":     # Fig. 4 gets a panel with the parts when they exist
+                    param("n_parts", len(parts))
+                    param("part_names", " ".join(k[7:] for k in parts))
                 on, off = contact_interval(t, pen)
                 param(f"t_on_{run}", on)
                 param(f"t_off_{run}", off)

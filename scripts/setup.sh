@@ -18,7 +18,7 @@ set -euo pipefail
 # too, Debian moves moreutils' own 'parallel' aside to parallel.moreutils). The test-only
 # Slurm packages (slurm-wlm, munge) are installed by tests/test_slurm.sh itself.
 REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
-                   gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-matplotlib
+                   gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-scipy python3-matplotlib
                    valgrind parallel)
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -2,6 +2,7 @@
 !> many times with dgbtrs. Every LAPACK info is decoded into a readable message.
 module banded_m
     use kinds_m, only: dp
+    use errors_m, only: fatal, EXIT_NUMERIC
     implicit none
     private
     public :: band_t, lapack_info_message
@@ -14,15 +15,6 @@ module banded_m
             integer, intent(out) :: ipiv(*)
             integer, intent(out) :: info
         end subroutine dgbtrf
-        subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
-            import :: dp
-            character(len=1), intent(in) :: trans
-            integer, intent(in) :: n, kl, ku, nrhs, ldab, ldb
-            real(dp), intent(in) :: ab(ldab, *)
-            integer, intent(in) :: ipiv(*)
-            real(dp), intent(inout) :: b(ldb, *)
-            integer, intent(out) :: info
-        end subroutine dgbtrs
     end interface
 
     !> A general band matrix: entry (i,j), |i-j| within the band, lives at ab(kl+ku+1+i-j, j);
@@ -42,10 +34,8 @@ module banded_m
         procedure :: get => band_get
         procedure :: set_identity_row => band_set_identity_row
         procedure :: matvec => band_matvec
-        procedure :: to_dense => band_to_dense
         procedure :: factor => band_factor
         procedure :: solve => band_solve
-        procedure :: solve_lapack => band_solve_lapack
     end type band_t
 
 contains
@@ -54,13 +44,16 @@ contains
     subroutine band_init(self, n, kl, ku)
         class(band_t), intent(inout) :: self
         integer, intent(in) :: n, kl, ku
+        integer :: stat
+        character(len=256) :: message
 
         self%n = n
         self%kl = kl
         self%ku = ku
         if (allocated(self%ab)) deallocate (self%ab)
         if (allocated(self%ipiv)) deallocate (self%ipiv)
-        allocate (self%ab(2 * kl + ku + 1, n), self%ipiv(n))
+        allocate (self%ab(2 * kl + ku + 1, n), self%ipiv(n), stat=stat, errmsg=message)
+        if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate a band matrix: '//trim(message))
         call self%zero()
     end subroutine band_init
 
@@ -122,20 +115,6 @@ contains
         end do
     end function band_matvec
 
-    !> The dense n x n matrix; only meaningful before factor().
-    pure function band_to_dense(self) result(a)
-        class(band_t), intent(in) :: self
-        real(dp) :: a(self%n, self%n)
-        integer :: i, j
-
-        a = 0.0_dp
-        do j = 1, self%n
-            do i = max(1, j - self%ku), min(self%n, j + self%kl)
-                a(i, j) = self%ab(self%kl + self%ku + 1 + i - j, j)
-            end do
-        end do
-    end function band_to_dense
-
     !> LU factorisation in place (dgbtrf); info as LAPACK's, decoded by lapack_info_message.
     subroutine band_factor(self, info)
         class(band_t), intent(inout) :: self
@@ -151,12 +130,11 @@ contains
     !> LAPACK's dgbtrs ('N', one right-hand side) on the same factors, written as plain loops.
     !> Why not dgbtrs itself: it makes one BLAS call per column (dswap, dger of length kl),
     !> and for our kl = ku = 7 that call overhead, not arithmetic, dominates; with OpenBLAS
-    !> it is worse. No allocation: called every time step. info = 0 always (kept for the
-    !> same interface as solve_lapack).
-    subroutine band_solve(self, b, info)
+    !> it is worse. No allocation: called every time step. It cannot fail once factor()
+    !> succeeded (calling it before is a bug in rodcontact and stops the program).
+    subroutine band_solve(self, b)
         class(band_t), intent(in) :: self
         real(dp), intent(inout) :: b(:)
-        integer, intent(out) :: info
         integer :: j, i, jp, lm, kd, ku_u
         real(dp) :: temp
 
@@ -186,18 +164,7 @@ contains
                 b(i) = b(i) - self%ab(kd + i - j, j) * temp
             end do
         end do
-        info = 0
     end subroutine band_solve
-
-    !> The same solve through LAPACK's dgbtrs (reference for tests and benchmarks).
-    subroutine band_solve_lapack(self, b, info)
-        class(band_t), intent(in) :: self
-        real(dp), intent(inout) :: b(:)
-        integer, intent(out) :: info
-
-        if (.not. self%factored) error stop 'band_solve_lapack: matrix not factored'
-        call dgbtrs('N', self%n, self%kl, self%ku, 1, self%ab, size(self%ab, 1), self%ipiv, b, self%n, info)
-    end subroutine band_solve_lapack
 
     !> A readable message for a LAPACK info value of routine ('dgbtrf', 'dgbtrs').
     function lapack_info_message(routine, info) result(message)

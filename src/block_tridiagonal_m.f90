@@ -1,7 +1,8 @@
-!> Block-tridiagonal LU for the interleaved monolithic system: with NB = 5 unknowns per
-!> node, node i couples only to nodes i-1 and i+1, so A is block tridiagonal with 5 x 5
-!> blocks D_i (diagonal), E_i (row i, column i+1) and F_i (row i+1, column i). The block
-!> size is a compile-time constant so that the 5 x 5 kernels are fully unrolled.
+!> Block-tridiagonal LU for the interleaved monolithic system: with nb unknowns per node
+!> (the fields in the system, at most NB_MAX = 5), node i couples only to nodes i-1 and
+!> i+1, so A is block tridiagonal with nb x nb blocks D_i (diagonal), E_i (row i, column
+!> i+1) and F_i (row i+1, column i). The 5 x 5 kernel (all fields) is written out so that
+!> it is fully unrolled; smaller blocks (fields left out, scheme_m's active_fields) use a loop.
 !>
 !> Why: the per-step solve with the band LU of dgbtrf is latency-bound (every unknown waits
 !> for the previous one, one store/load/FMA chain per column). Block elimination makes the
@@ -38,9 +39,10 @@ module block_tridiagonal_m
             integer, intent(out) :: info
         end subroutine dgetri
     end interface
-    integer, parameter, public :: NB = 5      !< unknowns per node
+    integer, parameter, public :: NB_MAX = 5   !< the most unknowns per node (N_FIELDS)
 
     type :: block_tridiagonal_t
+        integer :: nb = 0                    !< unknowns per node
         integer :: last = -1                 !< nodes are 0..last
         real(dp), allocatable :: g(:, :, :)  !< g(:,:,i) = S_i^{-1}
         real(dp), allocatable :: l(:, :, :)  !< l(:,:,i) = F_{i-1} S_{i-1}^{-1}, i >= 1
@@ -52,20 +54,26 @@ module block_tridiagonal_m
     end type block_tridiagonal_t
 
 contains
-    !> Factor the block-tridiagonal matrix held (unfactored) in band a. info = 0 on success,
-    !> else the node (1-based) whose pivot block is singular.
-    subroutine block_factor(self, a, info)
+    !> Factor the block-tridiagonal matrix held (unfactored) in band a, with nb unknowns per
+    !> node. info = 0 on success; -1 if a is not block tridiagonal with nb x nb blocks; else
+    !> the node (1-based) whose pivot block is singular.
+    subroutine block_factor(self, a, nb, info)
         class(block_tridiagonal_t), intent(inout) :: self
         type(band_t), intent(in) :: a
+        integer, intent(in) :: nb
         integer, intent(out) :: info
-        real(dp) :: f(NB, NB), work(NB * NB)
-        integer :: i, ipiv(NB), lapack_info
+        real(dp) :: f(nb, nb), work(nb * nb)
+        integer :: i, ipiv(nb), lapack_info
 
-        if (mod(a%n, NB) /= 0 .or. a%kl > 2 * NB - 1 .or. a%ku > 2 * NB - 1) &
-            error stop 'block_factor: matrix is not block tridiagonal with 5 x 5 blocks'
-        self%last = a%n / NB - 1
+        info = -1
+        if (nb < 1 .or. nb > NB_MAX) return
+        if (mod(a%n, nb) /= 0 .or. a%kl > 2 * nb - 1 .or. a%ku > 2 * nb - 1) return
+        self%nb = nb
+        self%last = a%n / nb - 1
         if (allocated(self%g)) deallocate (self%g, self%l, self%e, self%h)
-        allocate (self%g(NB, NB, 0:self%last), self%l(NB, NB, 1:self%last), self%e(NB, NB, 0:self%last - 1))
+        allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%e(nb, nb, 0:self%last - 1), &
+                  self%h(nb, nb, 0:self%last - 1), stat=lapack_info)
+        if (lapack_info /= 0) return
         info = 0
         do i = 0, self%last
             self%g(:, :, i) = block(a, i, i)
@@ -75,14 +83,13 @@ contains
                 self%g(:, :, i) = self%g(:, :, i) - matmul(self%l(:, :, i), self%e(:, :, i - 1))
             end if
             if (i < self%last) self%e(:, :, i) = block(a, i, i + 1)
-            call dgetrf(NB, NB, self%g(:, :, i), NB, ipiv, lapack_info)
-            if (lapack_info == 0) call dgetri(NB, self%g(:, :, i), NB, ipiv, work, size(work), lapack_info)
+            call dgetrf(nb, nb, self%g(:, :, i), nb, ipiv, lapack_info)
+            if (lapack_info == 0) call dgetri(nb, self%g(:, :, i), nb, ipiv, work, size(work), lapack_info)
             if (lapack_info /= 0) then
                 info = i + 1
                 return
             end if
         end do
-        allocate (self%h(NB, NB, 0:self%last - 1))
         do i = 0, self%last - 1
             self%h(:, :, i) = matmul(self%g(:, :, i), self%e(:, :, i))
         end do
@@ -90,44 +97,95 @@ contains
         pure function block(a, row_node, col_node) result(blk)
             type(band_t), intent(in) :: a
             integer, intent(in) :: row_node, col_node
-            real(dp) :: blk(NB, NB)
+            real(dp) :: blk(nb, nb)
             integer :: p, q
-            do q = 1, NB
-                do p = 1, NB
-                    blk(p, q) = a%get(NB * row_node + p, NB * col_node + q)
+            do q = 1, nb
+                do p = 1, nb
+                    blk(p, q) = a%get(nb * row_node + p, nb * col_node + q)
                 end do
             end do
         end function block
     end subroutine block_factor
     !> Solve A x = b in place with the block factors. No allocation: called every step.
+    !> Every field in the system (nb = 5): products written out for the fixed block size,
+    !> so that they are fully unrolled. Fewer fields (scheme_m's active_fields): a loop.
     subroutine block_solve(self, b)
         class(block_tridiagonal_t), intent(in) :: self
-        real(dp), intent(inout) :: b(:)
-        real(dp) :: y(NB), x(NB)
-        integer :: i, lo
+        real(dp), intent(inout), contiguous :: b(:)
 
-        ! forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain)
-        x = b(1:NB)
-        b(1:NB) = matvec5(self%g(:, :, 0), x)
-        do i = 1, self%last
-            lo = NB * i
-            y = b(lo + 1:lo + NB) - matvec5(self%l(:, :, i), x)
-            b(lo + 1:lo + NB) = matvec5(self%g(:, :, i), y)
+        if (self%nb == NB_MAX) then
+            call solve_full(self%g, self%l, self%h, self%last, b)
+        else
+            call solve_reduced(self%g, self%l, self%h, self%last, self%nb, b)
+        end if
+    end subroutine block_solve
+
+    !> forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain);
+    !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i. b(:, i) is node i.
+    subroutine solve_full(g, l, h, last, b)
+        integer, intent(in) :: last
+        real(dp), intent(in) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        real(dp), intent(inout) :: b(NB_MAX, 0:last)
+        real(dp) :: y(NB_MAX), x(NB_MAX)
+        integer :: i
+
+        x = b(:, 0)
+        b(:, 0) = matvec5(g(:, :, 0), x)
+        do i = 1, last
+            y = b(:, i) - matvec5(l(:, :, i), x)
+            b(:, i) = matvec5(g(:, :, i), y)
             x = y
         end do
-        ! back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i
-        x = b(NB * self%last + 1:NB * self%last + NB)
-        do i = self%last - 1, 0, -1
-            lo = NB * i
-            x = b(lo + 1:lo + NB) - matvec5(self%h(:, :, i), x)
-            b(lo + 1:lo + NB) = x
+        x = b(:, last)
+        do i = last - 1, 0, -1
+            x = b(:, i) - matvec5(h(:, :, i), x)
+            b(:, i) = x
         end do
-    end subroutine block_solve
+    end subroutine solve_full
+
+    !> The same sweeps for nb < 5 unknowns per node, one row at a time.
+    subroutine solve_reduced(g, l, h, last, nb, b)
+        integer, intent(in) :: last, nb
+        real(dp), intent(in) :: g(nb, nb, 0:last), l(nb, nb, last), h(nb, nb, 0:last - 1)
+        real(dp), intent(inout) :: b(nb, 0:last)
+        real(dp) :: before(NB_MAX), now(NB_MAX), acc
+        integer :: i, r, k
+
+        before(1:nb) = b(:, 0)
+        do i = 0, last
+            if (i > 0) then
+                do r = 1, nb
+                    acc = b(r, i)
+                    do k = 1, nb
+                        acc = acc - l(r, k, i) * before(k)
+                    end do
+                    now(r) = acc
+                end do
+                before(1:nb) = now(1:nb)
+            end if
+            do r = 1, nb
+                acc = 0.0_dp
+                do k = 1, nb
+                    acc = acc + g(r, k, i) * before(k)
+                end do
+                b(r, i) = acc
+            end do
+        end do
+        do i = last - 1, 0, -1
+            do r = 1, nb
+                acc = b(r, i)
+                do k = 1, nb
+                    acc = acc - h(r, k, i) * b(k, i + 1)
+                end do
+                b(r, i) = acc
+            end do
+        end do
+    end subroutine solve_reduced
 
     !> a x for a 5 x 5 block, summed as a tree (depth 3) to shorten the dependency chain.
     pure function matvec5(a, x) result(y)
-        real(dp), intent(in) :: a(NB, NB), x(NB)
-        real(dp) :: y(NB)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), x(NB_MAX)
+        real(dp) :: y(NB_MAX)
 
         y = (a(:, 1) * x(1) + a(:, 2) * x(2)) + (a(:, 3) * x(3) + a(:, 4) * x(4)) + a(:, 5) * x(5)
     end function matvec5

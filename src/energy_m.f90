@@ -1,23 +1,51 @@
-!> The discrete energy of Corollary 6.2 and the contact diagnostics of SPEC section 4.
+!> The discrete energy of Corollary 6.2, the energy law each time scheme guarantees, and
+!> the monitor that checks the law every step.
 module energy_m
     use kinds_m, only: dp
     use config_m, only: model_t
-    use scheme_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
+    use fields_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
+    use contact_law_m, only: contact_law_t
+    use time_scheme_m, only: time_scheme_t
+    use state_m, only: state_t
     implicit none
     private
-    public :: discrete_energy, bdf2_energy, penetration, mass_product, stiffness_product
+    public :: discrete_energy, linear_energy, bdf2_energy, energy_monitor_t
+
+    !> The discrete energy of every level and the largest relative rise of the energy the
+    !> scheme's law is stated for (time_scheme_m: E^n for Euler, the G-energy for BDF2).
+    type :: energy_monitor_t
+        type(model_t) :: model
+        type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
+        type(contact_law_t) :: law
+        logical :: bdf2 = .false.
+        logical :: own_law_model = .false.   !< law_model differs from model
+        real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
+        logical :: have_law = .false.
+        real(dp), allocatable :: u_work(:), w_work(:, :)
+    contains
+        procedure :: init => monitor_init
+        procedure :: observe => monitor_observe
+    end type energy_monitor_t
 
 contains
 
-    !> E^n = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
-    !>       + tau hbar eta^2) dx + 1/(2 eps) [u(1) - g]_+^2, integrals exact for P1 functions.
-    !> With the Signorini law (penalty = .false.) the last term is absent: u(1) <= g.
-    pure function discrete_energy(model, eps, g, u, w, penalty) result(energy)
+    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini).
+    pure function discrete_energy(model, law, u, w) result(energy)
         type(model_t), intent(in) :: model
-        real(dp), intent(in) :: eps, g
+        type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
-        logical, intent(in), optional :: penalty   !< .false.: Signorini law, no penalty energy
+        real(dp) :: energy
+
+        energy = linear_energy(model, u, w) + law%energy(u(ubound(u, 1)))
+    end function discrete_energy
+
+    !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
+    !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions.
+    pure function linear_energy(model, u, w) result(energy)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: w(0:, :)
         real(dp) :: energy
         real(dp) :: mass_terms, strain_terms
         integer :: e, s
@@ -39,27 +67,21 @@ contains
             strain_terms = strain_terms + (u(e) - u(e - 1))**2
         end do
         energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp))
-        if (present(penalty)) then
-            if (.not. penalty) return
-        end if
-        energy = energy + 0.5_dp / eps * penetration(u, g)**2
-    end function discrete_energy
+    end function linear_energy
 
     !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
     !> of (2.11) tested with the new level,
     !>   (3a - 4b + c)/2 . a = [|a|^2 + |2a - b|^2]/4 - [|b|^2 + |2b - c|^2]/4 + |a - 2b + c|^2/4,
     !> so E_G^n = (E_lin(X^n) + E_lin(2 X^n - X^{n-1})) / 2 never rises while the contact
-    !> node is inactive (E_lin: E^n without the penalty term). The penalty term is added at
-    !> the current level, 1/(2 eps)[u^n(1) - g]_+^2. With an active penalty BDF2 has no such
-    !> law (the nonlinear term is not G-stable); see docs/performance.md for what we measured.
+    !> node is inactive. The contact term is added at the current level. With an active
+    !> penalty BDF2 has no such law (the nonlinear term is not G-stable).
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
     !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
-    subroutine bdf2_energy(model, eps, g, u, w, u_prev, w_prev, u_work, w_work, penalty, energy, lin_now)
+    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, u_work, w_work, energy, lin_now)
         type(model_t), intent(in) :: model
-        real(dp), intent(in) :: eps, g
+        type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
         real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
-        logical, intent(in) :: penalty
         real(dp), intent(out) :: energy
         real(dp), intent(in), optional :: lin_now
         real(dp) :: lin
@@ -67,13 +89,60 @@ contains
         if (present(lin_now)) then
             lin = lin_now
         else
-            lin = discrete_energy(model, eps, g, u, w, .false.)
+            lin = linear_energy(model, u, w)
         end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
-        energy = 0.5_dp * (lin + discrete_energy(model, eps, g, u_work, w_work, .false.))
-        if (penalty) energy = energy + 0.5_dp / eps * penetration(u, g)**2
+        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work)) + law%energy(u(ubound(u, 1)))
     end subroutine bdf2_energy
+
+    !> The energy of the first level and the law it must obey from then on.
+    subroutine monitor_init(self, model, law, scheme, state, law_model)
+        class(energy_monitor_t), intent(inout) :: self
+        type(model_t), intent(in) :: model
+        type(contact_law_t), intent(in) :: law
+        type(time_scheme_t), intent(in) :: scheme
+        type(state_t), intent(in) :: state
+        type(model_t), intent(in), optional :: law_model   !< default: model
+
+        self%model = model
+        self%law_model = model
+        if (present(law_model)) self%law_model = law_model
+        self%own_law_model = present(law_model)
+        self%law = law
+        self%bdf2 = scheme%is_bdf2()
+        self%energy = discrete_energy(model, law, state%u, state%w)
+        self%law_energy = self%energy
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w)
+        self%have_law = .not. self%bdf2
+        self%max_rise = 0.0_dp
+        if (self%bdf2) allocate (self%u_work, mold=state%u)
+        if (self%bdf2) allocate (self%w_work, mold=state%w)
+    end subroutine monitor_init
+
+    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for
+    !> Euler, the G-energy of bdf2_energy for BDF2 (defined once a previous level exists,
+    !> compared from the first BDF2 step on).
+    subroutine monitor_observe(self, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        real(dp) :: law_old, energy_lin
+        logical :: had_law
+
+        law_old = self%law_energy
+        had_law = self%have_law
+        energy_lin = linear_energy(self%model, state%u, state%w)
+        self%energy = energy_lin + self%law%energy(state%u(state%s))
+        self%law_energy = self%energy
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w)
+        if (self%bdf2) then
+            self%have_law = allocated(state%u_prev)
+            if (self%have_law) call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &
+                                                self%u_work, self%w_work, self%law_energy, lin_now=energy_lin)
+        end if
+        if (had_law .and. self%have_law) &
+            self%max_rise = max(self%max_rise, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
+    end subroutine monitor_observe
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
     !> and b0, b1).
@@ -82,40 +151,5 @@ contains
 
         element_mass_product = (a0 + a1) * (b0 + b1) + a0 * b0 + a1 * b1
     end function element_mass_product
-
-    !> [u(1) - g]_+, the penetration into the obstacle.
-    pure real(dp) function penetration(u, g)
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: g
-
-        penetration = max(u(ubound(u, 1)) - g, 0.0_dp)
-    end function penetration
-
-    !> int a b dx for P1 functions a, b given by nodal values 0..s on the uniform mesh.
-    pure real(dp) function mass_product(a, b)
-        real(dp), intent(in) :: a(0:), b(0:)
-        integer :: e, s
-
-        s = ubound(a, 1)
-        mass_product = 0.0_dp
-        do e = 1, s
-            mass_product = mass_product + 2.0_dp * a(e - 1) * b(e - 1) + a(e - 1) * b(e) &
-                           + a(e) * b(e - 1) + 2.0_dp * a(e) * b(e)
-        end do
-        mass_product = mass_product / (6.0_dp * real(s, dp))
-    end function mass_product
-
-    !> int a_x b_x dx for P1 functions a, b given by nodal values 0..s on the uniform mesh.
-    pure real(dp) function stiffness_product(a, b)
-        real(dp), intent(in) :: a(0:), b(0:)
-        integer :: e, s
-
-        s = ubound(a, 1)
-        stiffness_product = 0.0_dp
-        do e = 1, s
-            stiffness_product = stiffness_product + (a(e) - a(e - 1)) * (b(e) - b(e - 1))
-        end do
-        stiffness_product = stiffness_product * real(s, dp)
-    end function stiffness_product
 
 end module energy_m

@@ -6,7 +6,7 @@ module fe_m
     implicit none
     private
     public :: mesh_nodes, element_mass, element_stiffness, element_gradient
-    public :: global_mass, global_stiffness, global_gradient, apply_assembled
+    public :: apply_assembled
 
 contains
 
@@ -46,30 +46,6 @@ contains
         g = reshape([-0.5_dp, -0.5_dp, 0.5_dp, 0.5_dp], [2, 2])
     end function element_gradient
 
-    !> Dense global matrix int phi_i phi_j dx over all nodes 0..s (for tests and small checks).
-    pure function global_mass(s) result(a)
-        integer, intent(in) :: s
-        real(dp) :: a(0:s, 0:s)
-
-        a = assemble_dense(s, element_mass(1.0_dp / real(s, dp)))
-    end function global_mass
-
-    !> Dense global matrix int phi_i' phi_j' dx over all nodes 0..s.
-    pure function global_stiffness(s) result(a)
-        integer, intent(in) :: s
-        real(dp) :: a(0:s, 0:s)
-
-        a = assemble_dense(s, element_stiffness(1.0_dp / real(s, dp)))
-    end function global_stiffness
-
-    !> Dense global matrix int phi_i phi_j' dx over all nodes 0..s.
-    pure function global_gradient(s) result(a)
-        integer, intent(in) :: s
-        real(dp) :: a(0:s, 0:s)
-
-        a = assemble_dense(s, element_gradient())
-    end function global_gradient
-
     !> y = A x where A is the global matrix assembled from the element matrix elem on the
     !> s-element mesh (nodes 0..s); x and y have bounds 0..s. Written per node (the
     !> assembled matrix is tridiagonal: elem(2,1), elem(1,1) + elem(2,2), elem(1,2)) so that
@@ -85,17 +61,5 @@ contains
         y(1:s - 1) = elem(2, 1) * x(0:s - 2) + (elem(2, 2) + elem(1, 1)) * x(1:s - 1) + elem(1, 2) * x(2:s)
         y(s) = elem(2, 1) * x(s - 1) + elem(2, 2) * x(s)
     end subroutine apply_assembled
-
-    pure function assemble_dense(s, elem) result(a)
-        integer, intent(in) :: s
-        real(dp), intent(in) :: elem(2, 2)
-        real(dp) :: a(0:s, 0:s)
-        integer :: e
-
-        a = 0.0_dp
-        do e = 1, s
-            a(e - 1:e, e - 1:e) = a(e - 1:e, e - 1:e) + elem
-        end do
-    end function assemble_dense
 
 end module fe_m

@@ -9,7 +9,7 @@ module fsys_m
                              c_f_pointer
     implicit none
     private
-    public :: mkdir_p, rename_file, remove_file, remove_dir, file_exists, dir_exists, &
+    public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
               parent_dir, create_empty_file
 
     integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
@@ -37,11 +37,6 @@ module fsys_m
             integer(c_int) :: rc
         end function c_unlink
 
-        function c_rmdir(path) bind(C, name='rmdir') result(rc)
-            import :: c_char, c_int
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int) :: rc
-        end function c_rmdir
 
         function c_access(path, mode) bind(C, name='access') result(rc)
             import :: c_char, c_int
@@ -155,15 +150,6 @@ contains
 
         rc = c_unlink(trim(path)//c_null_char)
     end subroutine remove_file
-
-    !> Remove an empty directory if it exists; errors are ignored (as remove_file).
-    subroutine remove_dir(path)
-        character(len=*), intent(in) :: path
-
-        integer(c_int) :: rc
-
-        rc = c_rmdir(trim(path)//c_null_char)
-    end subroutine remove_dir
 
     !> True when `path` names an existing file, directory or other filesystem object.
     function file_exists(path) result(yes)

@@ -1,24 +1,25 @@
 !> The HDF5 writer of SPEC section 4. Layout as h5py sees it:
 !>
 !>     /mesh/x                                          (s+1,)          float64
-!>     /series/t, energy, u_end, penetration, contact_stress  (n_series,)  float64
-!>     /series/iterations                               (n_series,)     int32
+!>     /series/<name>   one per fields_m's SERIES table (n_series,)     float64 or int32
 !>     /snapshots/t                                     (n_snap,)       float64
-!>     /snapshots/u, v, theta, P, q, eta                (n_snap, s+1)   float64
+!>     /snapshots/<field>  fields_m's FIELDS in OUTPUT_ORDER (n_snap, s+1) float64
 !>     root attributes: input values 'group.variable', version, counters, 'status'
+!>     dataset attributes: long_name, units (from the tables)
 !>
 !> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
 !> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
 !> no run leaves a truncated file under the final name (SPEC section 2). Until finish()
 !> writes the real status, the root attribute `status` reads 'incomplete'.
 !>
-!> The writer knows nothing of the scheme: it stores what it is given.
+!> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
     use iso_c_binding, only: c_ptr, c_char, c_loc, c_null_char
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
     use h5_read_m, only: h5_library_init
+    use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES
     use hdf5, only: hid_t, hsize_t, h5lexists_f, h5dopen_f, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
                     h5pset_chunk_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, &
@@ -40,13 +41,6 @@ module output_m
     !> Target size of one chunk of a snapshot field: a few rows per chunk keeps chunks well
     !> inside HDF5's default 1 MiB per-dataset chunk cache while rows are appended one by one.
     integer, parameter :: SNAPSHOT_CHUNK_BYTES = 256 * 1024
-    integer, parameter :: N_SERIES_REAL = 5
-    integer, parameter :: N_FIELDS = 6
-
-    character(len=*), parameter :: SERIES_REAL_NAMES(N_SERIES_REAL) = &
-        [character(len=14) :: 't', 'energy', 'u_end', 'penetration', 'contact_stress']
-    character(len=*), parameter :: FIELD_NAMES(N_FIELDS) = &
-        [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta']
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
     !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
@@ -60,16 +54,14 @@ module output_m
         character(len=:), allocatable :: part_path
         integer :: n_nodes = 0
         integer(hid_t) :: file_id = -1
-        integer(hid_t) :: series_real_ids(N_SERIES_REAL) = -1
-        integer(hid_t) :: series_iter_id = -1
+        integer(hid_t) :: series_ids(N_SERIES) = -1
         integer(hid_t) :: snap_t_id = -1
-        integer(hid_t) :: snap_field_ids(N_FIELDS) = -1
+        integer(hid_t) :: snap_field_ids(N_OUTPUT_FIELDS) = -1
         integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
         integer(hsize_t) :: n_snap = 0             !< snapshots in the file
         integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
         integer :: n_buf = 0                       !< series entries waiting in the buffer
-        real(dp), allocatable :: buf_real(:, :)    !< (SERIES_BUFFER_SIZE, N_SERIES_REAL)
-        integer, allocatable :: buf_iter(:)        !< (SERIES_BUFFER_SIZE)
+        real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
@@ -83,8 +75,6 @@ module output_m
         procedure :: write_checkpoint => writer_write_checkpoint
         procedure :: finish => writer_finish
         procedure :: abandon => writer_abandon
-        procedure :: is_open => writer_is_open
-        procedure :: file_name => writer_file_name
         procedure, private :: check => writer_check
         procedure, private :: put_real => writer_put_real
         procedure, private :: fail => writer_fail
@@ -94,6 +84,7 @@ module output_m
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: select_append => writer_select_append
         procedure, private :: close_spaces => writer_close_spaces
+        procedure, private :: describe => writer_describe
     end type h5_writer_t
 
 contains
@@ -172,12 +163,12 @@ contains
         call h5gcreate_f(w%file_id, 'series', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /series')
         dims = 0
-        do k = 1, N_SERIES_REAL
-            call w%create_extendible(group_id, '/series/', trim(SERIES_REAL_NAMES(k)), H5T_IEEE_F64LE, &
-                                     dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_real_ids(k))
+        do k = 1, N_SERIES
+            call w%create_extendible(group_id, '/series/', trim(SERIES(k)%name), &
+                                     merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
+                                     dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_ids(k))
+            call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), SERIES(k)%long_name, SERIES(k)%units)
         end do
-        call w%create_extendible(group_id, '/series/', 'iterations', H5T_STD_I32LE, &
-                                 dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_iter_id)
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /series')
 
@@ -187,55 +178,43 @@ contains
         chunk_rows = int(max(1, min(64, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes))), hsize_t)
         call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, [256_hsize_t], &
                                  w%snap_t_id)
+        call w%describe(w%snap_t_id, '/snapshots/t', SERIES(1)%long_name, SERIES(1)%units)
         dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
-        do k = 1, N_FIELDS
-            call w%create_extendible(group_id, '/snapshots/', trim(FIELD_NAMES(k)), H5T_IEEE_F64LE, &
-                                     dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k))
+        do k = 1, N_OUTPUT_FIELDS
+            associate (field => FIELDS(OUTPUT_ORDER(k)))
+                call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
+                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k))
+                call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), field%long_name, field%units)
+            end associate
         end do
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /snapshots')
 
-        allocate (w%buf_real(SERIES_BUFFER_SIZE, N_SERIES_REAL), w%buf_iter(SERIES_BUFFER_SIZE))
+        allocate (w%buf(SERIES_BUFFER_SIZE, N_SERIES), stat=hdferr)
+        if (hdferr /= 0) call w%fail('cannot allocate the series buffer')
         call w%attr_str('status', 'incomplete')
         w%creating = .false.
     end subroutine writer_create
 
-    !> Add one series entry. Held in a fixed-size buffer and written SERIES_BUFFER_SIZE
+    !> Add one series entry: values(k) of the dataset fields_m's SERIES(k) (integer ones
+    !> hold whole numbers). Held in a fixed-size buffer and written SERIES_BUFFER_SIZE
     !> entries at a time: this is called every time step, so it must cost a few stores.
-    subroutine writer_append_series(w, t, energy, u_end, penetration, contact_stress, iterations)
+    subroutine writer_append_series(w, values)
         class(h5_writer_t), intent(inout) :: w
-        real(dp), intent(in) :: t
-        real(dp), intent(in) :: energy
-        real(dp), intent(in) :: u_end
-        real(dp), intent(in) :: penetration
-        real(dp), intent(in) :: contact_stress
-        integer, intent(in) :: iterations
-
-        integer :: i
+        real(dp), intent(in) :: values(N_SERIES)
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_series() on a closed writer')
-        i = w%n_buf + 1
-        w%buf_real(i, 1) = t
-        w%buf_real(i, 2) = energy
-        w%buf_real(i, 3) = u_end
-        w%buf_real(i, 4) = penetration
-        w%buf_real(i, 5) = contact_stress
-        w%buf_iter(i) = iterations
-        w%n_buf = i
-        if (i == SERIES_BUFFER_SIZE) call w%flush_series()
+        w%n_buf = w%n_buf + 1
+        w%buf(w%n_buf, :) = values
+        if (w%n_buf == SERIES_BUFFER_SIZE) call w%flush_series()
     end subroutine writer_append_series
 
-    !> Add one snapshot at time t; each field holds the s+1 nodal values, boundary zeros
-    !> included. Written to the file at once (one new row per dataset).
-    subroutine writer_append_snapshot(w, t, u, v, theta, P, q, eta)
+    !> Add one snapshot at time t: values(:, k) holds the nodal values (boundary zeros
+    !> included) of field OUTPUT_ORDER(k). Written to the file at once (one new row per dataset).
+    subroutine writer_append_snapshot(w, t, values)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: t
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: v(0:)
-        real(dp), intent(in) :: theta(0:)
-        real(dp), intent(in) :: P(0:)
-        real(dp), intent(in) :: q(0:)
-        real(dp), intent(in) :: eta(0:)
+        real(dp), intent(in) :: values(:, :)
 
         integer(hid_t) :: file_space, mem_space
         integer(hsize_t) :: row(2)
@@ -243,7 +222,7 @@ contains
         character(len=:), allocatable :: what
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_snapshot() on a closed writer')
-        if (any([size(u), size(v), size(theta), size(P), size(q), size(eta)] /= w%n_nodes)) &
+        if (any(shape(values) /= [w%n_nodes, N_OUTPUT_FIELDS])) &
             call w%fail('internal error: append_snapshot() given arrays whose size is not the number of mesh nodes')
 
         call w%select_append(w%snap_t_id, '/snapshots/t', [1_hsize_t], w%n_snap, file_space, mem_space)
@@ -253,29 +232,11 @@ contains
         call w%close_spaces('/snapshots/t', file_space, mem_space)
 
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
-        do k = 1, N_FIELDS
-            what = '/snapshots/'//trim(FIELD_NAMES(k))
+        do k = 1, N_OUTPUT_FIELDS
+            what = '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
             call w%select_append(w%snap_field_ids(k), what, row, w%n_snap, file_space, mem_space)
-            select case (k)
-            case (1)
-                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, u, row, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            case (2)
-                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, v, row, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            case (3)
-                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, theta, row, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            case (4)
-                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, P, row, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            case (5)
-                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, q, row, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            case default
-                call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, eta, row, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            end select
+            call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, values(:, k), row, hdferr, &
+                            mem_space_id=mem_space, file_space_id=file_space)
             call w%check(hdferr, 'h5dwrite_f '//what)
             call w%close_spaces(what, file_space, mem_space)
         end do
@@ -354,10 +315,11 @@ contains
 
     !> String root attribute, stored as a scalar variable-length UTF-8 string: h5py returns
     !> it as str (`f.attrs['status'] == 'complete'`), with no padding to strip.
-    subroutine writer_attr_str(w, name, value)
+    subroutine writer_attr_str(w, name, value, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         character(len=*), intent(in) :: value
+        integer(hid_t), intent(in), optional :: on   !< a dataset (default: the root group)
 
         integer(hid_t) :: type_id, space_id, attr_id
         integer :: hdferr, i
@@ -380,7 +342,7 @@ contains
         call w%check(hdferr, 'h5tset_cset_f for attribute '//name)
         call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
         call w%check(hdferr, 'h5screate_f for attribute '//name)
-        call w%new_attr(name, type_id, space_id, attr_id)
+        call w%new_attr(name, type_id, space_id, attr_id, on)
         call h5awrite_f(attr_id, type_id, buf_ptr, hdferr)
         call w%check(hdferr, 'h5awrite_f attribute '//name)
         call w%close_attr(name, space_id, attr_id)
@@ -492,27 +454,24 @@ contains
         call w%flush_series()
         call w%attr_str('status', status)
 
-        do k = 1, N_SERIES_REAL
-            call h5dclose_f(w%series_real_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES_REAL_NAMES(k)))
-            w%series_real_ids(k) = -1
+        do k = 1, N_SERIES
+            call h5dclose_f(w%series_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES(k)%name))
+            w%series_ids(k) = -1
         end do
-        call h5dclose_f(w%series_iter_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /series/iterations')
-        w%series_iter_id = -1
         call h5dclose_f(w%snap_t_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /snapshots/t')
         w%snap_t_id = -1
-        do k = 1, N_FIELDS
+        do k = 1, N_OUTPUT_FIELDS
             call h5dclose_f(w%snap_field_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(FIELD_NAMES(k)))
+            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
             w%snap_field_ids(k) = -1
         end do
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
         w%file_id = -1
         w%opened = .false.
-        deallocate (w%buf_real, w%buf_iter)
+        deallocate (w%buf)
 
         call rename_file(w%part_path, w%final_path, ok, message)
         ! the .part file is complete and valid here: keep it rather than lose the run
@@ -532,35 +491,13 @@ contains
         ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
         if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
         w%file_id = -1
-        w%series_real_ids = -1
-        w%series_iter_id = -1
+        w%series_ids = -1
         w%snap_t_id = -1
         w%snap_field_ids = -1
         w%n_buf = 0
-        if (allocated(w%buf_real)) deallocate (w%buf_real)
-        if (allocated(w%buf_iter)) deallocate (w%buf_iter)
+        if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)
     end subroutine writer_abandon
-
-    !> True between create() and finish() / abandon().
-    function writer_is_open(w) result(yes)
-        class(h5_writer_t), intent(in) :: w
-        logical :: yes
-
-        yes = w%opened
-    end function writer_is_open
-
-    !> The final file name `<prefix>.h5` ('' before create()).
-    function writer_file_name(w) result(path)
-        class(h5_writer_t), intent(in) :: w
-        character(len=:), allocatable :: path
-
-        if (allocated(w%final_path)) then
-            path = w%final_path
-        else
-            path = ''
-        end if
-    end function writer_file_name
 
     ! ---------------------------------------------------------------- private helpers
 
@@ -600,7 +537,7 @@ contains
         end if
     end subroutine writer_fail
 
-    !> Append the buffered series entries to the six /series datasets.
+    !> Append the buffered series entries to the /series datasets.
     subroutine writer_flush_series(w)
         class(h5_writer_t), intent(inout) :: w
 
@@ -611,20 +548,19 @@ contains
 
         if (w%n_buf == 0) return
         n = int(w%n_buf, hsize_t)
-        do k = 1, N_SERIES_REAL
-            what = '/series/'//trim(SERIES_REAL_NAMES(k))
-            call w%select_append(w%series_real_ids(k), what, n, w%n_series_written, file_space, mem_space)
-            call h5dwrite_f(w%series_real_ids(k), H5T_NATIVE_DOUBLE, w%buf_real(1:w%n_buf, k), n, hdferr, &
-                            mem_space_id=mem_space, file_space_id=file_space)
+        do k = 1, N_SERIES
+            what = '/series/'//trim(SERIES(k)%name)
+            call w%select_append(w%series_ids(k), what, n, w%n_series_written, file_space, mem_space)
+            if (SERIES(k)%is_integer) then
+                call h5dwrite_f(w%series_ids(k), H5T_NATIVE_INTEGER, nint(w%buf(1:w%n_buf, k)), n, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            else
+                call h5dwrite_f(w%series_ids(k), H5T_NATIVE_DOUBLE, w%buf(1:w%n_buf, k), n, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            end if
             call w%check(hdferr, 'h5dwrite_f '//what)
             call w%close_spaces(what, file_space, mem_space)
         end do
-        what = '/series/iterations'
-        call w%select_append(w%series_iter_id, what, n, w%n_series_written, file_space, mem_space)
-        call h5dwrite_f(w%series_iter_id, H5T_NATIVE_INTEGER, w%buf_iter(1:w%n_buf), n, hdferr, &
-                        mem_space_id=mem_space, file_space_id=file_space)
-        call w%check(hdferr, 'h5dwrite_f '//what)
-        call w%close_spaces(what, file_space, mem_space)
         w%n_series_written = w%n_series_written + n(1)
         w%n_buf = 0
     end subroutine writer_flush_series
@@ -694,6 +630,17 @@ contains
         call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
     end subroutine writer_select_append
 
+    !> The CF-style attributes of a dataset: long_name and units ('1': nondimensional).
+    subroutine writer_describe(w, dset_id, what, long_name, units)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: what, long_name, units
+
+        if (dset_id < 0) call w%fail('internal error: no dataset '//what)
+        call w%attr_str('long_name', trim(long_name), on=dset_id)
+        call w%attr_str('units', trim(units), on=dset_id)
+    end subroutine writer_describe
+
     subroutine writer_close_spaces(w, what, file_space, mem_space)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: what
@@ -710,25 +657,29 @@ contains
 
     !> Create root attribute `name`, deleting an older one first: HDF5 cannot re-create an
     !> attribute in place, and end-of-run values ('steps', 'wall_seconds') overwrite earlier ones.
-    subroutine writer_new_attr(w, name, file_type, space_id, attr_id)
+    subroutine writer_new_attr(w, name, file_type, space_id, attr_id, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         integer(hid_t), intent(in) :: file_type
         integer(hid_t), intent(in) :: space_id
         integer(hid_t), intent(out) :: attr_id
+        integer(hid_t), intent(in), optional :: on   !< object to attach it to (default: root)
 
         logical :: exists
         integer :: hdferr
+        integer(hid_t) :: obj_id
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
                                        "' written on a closed writer")
-        call h5aexists_f(w%file_id, name, exists, hdferr)
+        obj_id = w%file_id
+        if (present(on)) obj_id = on
+        call h5aexists_f(obj_id, name, exists, hdferr)
         call w%check(hdferr, 'h5aexists_f attribute '//name)
         if (exists) then
-            call h5adelete_f(w%file_id, name, hdferr)
+            call h5adelete_f(obj_id, name, hdferr)
             call w%check(hdferr, 'h5adelete_f attribute '//name)
         end if
-        call h5acreate_f(w%file_id, name, file_type, space_id, attr_id, hdferr)
+        call h5acreate_f(obj_id, name, file_type, space_id, attr_id, hdferr)
         call w%check(hdferr, 'h5acreate_f attribute '//name)
     end subroutine writer_new_attr
 

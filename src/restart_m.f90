@@ -2,8 +2,9 @@
 !>
 !> A checkpoint lives in the group /checkpoint of the output file, in one of two slots
 !> (slot0, slot1; /checkpoint/current says which is complete, see output_m): `state`
-!> (s+1, 6) with the columns u, q, theta, v, P, eta; `previous`, the same for the level
-!> before (BDF2 only); `counters`, the scalars the run needs to continue exactly (COUNTER_*). A restart
+!> (s+1, 1+N_FIELDS) with the columns of fields_m (F_U+1.., i.e. u, q, theta, v, P, eta);
+!> `previous`, the same for the level before (multistep schemes only); `counters`, the
+!> scalars the run needs to continue exactly (COUNTER_*). A restart
 !> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
 !> copies the series and snapshots up to it into the new file and continues the time loop
 !> from there, so the result is bit-for-bit that of an uninterrupted run.
@@ -12,7 +13,7 @@ module restart_m
     use config_m, only: config_t
     use errors_m, only: fatal, EXIT_INPUT
     use state_m, only: state_t
-    use scheme_m, only: N_FIELDS
+    use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
                          read_attr_str, dataset_exists
@@ -20,17 +21,19 @@ module restart_m
     implicit none
     private
     public :: N_COUNTERS, COUNTER_STEP, COUNTER_T, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, &
-              COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
+              COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_DT_LAST, COUNTER_T_ANCHOR, &
+              COUNTER_STEP_ANCHOR
     public :: pack_state, read_checkpoint, copy_history
 
     integer, parameter :: COUNTER_STEP = 1, COUNTER_T = 2, COUNTER_SOLVES = 3, COUNTER_CONTACT_STEPS = 4, &
-                          COUNTER_ENERGY = 5, COUNTER_LAW_ENERGY = 6, COUNTER_HAVE_LAW = 7, COUNTER_MAX_RISE = 8
-    integer, parameter :: N_COUNTERS = 8
+                          COUNTER_ENERGY = 5, COUNTER_LAW_ENERGY = 6, COUNTER_HAVE_LAW = 7, COUNTER_MAX_RISE = 8, &
+                          COUNTER_DT_LAST = 9, COUNTER_T_ANCHOR = 10, COUNTER_STEP_ANCHOR = 11
+    integer, parameter :: N_COUNTERS = 11
     character(len=*), parameter :: WHERE = 'time.restart_from'
 
 contains
 
-    !> (s+1, 6) array with the columns u, q, theta, v, P, eta (the layout of /checkpoint/state).
+    !> (s+1, 1+N_FIELDS) array with the columns u and fields_m's F_* (the layout of /checkpoint/state).
     pure function pack_state(u, w) result(packed)
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp) :: packed(size(u), 1 + N_FIELDS)
@@ -80,41 +83,60 @@ contains
         counters = values
         state%step = nint(counters(COUNTER_STEP))
         state%t = counters(COUNTER_T)
+        state%dt_last = counters(COUNTER_DT_LAST)
+        state%t_anchor = counters(COUNTER_T_ANCHOR)
+        state%step_anchor = nint(counters(COUNTER_STEP_ANCHOR))
     end subroutine read_checkpoint
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
-    !> (see rows_to_copy).
+    !> (see rows_to_copy): every dataset of fields_m's SERIES and FIELDS tables.
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
         real(dp), intent(in) :: t_checkpoint
-        real(dp), allocatable :: t(:), energy(:), u_end(:), pen(:), stress(:), snap_t(:)
-        real(dp), allocatable :: u(:, :), v(:, :), theta(:, :), p(:, :), q(:, :), eta(:, :)
-        integer, allocatable :: iterations(:)
+        real(dp), allocatable :: column(:), rows(:, :), snap_t(:), snap(:, :), snaps(:, :, :)
+        integer, allocatable :: whole(:)
         real(dp) :: t_last
-        integer :: k
+        integer :: k, n
 
         t_last = t_checkpoint * (1.0_dp + 1.0e-12_dp)
-        call read_real_1d(file, '/series/t', t)
-        call read_real_1d(file, '/series/energy', energy)
-        call read_real_1d(file, '/series/u_end', u_end)
-        call read_real_1d(file, '/series/penetration', pen)
-        call read_real_1d(file, '/series/contact_stress', stress)
-        call read_int_1d(file, '/series/iterations', iterations)
-        do k = 1, rows_to_copy(t, t_last)
-            call writer%append_series(t(k), energy(k), u_end(k), pen(k), stress(k), iterations(k))
+        call read_real_1d(file, '/series/'//trim(SERIES(S_T)%name), column)
+        n = rows_to_copy(column, t_last)
+        allocate (rows(n, N_SERIES))
+        do k = 1, N_SERIES
+            if (SERIES(k)%is_integer) then
+                call read_int_1d(file, '/series/'//trim(SERIES(k)%name), whole)
+                column = real(whole, dp)
+            else
+                call read_real_1d(file, '/series/'//trim(SERIES(k)%name), column)
+            end if
+            call require_rows(file, '/series/'//trim(SERIES(k)%name), size(column), n)
+            rows(:, k) = column(1:n)
+        end do
+        do k = 1, n
+            call writer%append_series(rows(k, :))
         end do
         call read_real_1d(file, '/snapshots/t', snap_t)
-        call read_real_2d(file, '/snapshots/u', u)
-        call read_real_2d(file, '/snapshots/v', v)
-        call read_real_2d(file, '/snapshots/theta', theta)
-        call read_real_2d(file, '/snapshots/P', p)
-        call read_real_2d(file, '/snapshots/q', q)
-        call read_real_2d(file, '/snapshots/eta', eta)
-        do k = 1, rows_to_copy(snap_t, t_last)
-            call writer%append_snapshot(snap_t(k), u(:, k), v(:, k), theta(:, k), p(:, k), q(:, k), eta(:, k))
+        n = rows_to_copy(snap_t, t_last)
+        do k = 1, N_OUTPUT_FIELDS
+            call read_real_2d(file, '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name), snap)
+            call require_rows(file, '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name), size(snap, 2), n)
+            if (.not. allocated(snaps)) allocate (snaps(size(snap, 1), N_OUTPUT_FIELDS, n))
+            snaps(:, k, :) = snap(:, 1:n)
+        end do
+        do k = 1, n
+            call writer%append_snapshot(snap_t(k), snaps(:, :, k))
         end do
     end subroutine copy_history
+
+    !> A dataset of the copied history has fewer rows than its time column: not a file this
+    !> version of rodcontact wrote.
+    subroutine require_rows(file, dset, have, need)
+        character(len=*), intent(in) :: file, dset
+        integer, intent(in) :: have, need
+
+        if (have < need) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//dset//' has fewer rows than its time column')
+    end subroutine require_rows
 
     !> How many leading rows to copy: times up to t_last and strictly increasing (a file left
     !> by a killed run can hold rows past its last flush whose values were never written).

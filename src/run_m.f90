@@ -5,51 +5,26 @@ module run_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use ieee_arithmetic, only: ieee_is_finite
-    use config_m, only: config_t
+    use config_m, only: config_t, number_of_steps
+    use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
     use errors_m, only: fatal, EXIT_NUMERIC
     use fe_m, only: mesh_nodes
-    use state_m, only: state_t, initial_state
+    use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, &
+                        N_OUTPUT_FIELDS, OUTPUT_ORDER
+    use state_m, only: state_t, initial_state, field_values, advance_time
     use stepper_m, only: stepper_t, step_result_t
-    use scheme_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
-    use energy_m, only: discrete_energy, bdf2_energy, penetration
+    use energy_m, only: energy_monitor_t
     use restart_m, only: N_COUNTERS, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, COUNTER_LAW_ENERGY, &
-                         COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_STEP, COUNTER_T, pack_state, read_checkpoint, &
-                         copy_history
+                         COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, &
+                         COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR, pack_state, read_checkpoint, copy_history
     use output_m, only: h5_writer_t
     use progress_m, only: progress_t
     use version_m, only: PROGRAM_VERSION
     implicit none
     private
-    public :: run_simulation, number_of_steps
-
-    !> The discrete energy of every level and the largest relative rise of the energy the
-    !> scheme's law is stated for (E^n for Euler, the G-energy for BDF2).
-    type :: energy_monitor_t
-        logical :: penalty = .true., bdf2 = .false.
-        real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
-        logical :: have_law = .false.
-        real(dp), allocatable :: u_work(:), w_work(:, :)
-    contains
-        procedure :: init => monitor_init
-        procedure :: resume => monitor_resume
-        procedure :: observe => monitor_observe
-    end type energy_monitor_t
+    public :: run_simulation
 
 contains
-
-    !> Number of time steps N: t_end/dt rounded to the nearest integer when t_end is a
-    !> multiple of dt to round-off, else rounded up; the run ends at t_N = N dt.
-    pure integer function number_of_steps(dt, t_end)
-        real(dp), intent(in) :: dt, t_end
-        real(dp) :: ratio
-
-        ratio = t_end / dt
-        if (abs(ratio - anint(ratio)) <= 1.0e-9_dp * ratio) then
-            number_of_steps = nint(ratio)
-        else
-            number_of_steps = ceiling(ratio)
-        end if
-    end function number_of_steps
 
     !> Run the validated configuration cfg and write <prefix>.h5. A numerical failure
     !> finishes the file with status 'failed: ...' and stops with EXIT_NUMERIC.
@@ -69,11 +44,19 @@ contains
         call system_clock(clock_start, clock_rate)
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
         call initial_state(cfg, state)
-        call monitor%init(cfg, state)
+        call stepper%init(cfg, result)
+        if (stepper%scheme%is_midpoint()) then
+            call monitor%init(cfg%model, stepper%law, stepper%scheme, state, law_model=stepper%step_model)
+        else
+            call monitor%init(cfg%model, stepper%law, stepper%scheme, state)
+        end if
         if (cfg%time%restart_from /= '') then
             ! everything the restart needs is read and checked before the new file exists
             call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters)
-            call monitor%resume(counters)
+            monitor%energy = counters(COUNTER_ENERGY)
+            monitor%law_energy = counters(COUNTER_LAW_ENERGY)
+            monitor%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
+            monitor%max_rise = counters(COUNTER_MAX_RISE)
         end if
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
         call record_inputs(writer, cfg)
@@ -83,13 +66,11 @@ contains
             call copy_history(writer, trim(cfg%time%restart_from), state%t)
             call writer%attr_int('restart_step', state%step)
         else
-            result%contact_force = 0.0_dp
-            if (monitor%penalty) result%contact_force = penetration(state%u, cfg%contact%g) / cfg%contact%eps
-            call write_series(writer, cfg, state, monitor%energy, result)
+            result%contact_force = stepper%law%force(state%u(state%s))
+            call write_series(writer, stepper, state, monitor%energy, result)
             call write_snapshot(writer, state)
         end if
 
-        call stepper%init(cfg, result)
         if (cfg%time%restart_from /= '') then
             stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
             stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
@@ -103,16 +84,16 @@ contains
             if (failure /= '') exit
             call stepper%advance(state, result)
             if (.not. result%ok) then
-                failure = step_failure(n, cfg%time%dt, trim(result%message))
+                failure = step_failure(n, advance_time(state, cfg%time%dt), trim(result%message))
                 exit
             end if
-            call monitor%observe(cfg, state)
+            call monitor%observe(state)
             if (.not. ieee_is_finite(monitor%energy)) then
-                failure = step_failure(n, cfg%time%dt, 'the discrete energy is not finite')
+                failure = step_failure(n, state%t, 'the discrete energy is not finite')
                 exit
             end if
             if (mod(n, cfg%output%series_every) == 0 .or. n == n_steps) &
-                call write_series(writer, cfg, state, monitor%energy, result)
+                call write_series(writer, stepper, state, monitor%energy, result)
             if (mod(n, cfg%output%snapshot_every) == 0 .or. n == n_steps) call write_snapshot(writer, state)
             last_written = n
             if (cfg%output%checkpoint_every > 0) then
@@ -124,7 +105,7 @@ contains
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
             mod(last_written, cfg%output%series_every) /= 0) then
             ! the last good step was skipped by series_every: keep it in the failed file
-            call write_series(writer, cfg, state, monitor%energy, result)
+            call write_series(writer, stepper, state, monitor%energy, result)
         end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
             mod(last_written, cfg%output%snapshot_every) /= 0) call write_snapshot(writer, state)
@@ -133,11 +114,7 @@ contains
         call writer%attr_real('t_final', state%t)
         call writer%attr_real('wall_seconds', seconds_since(clock_start, clock_rate))
         call writer%attr_real('energy_max_relative_rise', monitor%max_rise)
-        if (monitor%bdf2) then
-            call writer%attr_str('energy_law', 'BDF2 G-energy (E_lin(X^n) + E_lin(2X^n - X^{n-1}))/2 + penalty(u^n)')
-        else
-            call writer%attr_str('energy_law', 'E^n of Corollary 6.2')
-        end if
+        call writer%attr_str('energy_law', stepper%scheme%law())
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
@@ -150,70 +127,16 @@ contains
     end subroutine run_simulation
 
     !> 'step n (t = ...): reason' for the failure message and the status attribute.
-    function step_failure(n, dt, reason) result(text)
+    function step_failure(n, t, reason) result(text)
         integer, intent(in) :: n
-        real(dp), intent(in) :: dt
+        real(dp), intent(in) :: t
         character(len=*), intent(in) :: reason
         character(len=:), allocatable :: text
         character(len=40) :: buf
 
-        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', real(n, dp) * dt, ')'
+        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', t, ')'
         text = trim(buf)//': '//reason
     end function step_failure
-
-    !> The energy of the first level and the law it must obey from then on.
-    subroutine monitor_init(self, cfg, state)
-        class(energy_monitor_t), intent(inout) :: self
-        type(config_t), intent(in) :: cfg
-        type(state_t), intent(in) :: state
-
-        self%penalty = trim(cfg%contact%law) /= 'signorini'
-        self%bdf2 = trim(cfg%time%scheme) == 'bdf2'
-        self%energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, self%penalty)
-        self%law_energy = self%energy
-        self%have_law = .not. self%bdf2
-        self%max_rise = 0.0_dp
-        if (self%bdf2) allocate (self%u_work, mold=state%u)
-        if (self%bdf2) allocate (self%w_work, mold=state%w)
-    end subroutine monitor_init
-
-    !> Continue the bookkeeping of a checkpointed run.
-    subroutine monitor_resume(self, counters)
-        class(energy_monitor_t), intent(inout) :: self
-        real(dp), intent(in) :: counters(N_COUNTERS)
-
-        self%energy = counters(COUNTER_ENERGY)
-        self%law_energy = counters(COUNTER_LAW_ENERGY)
-        self%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
-        self%max_rise = counters(COUNTER_MAX_RISE)
-    end subroutine monitor_resume
-
-    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for
-    !> Euler, the G-energy of energy_m's bdf2_energy for BDF2 (defined once a previous level
-    !> exists, compared from the first BDF2 step on).
-    subroutine monitor_observe(self, cfg, state)
-        class(energy_monitor_t), intent(inout) :: self
-        type(config_t), intent(in) :: cfg
-        type(state_t), intent(in) :: state
-        real(dp) :: law_old, energy_lin
-        logical :: had_law
-
-        law_old = self%law_energy
-        had_law = self%have_law
-        ! E^n = E_lin(X^n) + the penalty term, the same operations as discrete_energy's
-        energy_lin = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, .false.)
-        self%energy = energy_lin
-        if (self%penalty) self%energy = self%energy + 0.5_dp / cfg%contact%eps * penetration(state%u, cfg%contact%g)**2
-        self%law_energy = self%energy
-        if (self%bdf2) then
-            self%have_law = allocated(state%u_prev)
-            if (self%have_law) call bdf2_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, &
-                                                state%u_prev, state%w_prev, self%u_work, self%w_work, &
-                                                self%penalty, self%law_energy, lin_now=energy_lin)
-        end if
-        if (had_law .and. self%have_law) &
-            self%max_rise = max(self%max_rise, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
-    end subroutine monitor_observe
 
     !> /checkpoint: the state, the level before (BDF2) and the counters to continue exactly.
     subroutine write_checkpoint(writer, state, stepper, monitor)
@@ -231,6 +154,9 @@ contains
         counters(COUNTER_LAW_ENERGY) = monitor%law_energy
         counters(COUNTER_HAVE_LAW) = merge(1.0_dp, 0.0_dp, monitor%have_law)
         counters(COUNTER_MAX_RISE) = monitor%max_rise
+        counters(COUNTER_DT_LAST) = state%dt_last
+        counters(COUNTER_T_ANCHOR) = state%t_anchor
+        counters(COUNTER_STEP_ANCHOR) = real(state%step_anchor, dp)
         if (allocated(state%u_prev)) then
             call writer%write_checkpoint(pack_state(state%u, state%w), counters, pack_state(state%u_prev, state%w_prev))
         else
@@ -238,73 +164,62 @@ contains
         end if
     end subroutine write_checkpoint
 
-    !> One series entry; the contact stress is sigma(1,t) = -lambda (normal compliance (3.4),
-    !> or the Signorini multiplier).
-    subroutine write_series(writer, cfg, state, energy, result)
+    !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
+    !> (normal compliance (3.4), or the Signorini multiplier).
+    subroutine write_series(writer, stepper, state, energy, result)
         type(h5_writer_t), intent(inout) :: writer
-        type(config_t), intent(in) :: cfg
+        type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
         real(dp), intent(in) :: energy
         type(step_result_t), intent(in) :: result
+        real(dp) :: values(N_SERIES)
 
-        call writer%append_series(state%t, energy, state%u(state%s), penetration(state%u, cfg%contact%g), &
-                                  -result%contact_force, result%iterations)
+        values(S_T) = state%t
+        values(S_ENERGY) = energy
+        values(S_U_END) = state%u(state%s)
+        values(S_PENETRATION) = stepper%law%penetration(state%u(state%s))
+        values(S_CONTACT_STRESS) = -result%contact_force
+        values(S_ITERATIONS) = real(result%iterations, dp)
+        call writer%append_series(values)
     end subroutine write_series
 
+    !> One snapshot: every field of fields_m's OUTPUT_ORDER.
     subroutine write_snapshot(writer, state)
         type(h5_writer_t), intent(inout) :: writer
         type(state_t), intent(in) :: state
+        real(dp) :: values(0:state%s, N_OUTPUT_FIELDS)
+        integer :: k
 
-        call writer%append_snapshot(state%t, state%u, state%w(:, F_V), state%w(:, F_THETA), &
-                                    state%w(:, F_P), state%w(:, F_Q), state%w(:, F_ETA))
+        do k = 1, N_OUTPUT_FIELDS
+            values(:, k) = field_values(state, OUTPUT_ORDER(k))
+        end do
+        call writer%append_snapshot(state%t, values)
     end subroutine write_snapshot
 
     !> Every input value as a root attribute named group.variable (SPEC section 4).
     subroutine record_inputs(writer, cfg)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
+        type(input_item_t), allocatable :: items(:)
+        integer :: k
 
-        associate (m => cfg%model)
-            call writer%attr_real('model.rho', m%rho)
-            call writer%attr_real('model.alpha', m%alpha)
-            call writer%attr_real('model.varpi', m%varpi)
-            call writer%attr_real('model.gamma1', m%gamma1)
-            call writer%attr_real('model.gamma2', m%gamma2)
-            call writer%attr_real('model.c', m%c)
-            call writer%attr_real('model.d', m%d)
-            call writer%attr_real('model.r', m%r)
-            call writer%attr_real('model.hbar', m%hbar)
-            call writer%attr_real('model.tau0', m%tau0)
-            call writer%attr_real('model.tau', m%tau)
-        end associate
-        call writer%attr_real('contact.g', cfg%contact%g)
-        call writer%attr_real('contact.eps', cfg%contact%eps)
-        call writer%attr_str('contact.law', trim(cfg%contact%law))
-        call writer%attr_int('mesh.n_elements', cfg%mesh%n_elements)
-        call writer%attr_real('time.dt', cfg%time%dt)
-        call writer%attr_real('time.t_end', cfg%time%t_end)
-        call writer%attr_str('time.scheme', trim(cfg%time%scheme))
-        call writer%attr_str('time.restart_from', trim(cfg%time%restart_from))
-        associate (i => cfg%initial)
-            call writer%attr_real_array('initial.u0_poly', i%u0_poly)
-            call writer%attr_real_array('initial.u1_poly', i%u1_poly)
-            call writer%attr_real_array('initial.theta0_poly', i%theta0_poly)
-            call writer%attr_real_array('initial.p0_poly', i%p0_poly)
-            call writer%attr_real_array('initial.q0_poly', i%q0_poly)
-            call writer%attr_real_array('initial.eta0_poly', i%eta0_poly)
-            call writer%attr_real_array('initial.theta0_step', i%theta0_step)
-            call writer%attr_real_array('initial.p0_step', i%p0_step)
-        end associate
-        call writer%attr_str('solver.method', trim(cfg%solver%method))
-        call writer%attr_real('solver.tol', cfg%solver%tol)
-        call writer%attr_int('solver.max_iter', cfg%solver%max_iter)
-        call writer%attr_str('output.prefix', trim(cfg%output%prefix))
-        call writer%attr_int('output.snapshot_every', cfg%output%snapshot_every)
-        call writer%attr_int('output.series_every', cfg%output%series_every)
-        call writer%attr_int('output.checkpoint_every', cfg%output%checkpoint_every)
-        call writer%attr_logical('output.quiet', cfg%output%quiet)
-        call writer%attr_str('input.source', trim(cfg%source))
-        call writer%attr_str('input.overrides', trim(cfg%overrides))
+        items = input_items(cfg)
+        do k = 1, size(items)
+            associate (item => items(k))
+                select case (item%kind)
+                case (KIND_REAL)
+                    call writer%attr_real(item%name, item%reals(1))
+                case (KIND_INTEGER)
+                    call writer%attr_int(item%name, item%int)
+                case (KIND_STRING)
+                    call writer%attr_str(item%name, item%text)
+                case (KIND_LOGICAL)
+                    call writer%attr_logical(item%name, item%flag)
+                case default   ! polynomial coefficients, (amplitude, x_end)
+                    call writer%attr_real_array(item%name, item%reals)
+                end select
+            end associate
+        end do
     end subroutine record_inputs
 
     real(dp) function seconds_since(clock_start, clock_rate)

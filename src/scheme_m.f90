@@ -24,20 +24,17 @@ module scheme_m
     use config_m, only: model_t
     use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled
     use banded_m, only: band_t
+    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, FIELD_NAMES
     public :: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
-    public :: element_block, is_dirichlet, band_width, assemble_matrix
+    public :: element_block, band_width, assemble_matrix, active_fields, slots_of
     public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields
 
-    !> Field order within a node. The coupling graph (q-theta, theta-v, theta-P, v-P, P-eta)
-    !> is a triangle theta-v-P with q and eta hanging off theta and P; the order q, theta, v,
-    !> P, eta puts every coupled pair at most 2 slots apart, so the interleaved system has
-    !> kl = ku = 5 + 2 = 7 (an arbitrary order needs up to 9).
-    integer, parameter :: N_FIELDS = 5
-    integer, parameter :: F_Q = 1, F_THETA = 2, F_V = 3, F_P = 4, F_ETA = 5
-    character(len=5), parameter :: FIELD_NAMES(N_FIELDS) = ['q    ', 'theta', 'v    ', 'P    ', 'eta  ']
+    ! Field order within a node (fields_m's F_*). The coupling graph (q-theta, theta-v,
+    ! theta-P, v-P, P-eta) is a triangle theta-v-P with q and eta hanging off theta and P;
+    ! the order q, theta, v, P, eta puts every coupled pair at most 2 slots apart, so the
+    ! interleaved system has kl = ku = 5 + 2 = 7 (an arbitrary order needs up to 9).
 
     !> Slot of each field within a node for the three systems (0: field not in the system).
     !> monolithic: all five fields; the paper's Section 7 splitting: a thermal block
@@ -95,16 +92,6 @@ contains
         end select
     end function element_block
 
-    !> Is (field, node) a Dirichlet value? v, q, eta vanish at x=0 (S_h); theta, P at x=1 (V_h).
-    pure logical function is_dirichlet(field, node, s)
-        integer, intent(in) :: field, node, s
-
-        select case (field)
-        case (F_V, F_Q, F_ETA); is_dirichlet = node == 0
-        case default; is_dirichlet = node == s
-        end select
-    end function is_dirichlet
-
     !> Half-bandwidth (kl = ku) of a system with the given slots: one node's worth of slots
     !> plus the largest slot distance between two coupled fields of the system.
     pure integer function band_width(slots)
@@ -120,15 +107,65 @@ contains
         end do
     end function band_width
 
-    !> Does equation `row` of (6.1) involve unknown `col`?
-    pure logical function couples(row, col)
+    !> Does equation `row` of (6.1) involve unknown `col` (for some coefficients, or for the
+    !> given model)?
+    pure logical function couples(row, col, model)
         integer, intent(in) :: row, col
-        type(model_t) :: unit_model
+        type(model_t), intent(in), optional :: model
+        type(model_t) :: m
 
-        unit_model = model_t(rho=1.0_dp, alpha=1.0_dp, varpi=1.0_dp, gamma1=1.0_dp, gamma2=1.0_dp, &
-                             c=1.0_dp, d=1.0_dp, r=1.0_dp, hbar=1.0_dp, tau0=1.0_dp, tau=1.0_dp)
-        couples = any(element_block(unit_model, 1.0_dp, 1.0_dp, row, col) /= 0.0_dp)
+        m = model_t(rho=1.0_dp, alpha=1.0_dp, varpi=1.0_dp, gamma1=1.0_dp, gamma2=1.0_dp, &
+                    c=1.0_dp, d=1.0_dp, r=1.0_dp, hbar=1.0_dp, tau0=1.0_dp, tau=1.0_dp)
+        if (present(model)) m = model
+        couples = any(element_block(m, 1.0_dp, 1.0_dp, row, col) /= 0.0_dp)
     end function couples
+
+    !> The fields that can be nonzero: v (moved by the initial velocity, the contact force and
+    !> every coupling) and every field coupled to it through the model's nonzero coefficients,
+    !> plus any group of fields not coupled to v whose initial data (has_data) are not all
+    !> zero. A group of fields with zero data and no coupling to the rest stays zero for all
+    !> time ((6.1) is linear in it and homogeneous), so it is left out of the system (e.g.
+    !> P and eta of a thermoelastic scene with gamma2 = d = 0 and P0 = eta0 = 0).
+    pure function active_fields(model, has_data) result(active)
+        type(model_t), intent(in) :: model
+        logical, intent(in) :: has_data(N_FIELDS)   !< nonzero initial data or sources
+        logical :: active(N_FIELDS)
+        logical :: linked(N_FIELDS, N_FIELDS)
+        integer :: f, g, k
+
+        do f = 1, N_FIELDS
+            do g = 1, N_FIELDS
+                linked(f, g) = f == g .or. couples(f, g, model) .or. couples(g, f, model)
+            end do
+        end do
+        ! transitive closure (Warshall): linked(f, g) iff f and g are in one group
+        do k = 1, N_FIELDS
+            do f = 1, N_FIELDS
+                do g = 1, N_FIELDS
+                    linked(f, g) = linked(f, g) .or. (linked(f, k) .and. linked(k, g))
+                end do
+            end do
+        end do
+        do f = 1, N_FIELDS
+            active(f) = linked(f, F_V) .or. any(linked(f, :) .and. has_data)
+        end do
+    end function active_fields
+
+    !> Slots of the monolithic system holding only the active fields, in the order of
+    !> MONOLITHIC_SLOTS (0: field left out).
+    pure function slots_of(active) result(slots)
+        logical, intent(in) :: active(N_FIELDS)
+        integer :: slots(N_FIELDS)
+        integer :: f, k
+
+        slots = 0
+        k = 0
+        do f = 1, N_FIELDS
+            if (.not. active(f)) cycle
+            k = k + 1
+            slots(f) = k
+        end do
+    end function slots_of
 
     !> Assemble the matrix of (6.1) restricted to the fields with slots(f) > 0, nodes
     !> interleaved: unknown (node i, field f) is row/column nf*i + slots(f), nf = count(slots>0).
@@ -170,37 +207,46 @@ contains
 
     !> Right-hand side of (6.1) from the previous time level (module header), field-major:
     !> b(:, f) is the right-hand side of the equation of field f. Dirichlet rows are zero.
-    !> The contact term is not included. No allocation: called every time step.
-    subroutine old_state_rhs(model, dt, u_old, w_old, b, work)
+    !> The contact term is not included. No allocation: called every time step. Fields with
+    !> active(f) = .false. (left out of the system, always zero) are skipped.
+    subroutine old_state_rhs(model, dt, u_old, w_old, b, work, active)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt
         real(dp), intent(in) :: u_old(0:)          !< u^{n-1}
         real(dp), intent(in) :: w_old(0:, :)       !< fields at t_{n-1}, w_old(:, f)
         real(dp), intent(out) :: b(0:, :)
         real(dp), intent(inout) :: work(0:)        !< scratch of size s+1
-        integer :: s
+        logical, intent(in) :: active(N_FIELDS)
+        integer :: s, f
         real(dp) :: h, me(2, 2), ke(2, 2)
 
         s = ubound(u_old, 1)
         h = 1.0_dp / real(s, dp)
         me = element_mass(h)
         ke = element_stiffness(h)
+        do f = 1, N_FIELDS
+            if (.not. active(f)) b(:, f) = 0.0_dp
+        end do
         ! (6.1)_1: rho Me v^{n-1} - dt alpha Ke u^{n-1}
         call apply_assembled(me, w_old(:, F_V), b(:, F_V))
         call apply_assembled(ke, u_old, work)
         b(:, F_V) = model%rho * b(:, F_V) - dt * model%alpha * work
-        ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})
-        work = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
-        call apply_assembled(me, work, b(:, F_THETA))
-        ! (6.1)_3: tau0 Me q^{n-1}
-        call apply_assembled(me, w_old(:, F_Q), b(:, F_Q))
-        b(:, F_Q) = model%tau0 * b(:, F_Q)
-        ! (6.1)_4: Me (d theta^{n-1} + r P^{n-1})
-        work = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
-        call apply_assembled(me, work, b(:, F_P))
-        ! (6.1)_5 times hbar: hbar tau Me eta^{n-1}
-        call apply_assembled(me, w_old(:, F_ETA), b(:, F_ETA))
-        b(:, F_ETA) = model%hbar * model%tau * b(:, F_ETA)
+        if (active(F_THETA)) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})
+            work = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
+            call apply_assembled(me, work, b(:, F_THETA))
+        end if
+        if (active(F_Q)) then       ! (6.1)_3: tau0 Me q^{n-1}
+            call apply_assembled(me, w_old(:, F_Q), b(:, F_Q))
+            b(:, F_Q) = model%tau0 * b(:, F_Q)
+        end if
+        if (active(F_P)) then       ! (6.1)_4: Me (d theta^{n-1} + r P^{n-1})
+            work = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
+            call apply_assembled(me, work, b(:, F_P))
+        end if
+        if (active(F_ETA)) then     ! (6.1)_5 times hbar: hbar tau Me eta^{n-1}
+            call apply_assembled(me, w_old(:, F_ETA), b(:, F_ETA))
+            b(:, F_ETA) = model%hbar * model%tau * b(:, F_ETA)
+        end if
         call zero_dirichlet_rows(b)
     end subroutine old_state_rhs
 

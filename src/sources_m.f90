@@ -14,7 +14,7 @@
 module sources_m
     use kinds_m, only: dp
     use config_m, only: model_t
-    use scheme_m, only: N_FIELDS, F_ETA, F_V, is_dirichlet
+    use fields_m, only: N_FIELDS, F_ETA, F_V, is_dirichlet
     implicit none
     private
     public :: source_t, add_source_terms

@@ -4,17 +4,23 @@ module state_m
     use config_m, only: config_t
     use fe_m, only: mesh_nodes
     use initial_data_m, only: profile
-    use scheme_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use errors_m, only: fatal, EXIT_NUMERIC
+    use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: state_t, initial_state
+    public :: state_t, initial_state, field_values, advance_time
 
     type :: state_t
         integer :: s = 0                !< number of elements
         integer :: step = 0             !< n, the time level
-        real(dp) :: t = 0.0_dp          !< t_n = n dt
+        real(dp) :: t = 0.0_dp          !< t_n
+        real(dp) :: dt_last = 0.0_dp    !< t_n - t_{n-1} (0 at t = 0)
+        !> t_n = t_anchor + (n - step_anchor) dt while the step size dt stays the same, so
+        !> that a constant-step run has t_n = n dt exactly (anchor 0, 0)
+        real(dp) :: t_anchor = 0.0_dp
+        integer :: step_anchor = 0
         real(dp), allocatable :: u(:)       !< u_h^n(x_i), i = 0..s
-        real(dp), allocatable :: w(:, :)    !< w(i, f): field f (scheme_m's F_*) at node i
+        real(dp), allocatable :: w(:, :)    !< w(i, f): field f (fields_m's F_*) at node i
         real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
                                                           !< only; allocated by the stepper)
     end type state_t
@@ -28,11 +34,13 @@ contains
         type(config_t), intent(in) :: cfg
         type(state_t), intent(out) :: state
         real(dp), allocatable :: x(:)
-        integer :: s, i, f
+        integer :: s, i, f, stat
+        character(len=256) :: message
 
         s = cfg%mesh%n_elements
         state%s = s
-        allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s))
+        allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s), stat=stat, errmsg=message)
+        if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate the state: '//trim(message))
         x = mesh_nodes(s)            ! x is allocated first so that it keeps the bounds 0:s
         do i = 0, s
             state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
@@ -48,5 +56,35 @@ contains
             if (is_dirichlet(f, s, s)) state%w(s, f) = 0.0_dp
         end do
     end subroutine initial_state
+
+    !> The nodal values of field f (fields_m's F_*, F_U the displacement).
+    pure function field_values(state, f) result(values)
+        type(state_t), intent(in) :: state
+        integer, intent(in) :: f
+        real(dp) :: values(0:state%s)
+
+        if (f == F_U) then
+            values = state%u
+        else
+            values = state%w(:, f)
+        end if
+    end function field_values
+
+    !> The time of the level after a step of size dt: t_anchor + (n + 1 - step_anchor) dt,
+    !> the anchor moved to the current level when the step size changes.
+    pure real(dp) function advance_time(state, dt) result(t_new)
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: dt
+        real(dp) :: t_anchor
+        integer :: step_anchor
+
+        t_anchor = state%t_anchor
+        step_anchor = state%step_anchor
+        if (state%step > 0 .and. dt /= state%dt_last) then
+            t_anchor = state%t
+            step_anchor = state%step
+        end if
+        t_new = t_anchor + real(state%step + 1 - step_anchor, dp) * dt
+    end function advance_time
 
 end module state_m

@@ -20,7 +20,7 @@
 module summary_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use kinds_m, only: dp
-    use config_m, only: format_real
+    use strings_m, only: format_real, doubled_quotes
     use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists
     implicit none
     private
@@ -217,18 +217,12 @@ contains
     pure function csv_field(text) result(field)
         character(len=*), intent(in) :: text
         character(len=:), allocatable :: field
-        integer :: j
 
         if (scan(text, ',"' // achar(10) // achar(13)) == 0) then
             field = text
-            return
+        else
+            field = doubled_quotes(text, '"')
         end if
-        field = '"'
-        do j = 1, len(text)
-            field = field // text(j:j)
-            if (text(j:j) == '"') field = field // '"'
-        end do
-        field = field // '"'
     end function csv_field
 
 end module summary_m

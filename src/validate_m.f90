@@ -6,9 +6,11 @@ module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
+    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
-                        format_real, int_str
+                        number_of_steps
+    use strings_m, only: format_real, int_str
     use initial_data_m, only: profile
     implicit none
     private
@@ -16,13 +18,12 @@ module validate_m
 
     real(dp), parameter :: GIB = 1024.0_dp**3
     !> Working memory per mesh node: ~60 reals of field and work arrays plus the band
-    !> storage of the monolithic matrix (22 rows for 5 interleaved fields).
-    real(dp), parameter :: REALS_PER_NODE = 60.0_dp + 22.0_dp * 5.0_dp
+    !> storage of the monolithic matrix, 2 kl + ku + 1 rows for N_FIELDS interleaved fields
+    !> with kl = ku = N_FIELDS + 2 (scheme_m's field order).
+    real(dp), parameter :: REALS_PER_NODE = 60.0_dp + real((3 * (N_FIELDS + 2) + 1) * N_FIELDS, dp)
     real(dp), parameter :: MEMORY_LIMIT = 8.0_dp * GIB        !< refuse meshes needing more
     real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
     real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
-    integer, parameter :: N_SNAPSHOT_FIELDS = 6               !< u, v, theta, P, q, eta
-    integer, parameter :: N_SERIES = 6                        !< t, energy, u_end, penetration, ...
     !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
     real(dp), parameter :: BOUNDARY_TOL = 1.0e-12_dp
     !> Every real input has magnitude at most MAX_MAGNITUDE, and the coefficients that
@@ -110,8 +111,8 @@ contains
         if (time%t_end / time%dt > real(huge(0), dp) - 1.0_dp) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
-        n_steps = real(ceiling(time%t_end / time%dt), dp)
-        call require_one_of(time%scheme, [character(len=5) :: 'euler', 'bdf2'], 'time.scheme')
+        n_steps = real(number_of_steps(time%dt, time%t_end), dp)
+        call require_one_of(time%scheme, [character(len=8) :: 'euler', 'bdf2', 'midpoint'], 'time.scheme')
     end subroutine validate_time
 
     !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
@@ -180,7 +181,7 @@ contains
         call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
         ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
-        snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
+        snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
         series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
         total = snapshot_bytes + series_bytes + 8.0_dp * nodes
         where = 'output.snapshot_every'

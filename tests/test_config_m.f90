@@ -5,8 +5,11 @@
 !> argv(1) = source dir, argv(2) = scratch dir.
 program test_config_m
     use kinds_m, only: dp
-    use config_m, only: config_t, material_t, model_t, nondim_t, read_config, nondim_groups, &
-                        model_from_material, format_real, MAX_POLY_DEGREE
+    use config_m, only: config_t, material_t, model_t, MAX_POLY_DEGREE, number_of_steps
+    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, input_items, KIND_REAL, KIND_COEFFS, KIND_PAIR
+    use config_reader_m, only: read_config
+    use material_m, only: nondim_t, nondim_groups, model_from_material
+    use strings_m, only: format_real
     use validate_m, only: validate_config
     use initial_data_m, only: profile
     use testing_m, only: check_close, check_true, test_summary
@@ -23,6 +26,8 @@ program test_config_m
     call test_material_file()
     call test_profile()
     call test_format_real()
+    call test_input_table()
+    call test_number_of_steps()
     call test_summary('test_config_m')
 
 contains
@@ -257,6 +262,53 @@ contains
         call check_true('format_real(123456)', format_real(123456.0_dp) == '123456', format_real(123456.0_dp))
         call check_true('format_real(2e10)', format_real(2.0e10_dp) == '2e10', format_real(2.0e10_dp))
     end subroutine test_format_real
+
+    !> INPUT_VARS and the components of config_t agree: every variable gives an item of its
+    !> kind with its value; the record of the inputs is every variable but &material's, then
+    !> input.source and input.overrides.
+    subroutine test_input_table()
+        type(config_t) :: cfg
+        type(input_item_t) :: item
+        type(input_item_t), allocatable :: items(:)
+        integer :: k
+
+        cfg%material%D = 1.5e-8_dp
+        cfg%initial%p0_step = [5.0_dp, 0.25_dp]
+        cfg%source = 'in.nml'
+        do k = 1, size(INPUT_VARS)
+            item = input_item(cfg, k)
+            call check_true('item ' // item%name // ' has the kind of its table entry', item%kind == INPUT_VARS(k)%kind)
+            if (item%kind == KIND_REAL) call check_true('item ' // item%name // ' holds one real', size(item%reals) == 1)
+            if (item%kind == KIND_COEFFS) call check_true('item ' // item%name // ' holds the coefficients', &
+                                                          size(item%reals) == MAX_POLY_DEGREE + 1)
+            if (item%kind == KIND_PAIR) call check_true('item ' // item%name // ' holds a pair', size(item%reals) == 2)
+        end do
+        item = input_item(cfg, findloc(INPUT_VARS%name, 'D', dim=1))
+        call check_true('item material.D', item%name == 'material.D')
+        call check_close('item material.D value', 1.5e-8_dp, item%reals(1), 0.0_dp)
+        items = input_items(cfg)
+        call check_true('input record: all but &material, plus 2', &
+                        size(items) == count(INPUT_VARS%group /= 'material') + 2)
+        call check_true('input record starts with model.rho', items(1)%name == 'model.rho')
+        call check_true('input record: contact.law', any([(items(k)%name == 'contact.law' .and. &
+                                                           items(k)%text == 'penalty', k = 1, size(items))]))
+        call check_true('input record: initial.p0_step', any([(items(k)%name == 'initial.p0_step', k = 1, size(items))]))
+        call check_true('input record: no material', .not. any([(items(k)%name(1:min(9, len(items(k)%name))) == &
+                                                                  'material.', k = 1, size(items))]))
+        call check_true('input record ends with input.source, input.overrides', &
+                        items(size(items) - 1)%name == 'input.source' .and. items(size(items) - 1)%text == 'in.nml' &
+                        .and. items(size(items))%name == 'input.overrides' .and. items(size(items))%text == '')
+    end subroutine test_input_table
+
+    !> The one rule for the number of steps: t_end/dt to the nearest integer when it is one
+    !> to round-off (0.07/0.01 is 7.000000000000001 in floating point), else rounded up.
+    subroutine test_number_of_steps()
+        call check_true('number_of_steps(1e-4, 1) = 10000', number_of_steps(1.0e-4_dp, 1.0_dp) == 10000)
+        call check_true('number_of_steps(0.01, 0.07) = 7', number_of_steps(0.01_dp, 0.07_dp) == 7)
+        call check_true('number_of_steps(0.1, 0.3) = 3', number_of_steps(0.1_dp, 0.3_dp) == 3)
+        call check_true('number_of_steps(0.3, 1) = 4', number_of_steps(0.3_dp, 1.0_dp) == 4)
+        call check_true('number_of_steps(1, 1) = 1', number_of_steps(1.0_dp, 1.0_dp) == 1)
+    end subroutine test_number_of_steps
 
     ! ---------------------------------------------------------------- helpers
 

@@ -9,6 +9,7 @@ program test_decay
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: discrete_energy
+    use contact_law_m, only: contact_law
     use shipped_inputs_m, only: load_input, command_arguments
     use testing_m, only: check_true, test_summary
     implicit none
@@ -38,7 +39,8 @@ program test_decay
         call initial_state(cfg, state)
         call stepper%init(cfg, result)
         t(1) = 0.0_dp
-        energy(1) = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w)
+        energy(1) = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                      state%u, state%w)
         do n = 1, n_steps
             call stepper%advance(state, result)
             if (.not. result%ok) then
@@ -48,7 +50,8 @@ program test_decay
             if (mod(n, SAMPLE_EVERY) == 0) then
                 i = n / SAMPLE_EVERY + 1
                 t(i) = state%t
-                energy(i) = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w)
+                energy(i) = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                      state%u, state%w)
             end if
         end do
         rate = -slope(t, log(energy), T_FIT_START)

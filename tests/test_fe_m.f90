@@ -3,7 +3,8 @@
 !> paper's Section 7: M (V_h mass), M~ (S_h mass), K, K^ and K~.
 program test_fe_m
     use kinds_m, only: dp
-    use fe_m, only: global_mass, global_stiffness, global_gradient, mesh_nodes, apply_assembled, element_mass
+    use fe_m, only: mesh_nodes, apply_assembled, element_mass
+    use fe_dense_m, only: global_mass, global_stiffness, global_gradient
     use quadrature_m, only: integrate_product
     use testing_m, only: check_close, test_summary
     implicit none

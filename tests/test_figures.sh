@@ -67,6 +67,12 @@ for n in 2 3 4 5 6 7; do
         fail "$pdf is not a PDF file"
     fi
 done
+for n in 2 3 5 6 7; do
+    png="$figs/fig${n}_surface.png" pdf="$figs/fig${n}_surface.pdf"
+    [[ -s "$png" && "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]] ||
+        fail "$png (surface form) missing or not a PNG"
+    [[ -s "$pdf" && "$(head -c 5 "$pdf")" == "%PDF-" ]] || fail "$pdf (surface form) missing or not a PDF"
+done
 ls "$figs"/*.tmp >/dev/null 2>&1 && fail "temporary files left in $figs: $(ls "$figs"/*.tmp)"
 
 # 2. a second call reuses every run
@@ -93,13 +99,16 @@ else
         grep -q "^| C$k | " "$doc" || fail "$doc: no table row for claim C$k"
     done
     grep -q '^Commit: ' "$doc" || fail "$doc: no 'Commit:' line"
+    grep -q '^## Accuracy of the fields' "$doc" || fail "$doc: no accuracy section (scripts/accuracy.sh --quick)"
+    grep -q '^## The claims at every resolution' "$doc" || fail "$doc: no table of the claims at every resolution"
+    grep -Eq '^\| exp2 \| 0\.25 \| [0-9.e-]+ % ' "$doc" || fail "$doc: no exact-solution error row for exp2 at t = 0.25"
     grep -q 'could not be measured' "$doc" && fail "$doc: a claim could not be measured: $(grep 'could not be measured' "$doc")"
     n_links=0
     while read -r link; do
         n_links=$((n_links + 1))
         [[ -s "$(dirname "$doc")/$link" ]] || fail "$doc links to $link, which does not exist"
     done < <(grep -o '](\([^)]*\)\.\(png\|pdf\))' "$doc" | sed -e 's/^](//' -e 's/)$//')
-    [[ $n_links -eq 12 ]] || fail "$doc: expected 12 links to figures (6 PNG, 6 PDF), found $n_links"
+    [[ $n_links -eq 22 ]] || fail "$doc: expected 22 links to figures (6 + 5 surface forms, PNG and PDF), found $n_links"
 fi
 
 # 4. the claims script fails when claims do not hold (the shortened runs never lose contact)

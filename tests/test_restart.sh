@@ -37,7 +37,7 @@ sys.exit(1 if bad else 0)
 PY
 }
 
-for scheme in euler bdf2; do
+for scheme in euler bdf2 midpoint; do
     make_input full_$scheme.nml full_$scheme 0.6 $scheme
     make_input half_$scheme.nml half_$scheme 0.3 $scheme
     make_input rest_$scheme.nml rest_$scheme 0.6 $scheme "restart_from='half_$scheme.h5'"

@@ -8,8 +8,9 @@ program test_scheme_m
     use kinds_m, only: dp
     use config_m, only: config_t, model_t
     use banded_m, only: band_t
-    use scheme_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, MONOLITHIC_SLOTS, FIELD_NAMES, &
-                        assemble_matrix, band_width, is_dirichlet, THERMAL_SLOTS, MECHANICAL_SLOTS
+    use band_reference_m, only: band_to_dense
+    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, FIELDS, is_dirichlet
+    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix, band_width, THERMAL_SLOTS, MECHANICAL_SLOTS
     use state_m, only: state_t
     use stepper_m, only: stepper_t, step_result_t
     use quadrature_m, only: integrate_product
@@ -131,7 +132,7 @@ contains
         u0 = 0.0_dp
         call reference_system(model, s, dt, u0, w0, ref, b)
         call assemble_matrix(model, s, dt, MONOLITHIC_SLOTS, band)
-        got = band%to_dense()
+        got = band_to_dense(band)
         do fr = 1, N_FIELDS
             do fc = 1, N_FIELDS
                 scale = 0.0_dp
@@ -149,7 +150,7 @@ contains
                         if (.not. (is_dirichlet(fr, i, s) .or. is_dirichlet(fc, j, s))) &
                             expected = expected * row_scale(model, dt, fr)
                         write (name, '(a,i0,a,es8.1,5a,i0,a,i0,a)') 'block s=', s, ' dt=', dt, ' (', &
-                            trim(FIELD_NAMES(fr)), ',', trim(FIELD_NAMES(fc)), ') entry (', i, ',', j, ')'
+                            trim(FIELDS(fr)%name), ',', trim(FIELDS(fc)%name), ') entry (', i, ',', j, ')'
                         call check_close(trim(name), expected, got(idx(i, fr), idx(j, fc)), 1e-13_dp * max(scale, 1e-300_dp))
                     end do
                 end do
@@ -230,7 +231,7 @@ contains
             do f = 1, N_FIELDS
                 do i = 0, s
                     write (name, '(4a,l1,a,i0,2a)') trim(cfg%solver%method), ' step vs dense, ', &
-                        'contact=', '', contact, ' node ', i, ' field ', trim(FIELD_NAMES(f))
+                        'contact=', '', contact, ' node ', i, ' field ', trim(FIELDS(f)%name)
                     call check_close(trim(name), x(idx(i, f)), st%w(i, f), 1e-9_dp * scale)
                 end do
             end do

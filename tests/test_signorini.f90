@@ -11,6 +11,7 @@ program test_signorini
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: discrete_energy
+    use contact_law_m, only: contact_law
     use shipped_inputs_m, only: load_input, command_arguments
     use testing_m, only: check_true, test_summary
     implicit none
@@ -70,26 +71,26 @@ contains
         type(step_result_t) :: result
         real(dp) :: energy, energy_old
         integer :: n, n_steps
-        logical :: penalty
 
         call load_input(source_dir, name, scratch_dir, cfg)
         cfg%mesh%n_elements = 100
         cfg%time%t_end = 0.6_dp
         cfg%contact%law = law
         cfg%contact%eps = eps
-        penalty = law == 'penalty'
         n_steps = nint(cfg%time%t_end / cfg%time%dt)
         allocate (u_end(n_steps))
         call initial_state(cfg, state)
         call stepper%init(cfg, result)
-        energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
+        energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                      state%u, state%w)
         max_rise = -huge(1.0_dp)
         n_contact = 0
         do n = 1, n_steps
             call stepper%advance(state, result)
             if (.not. result%ok) error stop 'test_signorini: a step failed'
             energy_old = energy
-            energy = discrete_energy(cfg%model, cfg%contact%eps, cfg%contact%g, state%u, state%w, penalty)
+            energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
+                                      state%u, state%w)
             max_rise = max(max_rise, (energy - energy_old) / energy_old)
             if (result%in_contact) n_contact = n_contact + 1
             u_end(n) = state%u(state%s)

@@ -48,8 +48,8 @@ do for [pr=0:1] {
         # the initial pulse (t = 0) does not set the y range: at t > 0 the fields are much
         # smaller in experiment 3, and would be flattened against the axis
         k0 = (real(word(times, 1)) == 0.0) ? 2 : 1
-        plot for [k=1:k0-1] datadir.'/'.run.'.'.set_.'.'.fld.'.dat' skip 1 using 1:k+1 with lines lw 1.6 lc rgb word(colours, k) noautoscale, \
-             for [k=k0:n] datadir.'/'.run.'.'.set_.'.'.fld.'.dat' skip 1 using 1:k+1 with lines lw 1.6 lc rgb word(colours, k)
+        plot for [k=1:k0-1] datadir.'/'.run.'.'.set_.'.'.fld.'.dat' skip 1 using 1:k+1 with lines lw 1.1 lc rgb word(colours, k) noautoscale, \
+             for [k=k0:n] datadir.'/'.run.'.'.set_.'.'.fld.'.dat' skip 1 using 1:k+1 with lines lw 1.1 lc rgb word(colours, k)
     }
     unset arrow
 }

@@ -6,7 +6,7 @@ module convergence_m
     use config_m, only: config_t
     use state_m, only: state_t
     use stepper_m, only: stepper_t, step_result_t
-    use scheme_m, only: N_FIELDS, is_dirichlet
+    use fields_m, only: N_FIELDS, is_dirichlet
     use mms_m, only: mms_t, U_FIELD, N_EXACT
     implicit none
     private

@@ -7,7 +7,7 @@ module mms_m
     use kinds_m, only: dp
     use config_m, only: model_t
     use sources_m, only: source_t
-    use scheme_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA
+    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA
     implicit none
     private
     public :: profile_t, mms_t, mms_no_contact, mms_contact, mms_linear_in_x, mms_linear_in_t

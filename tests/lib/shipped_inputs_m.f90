@@ -1,7 +1,8 @@
 !> The shipped experiments of SPEC section 5, loaded the way the program loads them
 !> (read_config + validate_config), with the output redirected into a test's scratch dir.
 module shipped_inputs_m
-    use config_m, only: config_t, read_config
+    use config_m, only: config_t
+    use config_reader_m, only: read_config
     use validate_m, only: validate_config
     implicit none
     private

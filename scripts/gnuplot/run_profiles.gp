@@ -1,0 +1,27 @@
+# Fields of one run as families of profiles x -> f(x, t) at the times of plotdata.py (at most
+# nine, coloured from dark blue (early) to dark red (late)), one panel per field, up to three
+# per row, and one key of the times. Called by scripts/plot.sh.
+# Expects: datadir, out, fmt, W, H (see common.gp), fig_title.
+load 'common.gp'
+pnc = (n_fields < 3) ? n_fields : 3
+pnr = int(ceil(n_fields/3.0))
+set multiplot
+st = failed ? sprintf('   [%s]', status) : ''
+eval figtitle(fig_title.st)
+key_plot = 'for [k=1:n_prof] NaN with lines lw 2.5 lc rgb word(prof_colours, k) title "t = ".word(prof_times, k)'
+key_y0 = 0.86; key_y1 = 0.935
+@keyrow
+unset label 1000
+py1 = 0.80; py0 = 0.10; pgy = 0.12
+px0 = 0.085; px1 = 0.985; pgx = 0.085
+set xlabel it('x')
+set xrange [0:1]
+set xtics 0.2
+do for [i=0:n_fields-1] {
+    pr = int(i/3); pc = i - 3*pr
+    @place
+    fld = word(fields, i + 1)
+    set ylabel field_label(word(symbols, i + 1))
+    plot for [k=1:n_prof] datadir.'/prof.'.fld.'.dat' skip 1 using 1:k+1 with lines lw 1.8 lc rgb word(prof_colours, k)
+}
+unset multiplot

@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# Draw any rodcontact output file: the fields as surfaces over (x, t) or as families of
+# profiles, or the time series (energy and its parts when present, u(1,t) with the obstacle
+# and the contact intervals). PNG and PDF. Works on complete, failed and interrupted runs
+# (a failed run is drawn up to its last good step, with its status in the title).
+#
+#   scripts/plot.sh RUN.h5 [--style surface|profiles|series] [--fields u,P,theta]
+#                          [--t-max T] [--out DIR]
+#
+#   --style    surface (default), profiles or series; 'all' draws the three
+#   --fields   comma-separated among u, v, theta, P, q, eta, sigma (default: u P theta q eta,
+#              and sigma when the file has /snapshots/sigma)
+#   --t-max    last time drawn in surfaces and profiles (default: the run's last snapshot)
+#   --out DIR  where to write <run>_<style>.png and .pdf (default: the directory of RUN.h5)
+#
+# Needs a Python with h5py (scripts/find_python.sh) and gnuplot with pngcairo and pdfcairo.
+# Exit status: 0 drawn; 1 a tool is missing or gnuplot failed; 2 usage error, or RUN.h5 is
+# not a rodcontact output file.
+
+set -euo pipefail
+
+scripts="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+say() { echo "plot: $*" >&2; }
+usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//' >&"${2:-2}"; exit "${1:-2}"; }
+
+run="" style=surface fields="" t_max="" out_dir=""
+while (($# > 0)); do
+    case "$1" in
+        --style | --fields | --t-max | --out)
+            (($# >= 2)) || { say "$1 needs a value"; usage; }
+            case "$1" in
+                --style) style="$2" ;;
+                --fields) fields="$2" ;;
+                --t-max) t_max="$2" ;;
+                --out) out_dir="$2" ;;
+            esac
+            shift ;;
+        -h | --help) usage 0 1 ;;
+        -*) say "unknown option '$1'"; usage ;;
+        *) [[ -z "$run" ]] || { say "one run file only (got '$run' and '$1')"; usage; }
+           run="$1" ;;
+    esac
+    shift
+done
+[[ -n "$run" ]] || { say "no run file given"; usage; }
+case "$style" in
+    surface | profiles | series) styles=("$style") ;;
+    all) styles=(surface profiles series) ;;
+    *) say "--style must be surface, profiles, series or all, got '$style'"; exit 2 ;;
+esac
+[[ -f "$run" ]] || { say "$run: no such file"; exit 2; }
+out_dir="${out_dir:-$(dirname "$run")}"
+name="$(basename "$run")"; name="${name%.part}"; name="${name%.h5}"
+for d in "$out_dir"; do
+    [[ "$d" != *"'"* && "$d" != *'"'* ]] || { say "directory names with quotes are not supported: $d"; exit 2; }
+done
+
+py="$("$scripts/find_python.sh")" || { say "no Python with h5py (Debian: python3-h5py)"; exit 1; }
+command -v gnuplot >/dev/null 2>&1 || { say "gnuplot not found (Debian: gnuplot-nox)"; exit 1; }
+mkdir -p "$out_dir"
+data="$(mktemp -d "${TMPDIR:-/tmp}/rodcontact-plot.XXXXXX")"
+trap 'rm -rf "$data"' EXIT
+opts=()
+[[ -n "$fields" ]] && opts+=(--fields "$fields")
+[[ -n "$t_max" ]] && opts+=(--t-max "$t_max")
+status=0
+"$py" "$scripts/plotdata.py" "$run" "$data" "${opts[@]}" || status=$?
+if ((status != 0)); then
+    ((status == 2)) && exit 2
+    say "reading $run failed"; exit 1
+fi
+title="$name"
+written=()
+for st in "${styles[@]}"; do
+    case "$st" in
+        surface) gp=run_surface.gp h=$(awk -F' = ' '$1 == "n_fields" { print ($2 > 3 ? 1000 : 560) }' "$data/params.gp") ;;
+        profiles) gp=run_profiles.gp h=$(awk -F' = ' '$1 == "n_fields" { print ($2 > 3 ? 1000 : 600) }' "$data/params.gp") ;;
+        series) gp=run_series.gp h=560 ;;
+    esac
+    for fmt in png pdf; do
+        target="$out_dir/${name}_$st.$fmt"
+        if ! (cd "$scripts/gnuplot" && gnuplot -e "datadir='$data'; out='$target.tmp'; fmt='$fmt'; W=1500; H=$h; fig_title='$title — $st'" "$gp") \
+                >"$data/gnuplot.log" 2>&1 || [[ ! -s "$target.tmp" ]]; then
+            say "gnuplot failed on $target:"; cat "$data/gnuplot.log" >&2
+            rm -f "$target.tmp"; exit 1
+        fi
+        [[ -s "$data/gnuplot.log" ]] && { say "gnuplot said on $target:"; cat "$data/gnuplot.log" >&2; }
+        mv "$target.tmp" "$target"
+        written+=("$target")
+    done
+done
+printf '%s\n' "${written[@]}"

@@ -1,0 +1,64 @@
+"""Regression references (tests/test_regression.sh): make a compact copy of a run file, or
+compare a run file with its reference.
+
+    regression.py store RUN.h5 REF.h5      # /mesh, /series, /snapshots and the status, gzip
+    regression.py compare RUN.h5 REF.h5    # exit 1 (with what differs) beyond the tolerances
+
+Tolerances: every value within RTOL * (largest |value| of that dataset in the reference) of
+the reference, integer datasets equal, same shapes, same status. A change meant to alter
+results regenerates the references (tests/test_regression.sh --update) and says why in the
+commit.
+"""
+import sys
+
+import h5py
+import numpy as np
+
+RTOL = 1e-10
+GROUPS = ("mesh", "series", "snapshots")
+
+
+def store(run, ref):
+    with h5py.File(run, "r") as src, h5py.File(ref, "w") as dst:
+        for group in GROUPS:
+            for name, dset in src[group].items():
+                if isinstance(dset, h5py.Dataset):
+                    dst.create_dataset(f"{group}/{name}", data=dset[()], compression="gzip", compression_opts=9)
+        dst.attrs["status"] = src.attrs["status"]
+
+
+def compare(run, ref):
+    problems = []
+    with h5py.File(run, "r") as got, h5py.File(ref, "r") as want:
+        if got.attrs["status"] != want.attrs["status"]:
+            problems.append(f"status {got.attrs['status']!r}, reference {want.attrs['status']!r}")
+        for group in GROUPS:
+            for name, dset in want[group].items():
+                path = f"{group}/{name}"
+                if path not in got:
+                    problems.append(f"/{path} missing")
+                    continue
+                a, b = got[path][()], dset[()]
+                if a.shape != b.shape:
+                    problems.append(f"/{path}: shape {a.shape}, reference {b.shape}")
+                    continue
+                if np.issubdtype(b.dtype, np.integer):
+                    if not np.array_equal(a, b):
+                        problems.append(f"/{path}: integers differ at {int(np.sum(a != b))} places")
+                    continue
+                scale = float(np.max(np.abs(b))) if b.size else 0.0
+                diff = float(np.max(np.abs(a - b))) if b.size else 0.0
+                if not diff <= RTOL * max(scale, np.finfo(float).tiny):
+                    problems.append(f"/{path}: max |got - reference| = {diff:.3e} > {RTOL:g} * {scale:.3e}")
+    for p in problems:
+        print(f"  {run}: {p}")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4 or sys.argv[1] not in ("store", "compare"):
+        sys.exit(__doc__)
+    if sys.argv[1] == "store":
+        store(sys.argv[2], sys.argv[3])
+        sys.exit(0)
+    sys.exit(compare(sys.argv[2], sys.argv[3]))

@@ -1,0 +1,146 @@
+!> The namelist reader: read_config reads the input text (namelist_text_m finds and splits
+!> its groups), then the --set overrides (overrides_m), each assignment by a namelist read
+!> of its own so that a bad value names its variable; the input variables and their kinds
+!> are those of input_vars_m. Only what the reader alone can know is checked here (text,
+!> syntax, names, types, &material); value ranges are checked by validate_m.
+module config_reader_m
+    use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
+    use errors_m, only: fatal, EXIT_INPUT
+    use config_m, only: config_t
+    use strings_m, only: lower, excerpt, quoted, identifier_at
+    use input_vars_m, only: read_namelist, var_kind, kind_description
+    use namelist_text_m, only: string_t, group_t, assignments_t, read_source, strip_comments, find_groups, &
+                               split_group, origin, assignment_lhs, assignment_value, piece
+    use overrides_m, only: override_t, parse_override, override_summary
+    use material_m, only: check_material, model_from_material, nondim_groups, echo_material
+    implicit none
+    private
+    public :: read_config
+
+    integer, parameter :: LEN_MSG = 512         !< iomsg buffers
+
+contains
+
+    !> Read the run configuration from `source` (a file path, or '-' for standard input)
+    !> into cfg: every group present overrides the defaults of its type. Then each of
+    !> `overrides` ('group.variable=value', as after --set on the command line) is applied
+    !> in turn, as if it were the only assignment of a group '&group ... /' read after the
+    !> text (so a group the text does not have is fine, and an override of one array
+    !> element keeps the others). Only what the reader alone can know is checked here
+    !> (text, syntax, names, types, &material); value ranges are checked by validate_m.
+    subroutine read_config(source, cfg, overrides)
+        character(len=*), intent(in) :: source
+        type(config_t), intent(out) :: cfg
+        character(len=*), intent(in), optional :: overrides(:)
+        type(string_t), allocatable :: lines(:)
+        type(group_t), allocatable :: groups(:)
+        type(override_t), allocatable :: sets(:)
+        type(string_t) :: set_line(1)
+        type(group_t) :: set_group
+        integer :: k, stat
+        character(len=LEN_MSG) :: msg
+        logical :: halt_on_overflow
+
+        ! A value like 1e400 reads as +Inf, which validation rejects with a message; a Debug
+        ! build's overflow trap must not turn that into a crash inside the namelist read.
+        call ieee_get_halting_mode(ieee_overflow, halt_on_overflow)
+        call ieee_set_halting_mode(ieee_overflow, .false.)
+        cfg%source = source
+        ! the overrides are checked first: a misspelt --set fails before stdin is read
+        if (present(overrides)) then
+            allocate (sets(size(overrides)), stat=stat, errmsg=msg)
+            if (stat /= 0) call fatal(EXIT_INPUT, 'command line', 'out of memory: ' // trim(msg))
+            do k = 1, size(overrides)
+                sets(k) = parse_override(overrides(k), sets(:k - 1))
+            end do
+            cfg%overrides = override_summary(overrides)
+        else
+            allocate (sets(0), stat=stat, errmsg=msg)
+            if (stat /= 0) call fatal(EXIT_INPUT, 'command line', 'out of memory: ' // trim(msg))
+        end if
+        call read_source(source, lines)
+        call strip_comments(lines)
+        call find_groups(lines, groups)
+        call check_model_material(groups, sets)
+        do k = 1, size(groups)
+            call read_group(lines, groups(k), cfg)
+        end do
+        do k = 1, size(sets)
+            ! '&group lhs = value /' on a line of its own, read like a group of the text
+            set_line(1)%s = '&' // sets(k)%group // ' ' // sets(k)%lhs // ' = ' // sets(k)%value // ' /'
+            set_group = group_t(name=sets(k)%group, first=[1, 1], body=[1, 2 + len(sets(k)%group)], &
+                                term=[1, len(set_line(1)%s)], last=[1, len(set_line(1)%s)], from_set=.true.)
+            call read_group(set_line, set_group, cfg)
+        end do
+        if (cfg%material%present) then
+            call check_material(cfg%material)
+            cfg%model = model_from_material(cfg%material)
+            call echo_material(cfg, nondim_groups(cfg%material))
+        end if
+        call ieee_set_halting_mode(ieee_overflow, halt_on_overflow)
+    end subroutine read_config
+
+    !> Read group `grp` of `lines` into its part of cfg, over the values already there: each
+    !> assignment alone (so that a bad value names its variable), then the whole group.
+    subroutine read_group(lines, grp, cfg)
+        type(string_t), intent(in) :: lines(:)
+        type(group_t), intent(in) :: grp
+        type(config_t), intent(inout) :: cfg
+        type(assignments_t) :: asg
+        character(len=LEN_MSG) :: msg
+        integer :: k, ios
+
+        call split_group(lines, grp, asg)
+        do k = 1, size(asg%eq) + 1
+            call read_namelist(cfg, trim(grp%name), piece(asg, k), ios, msg)
+            call check_read(ios, msg, asg, k)
+        end do
+        if (grp%name == 'material') cfg%material%present = .true.
+    end subroutine read_group
+
+    !> &material and &model together are ambiguous, whether from the text or from --set.
+    subroutine check_model_material(groups, sets)
+        type(group_t), intent(in) :: groups(:)
+        type(override_t), intent(in) :: sets(:)
+        character(len=:), allocatable :: where
+        logical :: has_model, has_material
+        integer :: k
+
+        has_model = any(groups%name == 'model')
+        has_material = any(groups%name == 'material')
+        where = 'material'
+        do k = 1, size(sets)
+            if (sets(k)%group == 'model' .or. sets(k)%group == 'material') then
+                if (sets(k)%group == 'model') has_model = .true.
+                if (sets(k)%group == 'material') has_material = .true.
+                if (where == 'material') where = '--set ' // sets(k)%group // '.' // lower(sets(k)%lhs)
+            end if
+        end do
+        if (has_model .and. has_material) &
+            call fatal(EXIT_INPUT, where, '&material and &model are both given, which is ambiguous: ' // &
+                       '&material computes the &model values by (2.10)-(2.11); give one of the two groups')
+    end subroutine check_model_material
+
+
+    !> After the namelist read of piece(asg, k): on failure, stop naming the variable, the
+    !> value given, what is allowed, and gfortran's message.
+    subroutine check_read(ios, msg, asg, k)
+        integer, intent(in) :: ios
+        character(len=*), intent(in) :: msg
+        type(assignments_t), intent(in) :: asg
+        integer, intent(in) :: k
+        character(len=:), allocatable :: lhs, name, value
+
+        if (ios == 0) return
+        if (k > size(asg%eq)) call fatal(EXIT_INPUT, origin(asg) // trim(asg%group), &
+                                         'cannot read &' // trim(asg%group) // ': ' // trim(msg))
+        lhs = assignment_lhs(asg, k)
+        name = identifier_at(lhs, 1)
+        value = assignment_value(asg, k)
+        if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
+        call fatal(EXIT_INPUT, origin(asg) // trim(asg%group) // '.' // lower(name), &
+                   'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(var_kind(asg%group, name)) // &
+                   ' (namelist read: ' // trim(msg) // ')')
+    end subroutine check_read
+
+end module config_reader_m

@@ -1,0 +1,76 @@
+!> The one description of the fields of (2.11)/(6.1) and of the /series datasets. State,
+!> scheme, energy, output, checkpoint/restart and validation iterate over these tables
+!> instead of naming the fields one by one (see docs/architecture.md, "Adding a field").
+!>
+!> Fields: the five unknowns of (6.1) at t_n, q, theta, v, P, eta (F_Q..F_ETA, in the order
+!> within a node of the interleaved system, chosen for the band width: scheme_m), and the
+!> displacement u (F_U = 0), which is not an unknown of (6.1): u^n = u^{n-1} + dt v^n.
+!> A state holds u(0:s) and w(0:s, 1:N_FIELDS); the checkpoint stores them as the columns
+!> F_U+1 .. N_FIELDS+1, i.e. u, q, theta, v, P, eta.
+module fields_m
+    implicit none
+    private
+    public :: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA
+    public :: field_t, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, is_dirichlet
+    public :: series_t, SERIES, N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS
+
+    integer, parameter :: N_FIELDS = 5
+    integer, parameter :: F_U = 0, F_Q = 1, F_THETA = 2, F_V = 3, F_P = 4, F_ETA = 5
+
+    !> What a field is. zero_at: the end where its space forces it to vanish (S_h: x = 0,
+    !> V_h: x = 1); energy: its term in E^n of Corollary 6.2.
+    type :: field_t
+        character(len=8) :: name
+        character(len=3) :: space        !< 'S_h' (zero at x = 0) or 'V_h' (zero at x = 1)
+        character(len=40) :: long_name
+        character(len=24) :: energy      !< the field's term in 2 E^n (integrand)
+        character(len=8) :: units        !< '1': nondimensional, scales of (2.10)
+    end type field_t
+
+    !> Indexed by F_*; names as in the output file (SPEC section 4).
+    type(field_t), parameter :: FIELDS(F_U:N_FIELDS) = [ &
+        field_t('u', 'S_h', 'displacement', 'alpha u_x^2', '1'), &
+        field_t('q', 'S_h', 'heat flux', 'tau0 q^2', '1'), &
+        field_t('theta', 'V_h', 'temperature', 'c theta^2 + 2 d P theta', '1'), &
+        field_t('v', 'S_h', 'velocity', 'rho v^2', '1'), &
+        field_t('P', 'V_h', 'chemical potential', 'r P^2', '1'), &
+        field_t('eta', 'S_h', 'diffusion flux', 'tau hbar eta^2', '1')]
+
+    !> The order of the fields in /snapshots (and of every reader): u, v, theta, P, q, eta.
+    integer, parameter :: N_OUTPUT_FIELDS = N_FIELDS + 1
+    integer, parameter :: OUTPUT_ORDER(N_OUTPUT_FIELDS) = [F_U, F_V, F_THETA, F_P, F_Q, F_ETA]
+
+    !> One /series dataset (SPEC section 4): one value per stored time level.
+    type :: series_t
+        character(len=16) :: name
+        character(len=48) :: long_name
+        logical :: is_integer            !< stored as int32 (else float64)
+        character(len=8) :: units        !< '1': nondimensional, scales of (2.10)
+    end type series_t
+
+    integer, parameter :: N_SERIES = 6
+    integer, parameter :: S_T = 1, S_ENERGY = 2, S_U_END = 3, S_PENETRATION = 4, S_CONTACT_STRESS = 5, &
+                          S_ITERATIONS = 6
+    type(series_t), parameter :: SERIES(N_SERIES) = [ &
+        series_t('t', 'time t_n', .false., '1'), &
+        series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1'), &
+        series_t('u_end', 'displacement of the free end u(1,t)', .false., '1'), &
+        series_t('penetration', 'penetration [u(1,t) - g]_+', .false., '1'), &
+        series_t('contact_stress', 'contact stress sigma(1,t)', .false., '1'), &
+        series_t('iterations', 'linear solves of the step', .true., '1')]
+
+contains
+
+    !> Is (field, node) a Dirichlet value on a mesh with nodes 0..s? S_h fields vanish at
+    !> x = 0, V_h fields at x = 1 (Section 6).
+    pure logical function is_dirichlet(field, node, s)
+        integer, intent(in) :: field, node, s
+
+        if (FIELDS(field)%space == 'S_h') then
+            is_dirichlet = node == 0
+        else
+            is_dirichlet = node == s
+        end if
+    end function is_dirichlet
+
+end module fields_m

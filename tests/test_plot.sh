@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# scripts/plot.sh draws any run file: a short complete run (every style, PNG and PDF), a
+# failed run (status 'failed: ...', exit 3 of rodcontact), a file with the optional
+# /snapshots/sigma and /series/energy_<part> datasets (added to a copy here, as a later
+# rodcontact will write them: sigma must be drawn by default, the parts read); and it must
+# refuse, with exit 2 and a message, an HDF5 file that is not a rodcontact output, a file
+# that is not HDF5, an unknown style and an absent field.
+#
+#   bash tests/test_plot.sh <path to rodcontact> <source dir> <scratch dir>
+# Exit status: 0 passed, 1 failed, 77 skipped (no gnuplot with cairo terminals or no h5py).
+set -u
+prog=${1:-} src=${2:-} scratch=${3:-}
+if [[ -z "$prog" || ! -x "$prog" || -z "$src" || -z "$scratch" ]]; then
+    echo "usage: bash test_plot.sh <rodcontact> <source dir> <scratch dir>"; exit 1
+fi
+command -v gnuplot >/dev/null 2>&1 || { echo "SKIP: gnuplot not found"; exit 77; }
+for term in pngcairo pdfcairo; do
+    gnuplot -e "set terminal $term" </dev/null >/dev/null 2>&1 || { echo "SKIP: no $term terminal"; exit 77; }
+done
+py=$("$src/scripts/find_python.sh" 2>/dev/null) || { echo "SKIP: no Python with h5py"; exit 77; }
+dir="$scratch/plot"
+rm -rf "$dir"; mkdir -p "$dir"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+is_png() { [[ -s "$1" && "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]]; }
+is_pdf() { [[ -s "$1" && "$(head -c 5 "$1")" == "%PDF-" ]]; }
+
+# 1. a short complete run (experiment 2, coarse) in every style
+"$py" "$src/scripts/nml_copy.py" "$src/input/exp2.nml" "$dir/run.nml" "output.prefix='$dir/run'" \
+    output.quiet=.true. mesh.n_elements=50 time.dt=1e-3 time.t_end=0.1 output.snapshot_every=5
+"$prog" "$dir/run.nml" >/dev/null 2>&1 || fail "the short run failed"
+if ! "$src/scripts/plot.sh" "$dir/run.h5" --style all --out "$dir/figs" >"$dir/plot.log" 2>&1; then
+    fail "plot.sh --style all on a complete run: $(cat "$dir/plot.log")"
+fi
+grep -q 'gnuplot said' "$dir/plot.log" && fail "gnuplot warnings: $(cat "$dir/plot.log")"
+for st in surface profiles series; do
+    is_png "$dir/figs/run_$st.png" || fail "run_$st.png missing or not a PNG"
+    is_pdf "$dir/figs/run_$st.pdf" || fail "run_$st.pdf missing or not a PDF"
+done
+"$src/scripts/plot.sh" "$dir/run.h5" --style profiles --fields u,v --out "$dir/figs2" >"$dir/p2.log" 2>&1 &&
+    is_png "$dir/figs2/run_profiles.png" || fail "plot.sh --fields u,v: $(cat "$dir/p2.log")"
+
+# 2. a failed run: the paper iteration stopped after 3 iterations at the first contact
+"$py" "$src/scripts/nml_copy.py" "$src/input/exp1.nml" "$dir/failed.nml" "output.prefix='$dir/failed'" \
+    output.quiet=.true. mesh.n_elements=50 time.dt=1e-3 time.t_end=0.3 "solver.method='paper'" \
+    solver.max_iter=3 output.snapshot_every=7
+"$prog" "$dir/failed.nml" >/dev/null 2>&1
+[[ $? -eq 3 ]] || fail "the run meant to fail did not exit 3"
+"$py" -c 'import sys, h5py; s = h5py.File(sys.argv[1], "r").attrs["status"]; s = s.decode() if isinstance(s, bytes) else s; sys.exit(0 if s.startswith("failed") else 1)' \
+    "$dir/failed.h5" || fail "failed.h5 has no status 'failed: ...'"
+if ! "$src/scripts/plot.sh" "$dir/failed.h5" --style all --out "$dir/figs" >"$dir/failed.log" 2>&1; then
+    fail "plot.sh on a failed run: $(cat "$dir/failed.log")"
+fi
+for st in surface profiles series; do is_png "$dir/figs/failed_$st.png" || fail "failed_$st.png missing"; done
+
+# 3. optional datasets: sigma and energy parts are drawn when present
+cp "$dir/run.h5" "$dir/extra.h5"
+"$py" - "$dir/extra.h5" <<'PY'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "r+") as f:
+    f["snapshots/sigma"] = 0.5 * f["snapshots/theta"][:] - 1.0
+    e = f["series/energy"][:]
+    f["series/energy_kinetic"] = 0.1 * e
+    f["series/energy_thermal"] = 0.6 * e
+PY
+data="$dir/extra-data"
+"$py" "$src/scripts/plotdata.py" "$dir/extra.h5" "$data" >"$dir/extra.log" 2>&1 || fail "plotdata.py on extra.h5: $(cat "$dir/extra.log")"
+grep -q '^fields = ".*sigma' "$data/params.gp" || fail "sigma not among the default fields: $(grep '^fields' "$data/params.gp")"
+grep -q '^n_parts = 2$' "$data/params.gp" || fail "energy parts not found: $(grep '^n_parts' "$data/params.gp")"
+"$src/scripts/plot.sh" "$dir/extra.h5" --style all --out "$dir/figs" >"$dir/extra2.log" 2>&1 ||
+    fail "plot.sh on a file with sigma and energy parts: $(cat "$dir/extra2.log")"
+grep -q 'gnuplot said' "$dir/extra2.log" && fail "gnuplot warnings: $(cat "$dir/extra2.log")"
+
+# 4. refusals: exit 2 with a message
+"$py" -c 'import sys, h5py; f = h5py.File(sys.argv[1], "w"); f["x"] = [1.0, 2.0]' "$dir/other.h5"
+printf 'not an hdf5 file\n' >"$dir/text.h5"
+check2() {   # check2 <what> <expected message pattern> <plot.sh args...>
+    local what=$1 pat=$2; shift 2
+    "$src/scripts/plot.sh" "$@" >"$dir/r.log" 2>&1
+    local st=$?
+    [[ $st -eq 2 ]] || fail "$what: expected exit 2, got $st ($(cat "$dir/r.log"))"
+    grep -Eq -- "$pat" "$dir/r.log" || fail "$what: message does not match '$pat': $(cat "$dir/r.log")"
+}
+check2 "an HDF5 file that is not rodcontact's" "not a rodcontact output file" "$dir/other.h5" --out "$dir/figs"
+check2 "a text file" "cannot open .* as HDF5" "$dir/text.h5" --out "$dir/figs"
+check2 "an unknown style" "--style must be" "$dir/run.h5" --style heatmap
+check2 "an absent field" "has no /snapshots/sigma" "$dir/run.h5" --fields u,sigma --out "$dir/figs"
+check2 "a missing file" "no such file" "$dir/nothing.h5"
+ls "$dir/figs"/other_* >/dev/null 2>&1 && fail "figures written for a non-rodcontact file"
+
+if ((failures > 0)); then echo "test_plot: $failures failure(s)"; exit 1; fi
+echo "test_plot: passed (complete, failed and extended run files drawn; bad files refused with exit 2)"
+exit 0

@@ -19,7 +19,7 @@ module input_vars_m
     public :: input_var_t, input_item_t, INPUT_VARS, GROUP_NAMES
     public :: KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL, KIND_COEFFS, KIND_PAIR
     public :: find_input, var_kind, input_item, input_items, read_namelist
-    public :: group_list, var_list, kind_description
+    public :: group_list, var_list, kind_description, changes_history
 
     !> Kinds of input variables (codes as in the reader's messages).
     character, parameter :: KIND_REAL = 'r'      !< a real number
@@ -128,6 +128,23 @@ contains
             if (INPUT_VARS(k)%group == group .and. lower(INPUT_VARS(k)%name) == lower(name)) find_input = k
         end do
     end function find_input
+
+    !> Whether input variable `var` changes the computed history, so that a restart must
+    !> keep it (SPEC section 3): every variable of the physics, contact, mesh, initial data,
+    !> solver and time-stepping groups, except the end time and the restart file itself.
+    !> &output (where and how often the history is written) may change.
+    elemental logical function changes_history(var)
+        type(input_var_t), intent(in) :: var
+
+        select case (var%group)
+        case ('model', 'material', 'contact', 'mesh', 'initial', 'solver')
+            changes_history = .true.
+        case ('time')
+            changes_history = var%name /= 't_end' .and. var%name /= 'restart_from'
+        case default
+            changes_history = .false.
+        end select
+    end function changes_history
 
     !> The kind of variable `name` (any case) of `group`; ' ' if there is no such variable.
     pure function var_kind(group, name) result(kind)

@@ -168,20 +168,22 @@ contains
         call access(copy, k, GET_ITEM, item)
     end function input_item
 
-    !> Everything the output file records of the input: every input variable except those of
-    !> &material (which the file records as the &model values computed from them), then
-    !> 'input.source' and 'input.overrides'.
+    !> Everything the output file records of the input: every input variable (those of
+    !> &material only when the group was given; the &model values are then the ones
+    !> computed from them), then 'input.source' and 'input.overrides'.
     function input_items(cfg) result(items)
         type(config_t), intent(in) :: cfg
         type(input_item_t), allocatable :: items(:)
         character(len=512) :: msg
         integer :: k, n, stat
+        logical :: recorded(size(INPUT_VARS))
 
-        allocate (items(count(INPUT_VARS%group /= 'material') + 2), stat=stat, errmsg=msg)
+        recorded = INPUT_VARS%group /= 'material' .or. cfg%material%present
+        allocate (items(count(recorded) + 2), stat=stat, errmsg=msg)
         if (stat /= 0) call fatal(EXIT_OUTPUT, 'input record', 'out of memory: ' // trim(msg))
         n = 0
         do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group == 'material') cycle
+            if (.not. recorded(k)) cycle
             n = n + 1
             items(n) = input_item(cfg, k)
         end do

@@ -19,7 +19,9 @@ module run_m
                          COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR, pack_state, read_checkpoint, copy_history
     use output_m, only: h5_writer_t
     use progress_m, only: progress_t
-    use version_m, only: PROGRAM_VERSION
+    use version_m, only: PROGRAM_VERSION, SOURCE_VERSION
+    use provenance_m, only: utc_now, host_name, command_line, hdf5_version, fortran_compiler
+    use material_m, only: nondim_t, nondim_groups, si_scale_t, si_scales
     implicit none
     private
     public :: run_simulation
@@ -61,6 +63,8 @@ contains
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
+        call record_provenance(writer)
+        if (cfg%material%present) call record_scales(writer, cfg)
         call writer%attr_int('steps_planned', n_steps)
         if (cfg%time%restart_from /= '') then
             call copy_history(writer, trim(cfg%time%restart_from), state%t)
@@ -221,6 +225,47 @@ contains
             end associate
         end do
     end subroutine record_inputs
+
+    !> Where the file came from (SPEC section 4): provenance_m's root attributes.
+    subroutine record_provenance(writer)
+        type(h5_writer_t), intent(inout) :: writer
+
+        call writer%attr_str('created', utc_now())
+        call writer%attr_str('source_version', SOURCE_VERSION)
+        call writer%attr_str('host', host_name())
+        call writer%attr_str('command_line', command_line())
+        call writer%attr_str('hdf5_version', hdf5_version())
+        call writer%attr_str('compiler_version', fortran_compiler())
+    end subroutine record_provenance
+
+    !> With &material: the groups of (2.10) (root attributes derived.*), each scale of the
+    !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units) and, on
+    !> every dataset measured in one, si_factor and si_units.
+    subroutine record_scales(writer, cfg)
+        type(h5_writer_t), intent(inout) :: writer
+        type(config_t), intent(in) :: cfg
+        type(nondim_t) :: nd
+        type(si_scale_t), allocatable :: scales(:)
+        integer :: k
+
+        nd = nondim_groups(cfg%material)
+        call writer%attr_real('derived.beta1', nd%beta1)
+        call writer%attr_real('derived.beta2', nd%beta2)
+        call writer%attr_real('derived.omega', nd%omega)
+        call writer%attr_real('derived.delta', nd%delta)
+        call writer%attr_real('derived.varsigma', nd%varsigma)
+        call writer%attr_real('derived.zeta', nd%zeta)
+        call writer%attr_real('derived.a_check', nd%a_check)
+        call writer%attr_real('derived.alpha1', nd%alpha1)
+        call writer%attr_real('derived.alpha2', nd%alpha2)
+        call writer%attr_real('derived.alpha3', nd%alpha3)
+        scales = si_scales(cfg%material)
+        do k = 1, size(scales)
+            call writer%attr_real('scale.'//trim(scales(k)%name), scales(k)%factor)
+            call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
+            call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
+        end do
+    end subroutine record_scales
 
     real(dp) function seconds_since(clock_start, clock_rate)
         integer(int64), intent(in) :: clock_start, clock_rate

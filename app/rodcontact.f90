@@ -157,7 +157,13 @@ contains
             '  written as <prefix>.h5.part and renamed when complete.', &
             'Parameter scans: scripts/scan.sh (docs/scans.md).', &
             '', &
-            'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure.'
+            'Stopping: SIGTERM, SIGINT (Ctrl-C) or SIGUSR1 (Slurm: --signal=USR1@<seconds>) ends a run', &
+            '  after the current step: it writes a checkpoint and leaves <prefix>.h5.part with status', &
+            "  'interrupted: <signal>'; continue it with --set time.restart_from=<prefix>.h5.part and", &
+            '  another output.prefix. A second signal of the same kind ends the program at once.', &
+            '', &
+            'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure,', &
+            '  5 stopped by a signal (checkpoint in <prefix>.h5.part).'
     end subroutine print_help
 
 end program rodcontact

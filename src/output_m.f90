@@ -371,9 +371,12 @@ contains
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
     !> `<prefix>.h5`, replacing an older file of that name.
-    subroutine writer_finish(w, status)
+    subroutine writer_finish(w, status, keep_part)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: status
+        !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
+        !> continued by restart_from), not renamed
+        logical, intent(in), optional :: keep_part
 
         integer :: hdferr, k
         logical :: ok
@@ -407,6 +410,9 @@ contains
         w%opened = .false.
         deallocate (w%buf)
 
+        if (present(keep_part)) then
+            if (keep_part) return
+        end if
         call rename_file(w%part_path, w%final_path, ok, message)
         ! the .part file is complete and valid here: keep it rather than lose the run
         if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &

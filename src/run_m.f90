@@ -7,7 +7,9 @@ module run_m
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, number_of_steps
     use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
-    use errors_m, only: fatal, EXIT_NUMERIC
+    use iso_fortran_env, only: error_unit
+    use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
+    use stop_signal_m, only: install_stop_handlers, stop_signal_name
     use fe_m, only: mesh_nodes
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, &
                         N_OUTPUT_FIELDS, OUTPUT_ORDER
@@ -42,6 +44,7 @@ contains
         integer(int64) :: clock_start, clock_rate
         real(dp) :: counters(N_COUNTERS)
         character(len=320) :: failure
+        character(len=:), allocatable :: interrupted
 
         call system_clock(clock_start, clock_rate)
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
@@ -83,9 +86,12 @@ contains
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
         first_step = state%step + 1
         last_written = 0
+        interrupted = ''
+        call install_stop_handlers()
         call progress%start(n_steps, cfg%output%quiet)
         do n = first_step, n_steps
             if (failure /= '') exit
+            if (interrupted /= '') exit
             call stepper%advance(state, result)
             if (.not. result%ok) then
                 failure = step_failure(n, advance_time(state, cfg%time%dt), trim(result%message))
@@ -104,8 +110,19 @@ contains
                 if (mod(n, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, monitor)
             end if
             call progress%update(n, state%t, result%in_contact)
+            ! a signal stops the run after this step, with a checkpoint of it (below)
+            if (n < n_steps) interrupted = stop_signal_name()
         end do
         call progress%finish()
+        if (interrupted /= '') then
+            ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
+            ! checkpoint, so the file must hold exactly those an uninterrupted run has
+            if (cfg%output%checkpoint_every == 0) then
+                call write_checkpoint(writer, state, stepper, monitor)
+            else if (mod(state%step, cfg%output%checkpoint_every) /= 0) then
+                call write_checkpoint(writer, state, stepper, monitor)
+            end if
+        end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
             mod(last_written, cfg%output%series_every) /= 0) then
             ! the last good step was skipped by series_every: keep it in the failed file
@@ -122,6 +139,14 @@ contains
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
+        if (interrupted /= '') then
+            call writer%finish('interrupted: '//interrupted, keep_part=.true.)
+            write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
+                trim(step_failure(state%step, state%t, 'checkpoint written'))//"; continue with "// &
+                "--set time.restart_from='"//trim(cfg%output%prefix)//".h5.part' and another output.prefix"
+            flush (error_unit)
+            stop EXIT_INTERRUPTED, quiet=.true.
+        end if
         if (failure /= '') then
             call writer%finish('failed: '//trim(failure))
             call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &

@@ -4,7 +4,7 @@
 !>   rodcontact < input.nml      namelist on standard input
 !>   rodcontact input.nml        namelist file as argument ('-' for standard input)
 !>   rodcontact input.nml --set group.variable=value ...   overrides after the file
-!>   rodcontact --summary file.h5 | --summary-header       one CSV row about a finished run
+!>   rodcontact --summary file.h5 ... | --summary-header   one CSV row per run
 !>   rodcontact --help | --version
 program rodcontact
     use iso_fortran_env, only: output_unit
@@ -12,21 +12,27 @@ program rodcontact
     use config_reader_m, only: read_config
     use validate_m, only: validate_config
     use run_m, only: run_simulation
-    use summary_m, only: summary_header, summary_row, summarise_file
-    use fsys_m, only: file_exists
+    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem
     use errors_m, only: fatal, EXIT_INPUT
     use version_m, only: PROGRAM_VERSION
     implicit none
     type(config_t) :: cfg
-    character(len=:), allocatable :: source, summary_file
-    integer, allocatable :: set_arg(:), set_skip(:)
+    character(len=:), allocatable :: source, file, problem
+    integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
     integer :: k, max_len
 
-    call parse_command_line(source, set_arg, set_skip, summary_file)
-    if (allocated(summary_file)) then
-        if (.not. file_exists(summary_file)) call fatal(EXIT_INPUT, 'command line', &
-            "--summary: no such file '" // summary_file // "'")
-        write (output_unit, '(a)') summary_row(summarise_file(summary_file))
+    call parse_command_line(source, set_arg, set_skip, summary_args)
+    if (size(summary_args) > 0) then
+        ! every file is checked before any row is written: a bad one is an input error
+        do k = 1, size(summary_args)
+            file = argument(summary_args(k))
+            problem = summary_problem(file)
+            if (problem /= '') call fatal(EXIT_INPUT, 'command line', "--summary: '" // file // "': " // &
+                problem // '; give rodcontact output files (<prefix>.h5 or <prefix>.h5.part)')
+        end do
+        do k = 1, size(summary_args)
+            write (output_unit, '(a)') summary_row(summarise_file(argument(summary_args(k))))
+        end do
         stop
     end if
     max_len = max_argument_length()
@@ -47,20 +53,20 @@ contains
 
     !> The input source ('-' = standard input), where the --set values are (argument
     !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
-    !> and the file of --summary (left unallocated without it). --help, --version and
-    !> --summary-header print and stop here.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_file)
+    !> and the arguments that are files of --summary (every argument after it; none without
+    !> it). --help, --version and --summary-header print and stop here.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_args)
         character(len=:), allocatable, intent(out) :: source
         integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
-        character(len=:), allocatable, intent(out) :: summary_file
+        integer, allocatable, intent(out) :: summary_args(:)
         character(len=:), allocatable :: arg
-        integer :: n_args, i
+        integer :: n_args, i, k
         logical :: source_given
 
         n_args = command_argument_count()
         source = '-'
         source_given = .false.
-        allocate (set_arg(0), set_skip(0))
+        allocate (set_arg(0), set_skip(0), summary_args(0))
         i = 1
         do while (i <= n_args)
             arg = argument(i)
@@ -76,9 +82,11 @@ contains
                 stop
             case ('--summary')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--summary needs a file: ' // &
-                                            'rodcontact --summary <prefix>.h5')
-                i = i + 1
-                summary_file = argument(i)
+                                            'rodcontact --summary <prefix>.h5 [more files ...]')
+                if (source_given .or. size(set_arg) > 0) call fatal(EXIT_INPUT, 'command line', &
+                    '--summary takes only HDF5 files, no input file and no --set')
+                summary_args = [(k, k = i + 1, n_args)]
+                exit
             case ('--set')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
                                             'group.variable=value, e.g. --set model.varpi=0.3')
@@ -106,8 +114,6 @@ contains
             end select
             i = i + 1
         end do
-        if (allocated(summary_file) .and. (source_given .or. size(set_arg) > 0)) &
-            call fatal(EXIT_INPUT, 'command line', '--summary takes only the HDF5 file, no input file and no --set')
     end subroutine parse_command_line
 
     function argument(i) result(arg)
@@ -143,8 +149,10 @@ contains
             '                               --set model.varpi=0.3 --set output.prefix=runs/a', &
             "                               --set initial.theta0_step=5,0.1 --set 'initial.p0_step(1)=5'", &
             '                             strings need no quotes; same checks and messages as the file', &
-            '  rodcontact --summary f.h5  one CSV row about a run: status, contact times, max penetration,', &
-            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds', &
+            '  rodcontact --summary f.h5 [g.h5 ...]', &
+            '                             one CSV row per run: status, contact times, max penetration,', &
+            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds;', &
+            '                             a missing, unreadable or non-rodcontact file exits 2', &
             '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &
             '  rodcontact --help          this text', &
             '  rodcontact --version       the program version', &

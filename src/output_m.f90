@@ -14,7 +14,6 @@
 !>
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
-    use iso_c_binding, only: c_ptr, c_char, c_loc, c_null_char
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file

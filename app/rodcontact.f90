@@ -4,7 +4,7 @@
 !>   rodcontact < input.nml      namelist on standard input
 !>   rodcontact input.nml        namelist file as argument ('-' for standard input)
 !>   rodcontact input.nml --set group.variable=value ...   overrides after the file
-!>   rodcontact --summary file.h5 | --summary-header       one CSV row about a finished run
+!>   rodcontact --summary file.h5 ... | --summary-header   one CSV row per run
 !>   rodcontact --check input.nml [--set ...]              read and validate only: exit 0 or 2
 !>   rodcontact --help | --version
 program rodcontact
@@ -13,22 +13,28 @@ program rodcontact
     use config_reader_m, only: read_config
     use validate_m, only: validate_config
     use run_m, only: run_simulation
-    use summary_m, only: summary_header, summary_row, summarise_file
-    use fsys_m, only: file_exists
+    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem
     use errors_m, only: fatal, EXIT_INPUT
     use version_m, only: PROGRAM_VERSION
     implicit none
     type(config_t) :: cfg
-    character(len=:), allocatable :: source, summary_file
-    integer, allocatable :: set_arg(:), set_skip(:)
+    character(len=:), allocatable :: source, file, problem
+    integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
     integer :: k, max_len
     logical :: check_only
 
-    call parse_command_line(source, set_arg, set_skip, summary_file, check_only)
-    if (allocated(summary_file)) then
-        if (.not. file_exists(summary_file)) call fatal(EXIT_INPUT, 'command line', &
-            "--summary: no such file '" // summary_file // "'")
-        write (output_unit, '(a)') summary_row(summarise_file(summary_file))
+    call parse_command_line(source, set_arg, set_skip, summary_args, check_only)
+    if (size(summary_args) > 0) then
+        ! every file is checked before any row is written: a bad one is an input error
+        do k = 1, size(summary_args)
+            file = argument(summary_args(k))
+            problem = summary_problem(file)
+            if (problem /= '') call fatal(EXIT_INPUT, 'command line', "--summary: '" // file // "': " // &
+                problem // '; give rodcontact output files (<prefix>.h5 or <prefix>.h5.part)')
+        end do
+        do k = 1, size(summary_args)
+            write (output_unit, '(a)') summary_row(summarise_file(argument(summary_args(k))))
+        end do
         stop
     end if
     max_len = max_argument_length()
@@ -51,22 +57,23 @@ contains
 
     !> The input source ('-' = standard input), where the --set values are (argument
     !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
-    !> the file of --summary (left unallocated without it) and whether --check was given.
-    !> --help, --version and --summary-header print and stop here.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_file, check_only)
+    !> and the arguments that are files of --summary (every argument after it; none without
+    !> it), and whether --check was given. --help, --version and --summary-header print and
+    !> stop here.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only)
         character(len=:), allocatable, intent(out) :: source
         integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
-        character(len=:), allocatable, intent(out) :: summary_file
+        integer, allocatable, intent(out) :: summary_args(:)
         logical, intent(out) :: check_only
         character(len=:), allocatable :: arg
-        integer :: n_args, i
+        integer :: n_args, i, k
         logical :: source_given
 
         n_args = command_argument_count()
         source = '-'
         source_given = .false.
         check_only = .false.
-        allocate (set_arg(0), set_skip(0))
+        allocate (set_arg(0), set_skip(0), summary_args(0))
         i = 1
         do while (i <= n_args)
             arg = argument(i)
@@ -82,9 +89,11 @@ contains
                 stop
             case ('--summary')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--summary needs a file: ' // &
-                                            'rodcontact --summary <prefix>.h5')
-                i = i + 1
-                summary_file = argument(i)
+                                            'rodcontact --summary <prefix>.h5 [more files ...]')
+                if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
+                    '--summary takes only HDF5 files, no input file, --set or --check')
+                summary_args = [(k, k = i + 1, n_args)]
+                exit
             case ('--check')
                 check_only = .true.
             case ('--set')
@@ -114,8 +123,6 @@ contains
             end select
             i = i + 1
         end do
-        if (allocated(summary_file) .and. (source_given .or. size(set_arg) > 0 .or. check_only)) &
-            call fatal(EXIT_INPUT, 'command line', '--summary takes only the HDF5 file, no input file, --set or --check')
     end subroutine parse_command_line
 
     function argument(i) result(arg)
@@ -154,8 +161,10 @@ contains
             '  rodcontact --check input.nml [--set ...]', &
             '                             the input checks of a run (not those of the output file or of', &
             '                             restart_from), no file written: exit 0, or 2 with the message', &
-            '  rodcontact --summary f.h5  one CSV row about a run: status, contact times, max penetration,', &
-            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds', &
+            '  rodcontact --summary f.h5 [g.h5 ...]', &
+            '                             one CSV row per run: status, contact times, max penetration,', &
+            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds;', &
+            '                             a missing, unreadable or non-rodcontact file exits 2', &
             '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &
             '  rodcontact --help          this text', &
             '  rodcontact --version       the program version', &
@@ -168,7 +177,13 @@ contains
             '  written as <prefix>.h5.part and renamed when complete.', &
             'Parameter scans: scripts/scan.sh (docs/scans.md).', &
             '', &
-            'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure.'
+            'Stopping: SIGTERM, SIGINT (Ctrl-C) or SIGUSR1 (Slurm: --signal=USR1@<seconds>) ends a run', &
+            '  after the current step: it writes a checkpoint and leaves <prefix>.h5.part with status', &
+            "  'interrupted: <signal>'; continue it with --set time.restart_from=<prefix>.h5.part and", &
+            '  another output.prefix. A second signal of the same kind ends the program at once.', &
+            '', &
+            'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure,', &
+            '  5 stopped by a signal (checkpoint in <prefix>.h5.part).'
     end subroutine print_help
 
 end program rodcontact

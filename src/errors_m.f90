@@ -3,13 +3,15 @@ module errors_m
     use iso_fortran_env, only: error_unit
     implicit none
     private
-    public :: EXIT_OK, EXIT_INPUT, EXIT_NUMERIC, EXIT_OUTPUT
+    public :: EXIT_OK, EXIT_INPUT, EXIT_NUMERIC, EXIT_OUTPUT, EXIT_INTERRUPTED
     public :: fatal
 
     integer, parameter :: EXIT_OK = 0       !< success
     integer, parameter :: EXIT_INPUT = 2    !< bad input: file, syntax, unknown variable, out-of-range value
     integer, parameter :: EXIT_NUMERIC = 3  !< numerical failure: non-finite value, solver failure, no convergence
     integer, parameter :: EXIT_OUTPUT = 4   !< output failure: cannot create or write the file
+    !> stopped by SIGTERM, SIGINT or SIGUSR1: checkpoint written, <prefix>.h5.part left to restart from
+    integer, parameter :: EXIT_INTERRUPTED = 5
 
 contains
 

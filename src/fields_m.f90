@@ -25,16 +25,17 @@ module fields_m
         character(len=40) :: long_name
         character(len=24) :: energy      !< the field's term in 2 E^n (integrand)
         character(len=8) :: units        !< '1': nondimensional, scales of (2.10)
+        character(len=24) :: scale       !< which scale of (2.10): root attribute scale.<scale> (&material)
     end type field_t
 
     !> Indexed by F_*; names as in the output file (SPEC section 4).
     type(field_t), parameter :: FIELDS(F_U:N_FIELDS) = [ &
-        field_t('u', 'S_h', 'displacement', 'alpha u_x^2', '1'), &
-        field_t('q', 'S_h', 'heat flux', 'tau0 q^2', '1'), &
-        field_t('theta', 'V_h', 'temperature', 'c theta^2 + 2 d P theta', '1'), &
-        field_t('v', 'S_h', 'velocity', 'rho v^2', '1'), &
-        field_t('P', 'V_h', 'chemical potential', 'r P^2', '1'), &
-        field_t('eta', 'S_h', 'diffusion flux', 'tau hbar eta^2', '1')]
+        field_t('u', 'S_h', 'displacement', 'alpha u_x^2', '1', 'displacement'), &
+        field_t('q', 'S_h', 'heat flux', 'tau0 q^2', '1', 'heat_flux'), &
+        field_t('theta', 'V_h', 'temperature', 'c theta^2 + 2 d P theta', '1', 'temperature'), &
+        field_t('v', 'S_h', 'velocity', 'rho v^2', '1', 'velocity'), &
+        field_t('P', 'V_h', 'chemical potential', 'r P^2', '1', 'chemical_potential'), &
+        field_t('eta', 'S_h', 'diffusion flux', 'tau hbar eta^2', '1', 'diffusion_flux')]
 
     !> The order of the fields in /snapshots (and of every reader): u, v, theta, P, q, eta.
     integer, parameter :: N_OUTPUT_FIELDS = N_FIELDS + 1
@@ -46,18 +47,19 @@ module fields_m
         character(len=48) :: long_name
         logical :: is_integer            !< stored as int32 (else float64)
         character(len=8) :: units        !< '1': nondimensional, scales of (2.10)
+        character(len=24) :: scale       !< as field_t's scale; '' when there is no physical scale
     end type series_t
 
     integer, parameter :: N_SERIES = 6
     integer, parameter :: S_T = 1, S_ENERGY = 2, S_U_END = 3, S_PENETRATION = 4, S_CONTACT_STRESS = 5, &
                           S_ITERATIONS = 6
     type(series_t), parameter :: SERIES(N_SERIES) = [ &
-        series_t('t', 'time t_n', .false., '1'), &
-        series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1'), &
-        series_t('u_end', 'displacement of the free end u(1,t)', .false., '1'), &
-        series_t('penetration', 'penetration [u(1,t) - g]_+', .false., '1'), &
-        series_t('contact_stress', 'contact stress sigma(1,t)', .false., '1'), &
-        series_t('iterations', 'linear solves of the step', .true., '1')]
+        series_t('t', 'time t_n', .false., '1', 'time'), &
+        series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1', ''), &
+        series_t('u_end', 'displacement of the free end u(1,t)', .false., '1', 'displacement'), &
+        series_t('penetration', 'penetration [u(1,t) - g]_+', .false., '1', 'displacement'), &
+        series_t('contact_stress', 'contact stress sigma(1,t)', .false., '1', 'stress'), &
+        series_t('iterations', 'linear solves of the step', .true., '1', '')]
 
 contains
 

@@ -10,7 +10,7 @@ module fsys_m
     implicit none
     private
     public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
-              parent_dir, create_empty_file
+              parent_dir, create_empty_file, same_file
 
     integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
     integer(c_int), parameter :: MODE_0755 = 493_c_int   !< octal 0755 = rwxr-xr-x
@@ -75,6 +75,12 @@ module fsys_m
             import :: c_ptr
             type(c_ptr) :: p
         end function c_errno_location
+
+        function c_same_file(a, b) bind(C, name='rc_same_file') result(same)   ! src/fsys_c.c
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: a(*), b(*)
+            integer(c_int) :: same
+        end function c_same_file
     end interface
 
 contains
@@ -158,6 +164,15 @@ contains
 
         yes = (c_access(trim(path)//c_null_char, F_OK) == 0)
     end function file_exists
+
+    !> True when paths a and b both exist and are the same file (same device and inode:
+    !> through relative paths, '..', symbolic and hard links alike).
+    function same_file(a, b) result(yes)
+        character(len=*), intent(in) :: a, b
+        logical :: yes
+
+        yes = (c_same_file(trim(a)//c_null_char, trim(b)//c_null_char) == 1)
+    end function same_file
 
     !> True when `path` names an existing directory ('<path>/.' resolves only through a
     !> directory, so this needs no struct stat, whose layout is platform-specific).

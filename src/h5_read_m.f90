@@ -10,7 +10,7 @@ module h5_read_m
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: file_exists
-    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
+    use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
                     h5sclose_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
                     h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, h5aread_f, &
@@ -23,7 +23,7 @@ module h5_read_m
     public :: h5_library_init
     public :: read_real_1d, read_real_2d, read_int_1d
     public :: read_attr_str, read_attr_real, read_attr_int, read_attr_real_1d
-    public :: dataset_exists, attr_exists
+    public :: dataset_exists, attr_exists, is_hdf5_file
 
     !> The HDF5 library is started once per process; this flag is the only module state.
     logical, save :: library_open = .false.
@@ -122,6 +122,20 @@ contains
         end if
         call close_dataset(file, dset, file_id, dset_id)
     end subroutine read_int_1d
+
+    !> True when `file` exists, can be read and is an HDF5 file (h5fis_hdf5_f): the test to
+    !> make before any other routine here, which stop with exit 4 on a file they cannot open.
+    function is_hdf5_file(file) result(yes)
+        character(len=*), intent(in) :: file
+        logical :: yes
+        integer :: hdferr
+
+        call h5_library_init()
+        yes = .false.
+        if (.not. file_exists(file)) return
+        call h5fis_hdf5_f(trim(file), yes, hdferr)
+        if (hdferr < 0) yes = .false.
+    end function is_hdf5_file
 
     !> True when `dset` exists in `file` and is a dataset (not a group).
     function dataset_exists(file, dset) result(yes)

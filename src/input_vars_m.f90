@@ -19,7 +19,7 @@ module input_vars_m
     public :: input_var_t, input_item_t, INPUT_VARS, GROUP_NAMES
     public :: KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL, KIND_COEFFS, KIND_PAIR
     public :: find_input, var_kind, input_item, input_items, read_namelist
-    public :: group_list, var_list, kind_description
+    public :: group_list, var_list, kind_description, changes_history
 
     !> Kinds of input variables (codes as in the reader's messages).
     character, parameter :: KIND_REAL = 'r'      !< a real number
@@ -129,6 +129,23 @@ contains
         end do
     end function find_input
 
+    !> Whether input variable `var` changes the computed history, so that a restart must
+    !> keep it (SPEC section 3): every variable of the physics, contact, mesh, initial data,
+    !> solver and time-stepping groups, except the end time and the restart file itself.
+    !> &output (where and how often the history is written) may change.
+    elemental logical function changes_history(var)
+        type(input_var_t), intent(in) :: var
+
+        select case (var%group)
+        case ('model', 'material', 'contact', 'mesh', 'initial', 'solver')
+            changes_history = .true.
+        case ('time')
+            changes_history = var%name /= 't_end' .and. var%name /= 'restart_from'
+        case default
+            changes_history = .false.
+        end select
+    end function changes_history
+
     !> The kind of variable `name` (any case) of `group`; ' ' if there is no such variable.
     pure function var_kind(group, name) result(kind)
         character(len=*), intent(in) :: group, name
@@ -151,20 +168,22 @@ contains
         call access(copy, k, GET_ITEM, item)
     end function input_item
 
-    !> Everything the output file records of the input: every input variable except those of
-    !> &material (which the file records as the &model values computed from them), then
-    !> 'input.source' and 'input.overrides'.
+    !> Everything the output file records of the input: every input variable (those of
+    !> &material only when the group was given; the &model values are then the ones
+    !> computed from them), then 'input.source' and 'input.overrides'.
     function input_items(cfg) result(items)
         type(config_t), intent(in) :: cfg
         type(input_item_t), allocatable :: items(:)
         character(len=512) :: msg
         integer :: k, n, stat
+        logical :: recorded(size(INPUT_VARS))
 
-        allocate (items(count(INPUT_VARS%group /= 'material') + 2), stat=stat, errmsg=msg)
+        recorded = INPUT_VARS%group /= 'material' .or. cfg%material%present
+        allocate (items(count(recorded) + 2), stat=stat, errmsg=msg)
         if (stat /= 0) call fatal(EXIT_OUTPUT, 'input record', 'out of memory: ' // trim(msg))
         n = 0
         do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group == 'material') cycle
+            if (.not. recorded(k)) cycle
             n = n + 1
             items(n) = input_item(cfg, k)
         end do

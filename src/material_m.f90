@@ -12,6 +12,7 @@ module material_m
     implicit none
     private
     public :: nondim_t, nondim_groups, model_from_material, check_material, echo_material
+    public :: si_scale_t, si_scales
 
     !> Nondimensional groups of (2.10) computed from &material.
     type :: nondim_t
@@ -27,7 +28,39 @@ module material_m
         real(dp) :: alpha3 = 0.0_dp     !< (lambda + 2 mu) varrho / beta2^2
     end type nondim_t
 
+    !> One scale of the nondimensional variables of (2.10): a quantity in SI units is
+    !> `factor` times its nondimensional value (x = ell x*, t = omega t*, ...).
+    type :: si_scale_t
+        character(len=24) :: name = ''    !< as fields_m's scale column
+        real(dp) :: factor = 0.0_dp
+        character(len=16) :: units = ''   !< SI units of factor
+    end type si_scale_t
+
 contains
+
+    !> The scales of (2.10) for &material `mat`: x* = x/ell, u* = delta u/ell, t* = t/omega,
+    !> theta = beta1 (T - T0)/((lambda + 2 mu) delta), P* = P/(beta2 delta),
+    !> sigma* = sigma/(lambda + 2 mu), q* = omega beta1 q/(rho0 cE delta ell (lambda + 2 mu)),
+    !> eta* = ell eta/(D beta2 delta); v = u_t takes the displacement over the time scale.
+    pure function si_scales(mat) result(scales)
+        type(material_t), intent(in) :: mat
+        type(si_scale_t) :: scales(9)
+        type(nondim_t) :: nd
+        real(dp) :: stiffness
+
+        nd = nondim_groups(mat)
+        stiffness = mat%lambda + 2.0_dp * mat%mu
+        scales(1) = si_scale_t('time', nd%omega, 's')
+        scales(2) = si_scale_t('position', mat%ell, 'm')
+        scales(3) = si_scale_t('displacement', mat%ell / nd%delta, 'm')
+        scales(4) = si_scale_t('velocity', mat%ell / (nd%delta * nd%omega), 'm/s')
+        scales(5) = si_scale_t('temperature', stiffness * nd%delta / nd%beta1, 'K')   ! of T - T0
+        scales(6) = si_scale_t('chemical_potential', nd%beta2 * nd%delta, 'J/kg')
+        scales(7) = si_scale_t('stress', stiffness, 'Pa')
+        scales(8) = si_scale_t('heat_flux', mat%rho0 * mat%cE * nd%delta * mat%ell * stiffness / (nd%omega * nd%beta1), &
+                               'W/m^2')
+        scales(9) = si_scale_t('diffusion_flux', mat%D * nd%beta2 * nd%delta / mat%ell, 'kg/(m^2 s)')
+    end function si_scales
 
     !> The nondimensional groups of (2.10) for the physical quantities `mat`.
     pure function nondim_groups(mat) result(nd)

@@ -14,22 +14,20 @@
 !>
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
-    use iso_c_binding, only: c_ptr, c_char, c_loc, c_null_char
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
     use h5_read_m, only: h5_library_init
-    use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES
-    use hdf5, only: hid_t, hsize_t, h5lexists_f, h5dopen_f, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
+    use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
+    use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
+    use hdf5, only: hid_t, hsize_t, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
                     h5pset_chunk_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, &
-                    H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, h5screate_f, &
-                    h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, H5S_SCALAR_F, &
-                    H5S_NULL_F, H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
-                    h5dwrite_f, h5dset_extent_f, h5dget_space_f, h5acreate_f, h5aclose_f, &
-                    h5awrite_f, h5aexists_f, h5adelete_f, h5tcopy_f, h5tclose_f, h5tset_cset_f, &
-                    H5T_STRING, H5T_CSET_UTF8_F, H5T_IEEE_F64LE, H5T_STD_I32LE, &
-                    H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
+                    H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
+                    h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
+                    H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
+                    h5dwrite_f, h5dset_extent_f, h5dget_space_f, &
+                    H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
     implicit none
     private
     public :: h5_writer_t
@@ -62,6 +60,8 @@ module output_m
         integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
         integer :: n_buf = 0                       !< series entries waiting in the buffer
         real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
+        character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
+        integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
@@ -71,6 +71,7 @@ module output_m
         procedure :: attr_str => writer_attr_str
         procedure :: attr_logical => writer_attr_logical
         procedure :: attr_real_array => writer_attr_real_array
+        procedure :: describe_si => writer_describe_si
         procedure :: flush => writer_flush
         procedure :: write_checkpoint => writer_write_checkpoint
         procedure :: finish => writer_finish
@@ -79,13 +80,45 @@ module output_m
         procedure, private :: put_real => writer_put_real
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
-        procedure, private :: new_attr => writer_new_attr
-        procedure, private :: close_attr => writer_close_attr
+        procedure, private :: attr_target => writer_attr_target
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: select_append => writer_select_append
         procedure, private :: close_spaces => writer_close_spaces
         procedure, private :: describe => writer_describe
     end type h5_writer_t
+
+    interface   ! the checkpoint writer (src/output_checkpoint_s.f90), dataset descriptions (src/output_describe_s.f90)
+        module subroutine writer_write_checkpoint(w, state, counters, previous)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: state(:, :)
+            real(dp), intent(in) :: counters(:)
+            real(dp), intent(in), optional :: previous(:, :)
+        end subroutine writer_write_checkpoint
+
+        module subroutine writer_put_real(w, name, values, shape2)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: name
+            real(dp), intent(in) :: values(*)
+            integer, intent(in) :: shape2(2)
+        end subroutine writer_put_real
+
+        module subroutine writer_describe(w, dset_id, what, long_name, units)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: what, long_name, units
+        end subroutine writer_describe
+
+        module subroutine writer_describe_si(w, scale, factor, si_units)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: scale, si_units
+            real(dp), intent(in) :: factor
+        end subroutine writer_describe_si
+
+        pure module function described(long_name, scale) result(text)
+            character(len=*), intent(in) :: long_name, scale
+            character(len=:), allocatable :: text
+        end function described
+    end interface
 
 contains
 
@@ -113,6 +146,7 @@ contains
         w%n_series_written = 0
         w%n_snap = 0
         w%n_buf = 0
+        w%logical_names = ''
 
         dir = parent_dir(prefix)
         if (len(dir) > 0) then
@@ -152,8 +186,8 @@ contains
         call w%check(hdferr, 'h5dcreate_f /mesh/x')
         call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, x, dims, hdferr)
         call w%check(hdferr, 'h5dwrite_f /mesh/x')
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /mesh/x')
+        w%mesh_x_id = dset_id   ! closed by finish(), after describe_si
+        call w%describe(dset_id, '/mesh/x', 'position x along the rod (nondimensional, scale: position)', '1')
         call h5sclose_f(space_id, hdferr)
         call w%check(hdferr, 'h5sclose_f /mesh/x')
         call h5gclose_f(group_id, hdferr)
@@ -167,7 +201,8 @@ contains
             call w%create_extendible(group_id, '/series/', trim(SERIES(k)%name), &
                                      merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
                                      dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_ids(k))
-            call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), SERIES(k)%long_name, SERIES(k)%units)
+            call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), &
+                            described(SERIES(k)%long_name, SERIES(k)%scale), SERIES(k)%units)
         end do
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /series')
@@ -178,13 +213,15 @@ contains
         chunk_rows = int(max(1, min(64, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes))), hsize_t)
         call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, [256_hsize_t], &
                                  w%snap_t_id)
-        call w%describe(w%snap_t_id, '/snapshots/t', SERIES(1)%long_name, SERIES(1)%units)
+        call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
+                        SERIES(S_T)%units)
         dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
         do k = 1, N_OUTPUT_FIELDS
             associate (field => FIELDS(OUTPUT_ORDER(k)))
                 call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
                                          dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k))
-                call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), field%long_name, field%units)
+                call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), &
+                                described(field%long_name, field%scale), field%units)
             end associate
         end do
         call h5gclose_f(group_id, hdferr)
@@ -243,48 +280,40 @@ contains
         w%n_snap = w%n_snap + 1
     end subroutine writer_append_snapshot
 
-    !> Scalar float64 root attribute; an existing attribute of that name is replaced.
-    subroutine writer_attr_real(w, name, value)
+    !> Scalar float64 attribute of the root group (or of dataset `on`); replaced if present.
+    subroutine writer_attr_real(w, name, value, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: value
+        integer(hid_t), intent(in), optional :: on
+        character(len=:), allocatable :: failed
 
-        integer(hid_t) :: space_id, attr_id
-        integer :: hdferr
-
-        call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
-        call w%check(hdferr, 'h5screate_f for attribute '//name)
-        call w%new_attr(name, H5T_IEEE_F64LE, space_id, attr_id)
-        call h5awrite_f(attr_id, H5T_NATIVE_DOUBLE, value, [1_hsize_t], hdferr)
-        call w%check(hdferr, 'h5awrite_f attribute '//name)
-        call w%close_attr(name, space_id, attr_id)
+        call put_attr_real(w%attr_target(name, on), name, value, failed)
+        if (failed /= '') call w%fail(failed//' failed')
     end subroutine writer_attr_real
 
-    !> Scalar int32 root attribute; an existing attribute of that name is replaced.
+    !> Scalar int32 root attribute; replaced if present.
     subroutine writer_attr_int(w, name, value)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         integer, intent(in) :: value
+        character(len=:), allocatable :: failed
 
-        integer(hid_t) :: space_id, attr_id
-        integer :: hdferr
-
-        call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
-        call w%check(hdferr, 'h5screate_f for attribute '//name)
-        call w%new_attr(name, H5T_STD_I32LE, space_id, attr_id)
-        call h5awrite_f(attr_id, H5T_NATIVE_INTEGER, value, [1_hsize_t], hdferr)
-        call w%check(hdferr, 'h5awrite_f attribute '//name)
-        call w%close_attr(name, space_id, attr_id)
+        call put_attr_int(w%attr_target(name), name, value, failed)
+        if (failed /= '') call w%fail(failed//' failed')
     end subroutine writer_attr_int
 
     !> Logical root attribute, stored as int32 1 (.true.) / 0 (.false.): numeric, so
-    !> scripts can test it directly (`if f.attrs['output.quiet']:`), unlike 'false' strings.
+    !> scripts can test it directly (`if f.attrs['output.quiet']:`), unlike 'false' strings,
+    !> which are true in Python. What makes it unambiguous: finish() lists every logical
+    !> attribute in the root attribute `logical_attributes` (docs/output.md).
     subroutine writer_attr_logical(w, name, value)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         logical, intent(in) :: value
 
         call w%attr_int(name, merge(1, 0, value))
+        if (index(' '//w%logical_names//' ', ' '//name//' ') == 0) w%logical_names = trim(adjustl(w%logical_names//' '//name))
     end subroutine writer_attr_logical
 
     !> Float64 array root attribute (e.g. polynomial coefficients); replaced if present.
@@ -293,138 +322,37 @@ contains
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: values(:)
+        character(len=:), allocatable :: failed
 
-        integer(hid_t) :: space_id, attr_id
-        integer(hsize_t) :: dims(1)
-        integer :: hdferr
-
-        dims = int(size(values), hsize_t)
-        if (size(values) > 0) then
-            call h5screate_simple_f(1, dims, space_id, hdferr)
-        else
-            call h5screate_f(H5S_NULL_F, space_id, hdferr)
-        end if
-        call w%check(hdferr, 'h5screate_f for attribute '//name)
-        call w%new_attr(name, H5T_IEEE_F64LE, space_id, attr_id)
-        if (size(values) > 0) then
-            call h5awrite_f(attr_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
-            call w%check(hdferr, 'h5awrite_f attribute '//name)
-        end if
-        call w%close_attr(name, space_id, attr_id)
+        call put_attr_real_array(w%attr_target(name), name, values, failed)
+        if (failed /= '') call w%fail(failed//' failed')
     end subroutine writer_attr_real_array
 
-    !> String root attribute, stored as a scalar variable-length UTF-8 string: h5py returns
-    !> it as str (`f.attrs['status'] == 'complete'`), with no padding to strip.
+    !> String attribute of the root group (or of dataset `on`), a variable-length UTF-8
+    !> string (h5py: str); replaced if present.
     subroutine writer_attr_str(w, name, value, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         character(len=*), intent(in) :: value
         integer(hid_t), intent(in), optional :: on   !< a dataset (default: the root group)
+        character(len=:), allocatable :: failed
 
-        integer(hid_t) :: type_id, space_id, attr_id
-        integer :: hdferr, i
-        character(kind=c_char), allocatable, target :: chars(:)
-        type(c_ptr), target :: str_ptr(1)
-        type(c_ptr) :: buf_ptr
-
-        ! a variable-length string is written as a pointer to a NUL-terminated C string
-        allocate (chars(len(value) + 1))
-        do i = 1, len(value)
-            chars(i) = value(i:i)
-        end do
-        chars(len(value) + 1) = c_null_char
-        str_ptr(1) = c_loc(chars)
-        buf_ptr = c_loc(str_ptr)
-
-        call h5tcopy_f(H5T_STRING, type_id, hdferr)
-        call w%check(hdferr, 'h5tcopy_f (string type) for attribute '//name)
-        call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
-        call w%check(hdferr, 'h5tset_cset_f for attribute '//name)
-        call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
-        call w%check(hdferr, 'h5screate_f for attribute '//name)
-        call w%new_attr(name, type_id, space_id, attr_id, on)
-        call h5awrite_f(attr_id, type_id, buf_ptr, hdferr)
-        call w%check(hdferr, 'h5awrite_f attribute '//name)
-        call w%close_attr(name, space_id, attr_id)
-        call h5tclose_f(type_id, hdferr)
-        call w%check(hdferr, 'h5tclose_f (string type) for attribute '//name)
+        call put_attr_str(w%attr_target(name, on), name, value, failed)
+        if (failed /= '') call w%fail(failed//' failed')
     end subroutine writer_attr_str
 
-    !> Write the restart data: state (s+1, 6) with columns u, q, theta, v, P, eta; counters
-    !> (a real vector, see restart_m); previous (s+1, 6), the level before, for multistep
-    !> schemes. Raw data reach the file as they are written, so a kill in the middle of a
-    !> checkpoint would leave a torn one; there are therefore two slots,
-    !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
-    !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
-    !> flushed). A run killed at any moment leaves the last complete checkpoint readable.
-    subroutine writer_write_checkpoint(w, state, counters, previous)
-        class(h5_writer_t), intent(inout) :: w
-        real(dp), intent(in) :: state(:, :)
-        real(dp), intent(in) :: counters(:)
-        real(dp), intent(in), optional :: previous(:, :)
-
-        integer(hid_t) :: group_id
-        logical :: exists
-        integer :: hdferr, k
-        character(len=*), parameter :: GROUPS(3) = [character(len=17) :: &
-            'checkpoint', 'checkpoint/slot0', 'checkpoint/slot1']
-        character(len=:), allocatable :: slot
-
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_checkpoint() on a closed writer')
-        do k = 1, size(GROUPS)
-            call h5lexists_f(w%file_id, trim(GROUPS(k)), exists, hdferr)
-            call w%check(hdferr, 'h5lexists_f /'//trim(GROUPS(k)))
-            if (exists) cycle
-            call h5gcreate_f(w%file_id, trim(GROUPS(k)), group_id, hdferr)
-            call w%check(hdferr, 'h5gcreate_f /'//trim(GROUPS(k)))
-            call h5gclose_f(group_id, hdferr)
-            call w%check(hdferr, 'h5gclose_f /'//trim(GROUPS(k)))
-        end do
-        w%checkpoint_slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
-        slot = '/checkpoint/slot0'
-        if (w%checkpoint_slot == 1) slot = '/checkpoint/slot1'
-        call w%put_real(slot//'/state', state, [size(state, 1), size(state, 2)])
-        call w%put_real(slot//'/counters', counters, [size(counters), 1])
-        if (present(previous)) call w%put_real(slot//'/previous', previous, [size(previous, 1), size(previous, 2)])
-        call w%flush()
-        call w%put_real('/checkpoint/current', [real(w%checkpoint_slot, dp)], [1, 1])
-        call w%flush()
-    end subroutine writer_write_checkpoint
-
-    !> Write a fixed-size real dataset (rank 1 when shape(2) == 1, else rank 2), creating it
-    !> on the first call.
-    subroutine writer_put_real(w, name, values, shape2)
+    !> The object an attribute goes on: dataset `on`, else the root group.
+    function writer_attr_target(w, name, on) result(obj_id)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
-        real(dp), intent(in) :: values(*)
-        integer, intent(in) :: shape2(2)
+        integer(hid_t), intent(in), optional :: on
+        integer(hid_t) :: obj_id
 
-        integer(hid_t) :: dset_id, space_id
-        integer(hsize_t) :: dims(2)
-        integer :: rank, hdferr
-        logical :: exists
-
-        dims = int(shape2, hsize_t)
-        rank = 2
-        if (shape2(2) == 1) rank = 1
-        call h5lexists_f(w%file_id, name, exists, hdferr)
-        call w%check(hdferr, 'h5lexists_f '//name)
-        if (exists) then
-            call h5dopen_f(w%file_id, name, dset_id, hdferr)
-            call w%check(hdferr, 'h5dopen_f '//name)
-        else
-            call h5screate_simple_f(rank, dims(1:rank), space_id, hdferr)
-            call w%check(hdferr, 'h5screate_simple_f '//name)
-            call h5dcreate_f(w%file_id, name, H5T_NATIVE_DOUBLE, space_id, dset_id, hdferr)
-            call w%check(hdferr, 'h5dcreate_f '//name)
-            call h5sclose_f(space_id, hdferr)
-            call w%check(hdferr, 'h5sclose_f '//name)
-        end if
-        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values(1:product(shape2)), dims(1:rank), hdferr)
-        call w%check(hdferr, 'h5dwrite_f '//name)
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f '//name)
-    end subroutine writer_put_real
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
+                                       "' written on a closed writer")
+        obj_id = w%file_id
+        if (present(on)) obj_id = on
+    end function writer_attr_target
 
     !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
     !> crash leaves everything appended so far readable in the .part file.
@@ -442,9 +370,12 @@ contains
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
     !> `<prefix>.h5`, replacing an older file of that name.
-    subroutine writer_finish(w, status)
+    subroutine writer_finish(w, status, keep_part)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: status
+        !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
+        !> continued by restart_from), not renamed
+        logical, intent(in), optional :: keep_part
 
         integer :: hdferr, k
         logical :: ok
@@ -453,6 +384,11 @@ contains
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: finish() on a closed writer')
         call w%flush_series()
         call w%attr_str('status', status)
+        call w%attr_str('logical_attributes', w%logical_names)
+
+        call h5dclose_f(w%mesh_x_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /mesh/x')
+        w%mesh_x_id = -1
 
         do k = 1, N_SERIES
             call h5dclose_f(w%series_ids(k), hdferr)
@@ -473,6 +409,9 @@ contains
         w%opened = .false.
         deallocate (w%buf)
 
+        if (present(keep_part)) then
+            if (keep_part) return
+        end if
         call rename_file(w%part_path, w%final_path, ok, message)
         ! the .part file is complete and valid here: keep it rather than lose the run
         if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
@@ -492,6 +431,7 @@ contains
         if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
         w%file_id = -1
         w%series_ids = -1
+        w%mesh_x_id = -1
         w%snap_t_id = -1
         w%snap_field_ids = -1
         w%n_buf = 0
@@ -630,17 +570,6 @@ contains
         call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
     end subroutine writer_select_append
 
-    !> The CF-style attributes of a dataset: long_name and units ('1': nondimensional).
-    subroutine writer_describe(w, dset_id, what, long_name, units)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id
-        character(len=*), intent(in) :: what, long_name, units
-
-        if (dset_id < 0) call w%fail('internal error: no dataset '//what)
-        call w%attr_str('long_name', trim(long_name), on=dset_id)
-        call w%attr_str('units', trim(units), on=dset_id)
-    end subroutine writer_describe
-
     subroutine writer_close_spaces(w, what, file_space, mem_space)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: what
@@ -654,47 +583,5 @@ contains
         call h5sclose_f(file_space, hdferr)
         call w%check(hdferr, 'h5sclose_f '//what)
     end subroutine writer_close_spaces
-
-    !> Create root attribute `name`, deleting an older one first: HDF5 cannot re-create an
-    !> attribute in place, and end-of-run values ('steps', 'wall_seconds') overwrite earlier ones.
-    subroutine writer_new_attr(w, name, file_type, space_id, attr_id, on)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        integer(hid_t), intent(in) :: file_type
-        integer(hid_t), intent(in) :: space_id
-        integer(hid_t), intent(out) :: attr_id
-        integer(hid_t), intent(in), optional :: on   !< object to attach it to (default: root)
-
-        logical :: exists
-        integer :: hdferr
-        integer(hid_t) :: obj_id
-
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
-                                       "' written on a closed writer")
-        obj_id = w%file_id
-        if (present(on)) obj_id = on
-        call h5aexists_f(obj_id, name, exists, hdferr)
-        call w%check(hdferr, 'h5aexists_f attribute '//name)
-        if (exists) then
-            call h5adelete_f(obj_id, name, hdferr)
-            call w%check(hdferr, 'h5adelete_f attribute '//name)
-        end if
-        call h5acreate_f(obj_id, name, file_type, space_id, attr_id, hdferr)
-        call w%check(hdferr, 'h5acreate_f attribute '//name)
-    end subroutine writer_new_attr
-
-    subroutine writer_close_attr(w, name, space_id, attr_id)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        integer(hid_t), intent(in) :: space_id
-        integer(hid_t), intent(in) :: attr_id
-
-        integer :: hdferr
-
-        call h5aclose_f(attr_id, hdferr)
-        call w%check(hdferr, 'h5aclose_f attribute '//name)
-        call h5sclose_f(space_id, hdferr)
-        call w%check(hdferr, 'h5sclose_f for attribute '//name)
-    end subroutine writer_close_attr
 
 end module output_m

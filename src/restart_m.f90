@@ -10,13 +10,16 @@
 !> from there, so the result is bit-for-bit that of an uninterrupted run.
 module restart_m
     use kinds_m, only: dp
-    use config_m, only: config_t
+    use config_m, only: config_t, number_of_steps
+    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, KIND_REAL, KIND_INTEGER, &
+                            KIND_STRING, KIND_LOGICAL
+    use strings_m, only: format_real, int_str
     use errors_m, only: fatal, EXIT_INPUT
     use state_m, only: state_t
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
-    use fsys_m, only: file_exists
+    use fsys_m, only: file_exists, same_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
-                         read_attr_str, dataset_exists
+                         read_attr_str, read_attr_real_1d, dataset_exists, attr_exists
     use output_m, only: h5_writer_t
     implicit none
     private
@@ -42,8 +45,10 @@ contains
         packed(:, 2:) = w
     end function pack_state
 
-    !> Read the checkpoint of `file` into state and counters. The run being restarted must
-    !> have the same mesh, time step, scheme, method and contact law as cfg.
+    !> Read the checkpoint of `file` into state and counters, after checking that this run
+    !> may continue it: `file` is not the file this run writes, every input that changes the
+    !> computed history equals the one recorded in `file`, and t_end is not before the
+    !> checkpoint. Any of these failing is an input error (exit 2) that leaves no output.
     subroutine read_checkpoint(file, cfg, state, counters)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
@@ -55,13 +60,10 @@ contains
 
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
+        call require_not_output(file, trim(cfg%output%prefix))
         if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
-        call require_same_int(file, 'mesh.n_elements', cfg%mesh%n_elements)
-        call require_same_real(file, 'time.dt', cfg%time%dt)
-        call require_same_str(file, 'time.scheme', trim(cfg%time%scheme))
-        call require_same_str(file, 'solver.method', trim(cfg%solver%method))
-        call require_same_str(file, 'contact.law', trim(cfg%contact%law))
+        call require_same_history_inputs(file, cfg)
         s = cfg%mesh%n_elements
         call read_real_1d(file, '/checkpoint/current', values)
         slot = '/checkpoint/slot0'
@@ -86,7 +88,96 @@ contains
         state%dt_last = counters(COUNTER_DT_LAST)
         state%t_anchor = counters(COUNTER_T_ANCHOR)
         state%step_anchor = nint(counters(COUNTER_STEP_ANCHOR))
+        if (number_of_steps(cfg%time%dt, cfg%time%t_end) < state%step) call fatal(EXIT_INPUT, 'time.t_end', &
+            'got '//format_real(cfg%time%t_end)//"; the checkpoint in '"//file//"' is at t = "// &
+            format_real(state%t)//' (step '//int_str(state%step)//'): a restart continues a run up to t_end, '// &
+            'so t_end must be >= '//format_real(state%t))
     end subroutine read_checkpoint
+
+    !> The file restarted from must not be one this run writes: <prefix>.h5.part is created
+    !> (truncated) at the start and renamed to <prefix>.h5 at the end, and either would
+    !> destroy the checkpoint (and the history up to it) being continued.
+    subroutine require_not_output(file, prefix)
+        character(len=*), intent(in) :: file, prefix
+        character(len=*), parameter :: SUFFIXES(2) = [character(len=8) :: '.h5', '.h5.part']
+        integer :: k
+
+        do k = 1, size(SUFFIXES)
+            if (same_file(file, prefix//trim(SUFFIXES(k)))) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+                "' is the file this run writes (output.prefix = '"//prefix//"' writes '"//prefix// &
+                ".h5.part', renamed to '"//prefix//".h5' at the end): it would overwrite the checkpoint it "// &
+                'restarts from; choose another output.prefix')
+        end do
+    end subroutine require_not_output
+
+    !> Every input variable that changes the computed history (input_vars_m's
+    !> changes_history) must have the value recorded in `file` as root attribute
+    !> group.variable; &material counts when either run has it.
+    subroutine require_same_history_inputs(file, cfg)
+        character(len=*), intent(in) :: file
+        type(config_t), intent(in) :: cfg
+        type(input_item_t) :: item
+        real(dp) :: x
+        real(dp), allocatable :: xs(:)
+        integer :: k, i
+        character(len=:), allocatable :: text
+        logical :: recorded
+
+        do k = 1, size(INPUT_VARS)
+            if (.not. changes_history(INPUT_VARS(k))) cycle
+            item = input_item(cfg, k)
+            recorded = attr_exists(file, item%name)
+            if (INPUT_VARS(k)%group == 'material') then
+                if (recorded .and. .not. cfg%material%present) &
+                    call refuse(file, item%name, 'given (&material)', 'not given (no &material)')
+                if (.not. recorded .and. cfg%material%present) &
+                    call refuse(file, item%name, 'not given (no &material)', 'given (&material)')
+                if (.not. recorded) cycle
+            end if
+            if (.not. recorded) call refuse(file, item%name, 'not recorded', 'a value')
+            select case (item%kind)
+            case (KIND_REAL)
+                call read_attr_real(file, item%name, x)
+                if (x /= item%reals(1)) call refuse(file, item%name, format_real(x), format_real(item%reals(1)))
+            case (KIND_INTEGER)
+                call read_attr_int(file, item%name, i)
+                if (i /= item%int) call refuse(file, item%name, int_str(i), int_str(item%int))
+            case (KIND_STRING)
+                call read_attr_str(file, item%name, text)
+                if (text /= item%text) call refuse(file, item%name, "'"//text//"'", "'"//item%text//"'")
+            case (KIND_LOGICAL)
+                call read_attr_int(file, item%name, i)
+                if ((i /= 0) .neqv. item%flag) call refuse(file, item%name, logical_str(i /= 0), logical_str(item%flag))
+            case default   ! polynomial coefficients, (amplitude, x_end)
+                call read_attr_real_1d(file, item%name, xs)
+                if (size(xs) /= size(item%reals)) then
+                    call refuse(file, item%name, real_list(xs), real_list(item%reals))
+                else if (any(xs /= item%reals)) then
+                    call refuse(file, item%name, real_list(xs), real_list(item%reals))
+                end if
+            end select
+        end do
+    end subroutine require_same_history_inputs
+
+    pure function logical_str(flag) result(text)
+        logical, intent(in) :: flag
+        character(len=:), allocatable :: text
+
+        text = trim(merge('.true. ', '.false.', flag))
+    end function logical_str
+
+    !> '0, 40, -80, 40, 0, ...' for messages.
+    pure function real_list(values) result(text)
+        real(dp), intent(in) :: values(:)
+        character(len=:), allocatable :: text
+        integer :: k
+
+        text = ''
+        do k = 1, size(values)
+            if (k > 1) text = text//', '
+            text = text//format_real(values(k))
+        end do
+    end function real_list
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
     !> (see rows_to_copy): every dataset of fields_m's SERIES and FIELDS tables.
@@ -154,44 +245,24 @@ contains
         end do
     end function rows_to_copy
 
-    subroutine require_same_int(file, name, expected)
-        character(len=*), intent(in) :: file, name
-        integer, intent(in) :: expected
-        integer :: value
-        character(len=32) :: was, now
-
-        call read_attr_int(file, name, value)
-        write (was, '(i0)') value
-        write (now, '(i0)') expected
-        if (value /= expected) call refuse(file, name, trim(was), trim(now))
-    end subroutine require_same_int
-
-    subroutine require_same_real(file, name, expected)
-        character(len=*), intent(in) :: file, name
-        real(dp), intent(in) :: expected
-        real(dp) :: value
-        character(len=32) :: was, now
-
-        call read_attr_real(file, name, value)
-        write (was, '(es12.5)') value
-        write (now, '(es12.5)') expected
-        if (value /= expected) call refuse(file, name, trim(adjustl(was)), trim(adjustl(now)))
-    end subroutine require_same_real
-
-    subroutine require_same_str(file, name, expected)
-        character(len=*), intent(in) :: file, name, expected
-        character(len=:), allocatable :: value
-
-        call read_attr_str(file, name, value)
-        if (value /= expected) call refuse(file, name, "'"//value//"'", "'"//expected//"'")
-    end subroutine require_same_str
-
-    !> The checkpointed run and this one differ in `name`: stop with an input error.
+    !> The checkpointed run and this one differ in input `name`: stop with an input error
+    !> that names both values and what a restart may change (from input_vars_m's table).
     subroutine refuse(file, name, was, now)
         character(len=*), intent(in) :: file, name, was, now
+        character(len=:), allocatable :: may_change
+        integer :: k
 
-        call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//' was '//was//', this run has '//now// &
-                   '; a restart must keep the mesh, dt, scheme, method and contact law')
+        may_change = ''
+        do k = 1, size(INPUT_VARS)
+            if (changes_history(INPUT_VARS(k))) cycle
+            if (INPUT_VARS(k)%name == 'restart_from') cycle
+            if (may_change /= '') may_change = may_change//', '
+            may_change = may_change//trim(INPUT_VARS(k)%group)//'.'//trim(INPUT_VARS(k)%name)
+        end do
+        call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//name//' was '//was//' in the run that wrote the checkpoint, '// &
+                   'this run has '//now//'; a restart must keep every input that changes the computed history '// &
+                   '(&model, &material, &contact, &mesh, &initial, &solver, &time except t_end); it may change '// &
+                   may_change)
     end subroutine refuse
 
 end module restart_m

@@ -7,7 +7,9 @@ module run_m
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, number_of_steps
     use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
-    use errors_m, only: fatal, EXIT_NUMERIC
+    use iso_fortran_env, only: error_unit
+    use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
+    use stop_signal_m, only: install_stop_handlers, stop_signal_name
     use fe_m, only: mesh_nodes
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, &
                         N_OUTPUT_FIELDS, OUTPUT_ORDER
@@ -19,7 +21,9 @@ module run_m
                          COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR, pack_state, read_checkpoint, copy_history
     use output_m, only: h5_writer_t
     use progress_m, only: progress_t
-    use version_m, only: PROGRAM_VERSION
+    use version_m, only: PROGRAM_VERSION, SOURCE_VERSION
+    use provenance_m, only: utc_now, host_name, command_line, hdf5_version, fortran_compiler
+    use material_m, only: nondim_t, nondim_groups, si_scale_t, si_scales
     implicit none
     private
     public :: run_simulation
@@ -40,6 +44,7 @@ contains
         integer(int64) :: clock_start, clock_rate
         real(dp) :: counters(N_COUNTERS)
         character(len=320) :: failure
+        character(len=:), allocatable :: interrupted
 
         call system_clock(clock_start, clock_rate)
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
@@ -61,6 +66,8 @@ contains
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
+        call record_provenance(writer)
+        if (cfg%material%present) call record_scales(writer, cfg)
         call writer%attr_int('steps_planned', n_steps)
         if (cfg%time%restart_from /= '') then
             call copy_history(writer, trim(cfg%time%restart_from), state%t)
@@ -79,9 +86,12 @@ contains
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
         first_step = state%step + 1
         last_written = 0
+        interrupted = ''
+        call install_stop_handlers()
         call progress%start(n_steps, cfg%output%quiet)
         do n = first_step, n_steps
             if (failure /= '') exit
+            if (interrupted /= '') exit
             call stepper%advance(state, result)
             if (.not. result%ok) then
                 failure = step_failure(n, advance_time(state, cfg%time%dt), trim(result%message))
@@ -100,8 +110,19 @@ contains
                 if (mod(n, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, monitor)
             end if
             call progress%update(n, state%t, result%in_contact)
+            ! a signal stops the run after this step, with a checkpoint of it (below)
+            if (n < n_steps) interrupted = stop_signal_name()
         end do
         call progress%finish()
+        if (interrupted /= '') then
+            ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
+            ! checkpoint, so the file must hold exactly those an uninterrupted run has
+            if (cfg%output%checkpoint_every == 0) then
+                call write_checkpoint(writer, state, stepper, monitor)
+            else if (mod(state%step, cfg%output%checkpoint_every) /= 0) then
+                call write_checkpoint(writer, state, stepper, monitor)
+            end if
+        end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
             mod(last_written, cfg%output%series_every) /= 0) then
             ! the last good step was skipped by series_every: keep it in the failed file
@@ -118,6 +139,14 @@ contains
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
+        if (interrupted /= '') then
+            call writer%finish('interrupted: '//interrupted, keep_part=.true.)
+            write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
+                trim(step_failure(state%step, state%t, 'checkpoint written'))//"; continue with "// &
+                "--set time.restart_from='"//trim(cfg%output%prefix)//".h5.part' and another output.prefix"
+            flush (error_unit)
+            stop EXIT_INTERRUPTED, quiet=.true.
+        end if
         if (failure /= '') then
             call writer%finish('failed: '//trim(failure))
             call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &
@@ -221,6 +250,47 @@ contains
             end associate
         end do
     end subroutine record_inputs
+
+    !> Where the file came from (SPEC section 4): provenance_m's root attributes.
+    subroutine record_provenance(writer)
+        type(h5_writer_t), intent(inout) :: writer
+
+        call writer%attr_str('created', utc_now())
+        call writer%attr_str('source_version', SOURCE_VERSION)
+        call writer%attr_str('host', host_name())
+        call writer%attr_str('command_line', command_line())
+        call writer%attr_str('hdf5_version', hdf5_version())
+        call writer%attr_str('compiler_version', fortran_compiler())
+    end subroutine record_provenance
+
+    !> With &material: the groups of (2.10) (root attributes derived.*), each scale of the
+    !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units) and, on
+    !> every dataset measured in one, si_factor and si_units.
+    subroutine record_scales(writer, cfg)
+        type(h5_writer_t), intent(inout) :: writer
+        type(config_t), intent(in) :: cfg
+        type(nondim_t) :: nd
+        type(si_scale_t), allocatable :: scales(:)
+        integer :: k
+
+        nd = nondim_groups(cfg%material)
+        call writer%attr_real('derived.beta1', nd%beta1)
+        call writer%attr_real('derived.beta2', nd%beta2)
+        call writer%attr_real('derived.omega', nd%omega)
+        call writer%attr_real('derived.delta', nd%delta)
+        call writer%attr_real('derived.varsigma', nd%varsigma)
+        call writer%attr_real('derived.zeta', nd%zeta)
+        call writer%attr_real('derived.a_check', nd%a_check)
+        call writer%attr_real('derived.alpha1', nd%alpha1)
+        call writer%attr_real('derived.alpha2', nd%alpha2)
+        call writer%attr_real('derived.alpha3', nd%alpha3)
+        scales = si_scales(cfg%material)
+        do k = 1, size(scales)
+            call writer%attr_real('scale.'//trim(scales(k)%name), scales(k)%factor)
+            call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
+            call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
+        end do
+    end subroutine record_scales
 
     real(dp) function seconds_since(clock_start, clock_rate)
         integer(int64), intent(in) :: clock_start, clock_rate

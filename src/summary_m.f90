@@ -21,11 +21,13 @@ module summary_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use kinds_m, only: dp
     use strings_m, only: format_real, doubled_quotes
-    use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists
+    use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
+                         dataset_exists
+    use fsys_m, only: file_exists
     implicit none
     private
     public :: summary_t
-    public :: summarise_series, summarise_file
+    public :: summarise_series, summarise_file, summary_problem
     public :: summary_header, summary_row, csv_field
 
     !> The numbers of one run. NaN (or steps < 0) where a value does not apply.
@@ -153,6 +155,33 @@ contains
         s%wall_seconds = ieee_value(0.0_dp, ieee_quiet_nan)
         if (attr_exists(file, 'wall_seconds')) call read_attr_real(file, 'wall_seconds', s%wall_seconds)
     end function summarise_file
+
+    !> Why `file` cannot be summarised ('' when it can): it does not exist, is not a readable
+    !> HDF5 file, or is not a rodcontact output file (no /series datasets the summary reads, or
+    !> no root attribute 'status'). Tested before any read, which would stop with exit 4.
+    function summary_problem(file) result(reason)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable :: reason
+        character(len=*), parameter :: NEEDED(5) = [character(len=24) :: '/series/t', '/series/energy', &
+            '/series/u_end', '/series/penetration', '/series/contact_stress']
+        integer :: k
+
+        reason = ''
+        if (.not. file_exists(file)) then
+            reason = 'no such file'
+        else if (.not. is_hdf5_file(file)) then
+            reason = 'not an HDF5 file, or not readable'
+        else if (.not. attr_exists(file, 'status')) then
+            reason = "not a rodcontact output file (no root attribute 'status')"
+        else
+            do k = 1, size(NEEDED)
+                if (.not. dataset_exists(file, trim(NEEDED(k)))) then
+                    reason = 'not a rodcontact output file (no dataset '//trim(NEEDED(k))//')'
+                    return
+                end if
+            end do
+        end if
+    end function summary_problem
 
     !> 'file,status,contact,...': the CSV header of summary_row.
     pure function summary_header() result(line)

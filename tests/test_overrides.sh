@@ -178,7 +178,7 @@ fi
 n_case=$((n_case + 1))
 "$prog" --summary bad/none.h5 > bad/summary.out 2> bad/summary.err
 status=$?
-if [[ $status -eq 2 ]] && grep -qF "no such file 'bad/none.h5'" bad/summary.err; then
+if [[ $status -eq 2 ]] && grep -qF "'bad/none.h5': no such file" bad/summary.err; then
     echo "PASS case $n_case: $(head -n 1 bad/summary.err)"
 else
     fail "--summary of a missing file: expected exit 2 and 'no such file'" "got $status: $(cat bad/summary.err)"
@@ -195,6 +195,36 @@ else
     fail "--summary: expected a row of as many columns as the header, starting good/base.h5,complete,yes," \
          "header: $header" "row:    $row"
 fi
+
+# --summary of several files: one row each, in order; a file that is not a rodcontact
+# output (missing, not HDF5, HDF5 without /series) exits 2 naming it, with no row at all
+n_case=$((n_case + 1))
+cp good/base.h5 good/copy.h5
+rows=$("$prog" --summary good/base.h5 good/copy.h5)
+if [[ $(wc -l <<< "$rows") -eq 2 && $(sed -n 1p <<< "$rows") == good/base.h5,complete,* \
+      && $(sed -n 2p <<< "$rows") == good/copy.h5,complete,* ]]; then
+    echo "PASS case $n_case: --summary of two files: two rows"
+else
+    fail "--summary of two files: expected a row for good/base.h5 then good/copy.h5" "got: $rows"
+fi
+head -c 100 /dev/urandom > bad/noise.h5
+cp base.nml bad/input.h5
+bad_summaries=("bad/noise.h5:not an HDF5 file" "bad/input.h5:not an HDF5 file" "bad/none.h5:no such file")
+py=$("${2:-.}/scripts/find_python.sh" 2>/dev/null) && "$py" -c "
+import h5py; h5py.File('bad/other.h5', 'w').create_dataset('x', data=[1.0])" \
+    && bad_summaries+=("bad/other.h5:not a rodcontact output file")
+for entry in "${bad_summaries[@]}"; do
+    n_case=$((n_case + 1))
+    file=${entry%%:*}; text=${entry#*:}
+    "$prog" --summary good/base.h5 "$file" > bad/summary.out 2> bad/summary.err
+    status=$?
+    if [[ $status -eq 2 && ! -s bad/summary.out ]] && grep -qF "'$file': $text" bad/summary.err; then
+        echo "PASS case $n_case: $(head -n 1 bad/summary.err)"
+    else
+        fail "--summary with $file: expected exit 2, no row, and '$file': $text" \
+             "got $status: $(cat bad/summary.err) / stdout: $(cat bad/summary.out)"
+    fi
+done
 
 echo "test_overrides: $n_case cases, $n_failed failed"
 ((n_failed == 0))

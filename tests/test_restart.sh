@@ -4,7 +4,10 @@
 #     snapshots and energy bookkeeping of the uninterrupted run;
 #  2. a run killed with SIGKILL leaves its .h5.part with the last checkpoint readable and
 #     restartable, and the restarted run equals the uninterrupted one bit for bit;
-#  3. bad restarts (missing file, no checkpoint, another mesh) exit 2 and write nothing.
+#  3. bad restarts exit 2, write nothing and leave the source as it was: missing file, no
+#     checkpoint, any input that changes the history changed (named with both values and
+#     what may change), t_end before the checkpoint, the output being the source itself;
+#  4. a restart that changes only t_end and &output settings runs.
 # Usage: bash test_restart.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
@@ -71,22 +74,51 @@ else
     fail "killed run: no checkpoint step (${step:-none}): the kill landed before the first checkpoint"
 fi
 
-# bad restarts: exit 2, message naming time.restart_from, no output file
-bad() {   # bad <what> <restart_from value> [sed expression]
-    make_input bad.nml bad 0.6 euler "restart_from='$2'"
-    [ -n "${3:-}" ] && sed -i -e "$3" bad.nml
+# bad restarts: exit 2, message naming time.restart_from (or what else is wrong, and the
+# values), no output file; the file restarted from is left as it was
+bad() {   # bad <what> <restart_from value> <sed expression or ''> [pattern the message must hold ...]
+    local what=$1 from=$2 expr=$3; shift 3
+    make_input bad.nml bad 0.6 euler "restart_from='$from'"
+    [ -n "$expr" ] && sed -i -e "$expr" bad.nml
     rm -f bad.h5 bad.h5.part
+    local before=""; [ -f "$from" ] && before=$(md5sum < "$from")
     err=$("$exe" bad.nml 2>&1 >/dev/null); st=$?
-    if [ $st -ne 2 ]; then fail "$1: expected exit 2, got $st ($err)"
-    elif ! grep -q "time.restart_from" <<< "$err"; then fail "$1: message does not name time.restart_from: $err"
-    elif [ -e bad.h5 ] || [ -e bad.h5.part ]; then fail "$1: an output file was left"
-    else echo "PASS $1: $err"; fi
+    local after=""; [ -f "$from" ] && after=$(md5sum < "$from")
+    local missing=""
+    for pattern in "${@:-time.restart_from}"; do grep -qF -- "$pattern" <<< "$err" || missing="$missing '$pattern'"; done
+    if [ $st -ne 2 ]; then fail "$what: expected exit 2, got $st ($err)"
+    elif [ -n "$missing" ]; then fail "$what: message lacks$missing: $err"
+    elif [ -e bad.h5 ] || [ -e bad.h5.part ]; then fail "$what: an output file was left"
+    elif [ "$before" != "$after" ]; then fail "$what: the file restarted from ($from) was changed"
+    else echo "PASS $what: $err"; fi
 }
-bad "missing restart file" "does-not-exist.h5"
+bad "missing restart file" "does-not-exist.h5" ''
 make_input nock.nml nock 0.01 euler; sed -i 's/checkpoint_every=250/checkpoint_every=0/' nock.nml; "$exe" nock.nml
-bad "file without checkpoint" "nock.h5"
-bad "restart on another mesh" "half_euler.h5" 's/n_elements=100/n_elements=50/'
-bad "restart with another dt" "half_euler.h5" 's/dt=1e-4/dt=2e-4/'
+bad "file without checkpoint" "nock.h5" ''
+bad "restart on another mesh" "half_euler.h5" 's/n_elements=100/n_elements=50/' mesh.n_elements "was 100" "has 50" "may change"
+bad "restart with another dt" "half_euler.h5" 's/dt=1e-4/dt=2e-4/' time.dt "was 0.0001" "has 0.0002"
+# every group that shapes the history, driven through --set-free edits of the input
+bad "restart with another varpi" "half_euler.h5" 's/varpi *= *0.1/varpi=0.9/' model.varpi "was 0.1" "has 0.9" \
+    time.t_end output.snapshot_every output.checkpoint_every output.quiet
+bad "restart with other initial data" "half_euler.h5" 's/theta0_poly = 0, 40, -80, 40/theta0_poly = 0, 20, -40, 20/' \
+    initial.theta0_poly "was 0, 40, -80, 40" "has 0, 20, -40, 20"
+bad "restart with another contact gap" "half_euler.h5" 's/g=0.1 eps/g=0.2 eps/' contact.g "was 0.1" "has 0.2"
+bad "restart with another solver tolerance" "half_euler.h5" 's|&time|\&solver tol=1e-8 /\n\&time|' solver.tol
+bad "restart with another scheme" "half_euler.h5" "s/scheme='euler'/scheme='bdf2'/" time.scheme "'euler'" "'bdf2'"
+bad "restart with &material added" "half_euler.h5" '/^&model/,/tau=0.2 \//d; s|&time|\&material ell=1.0 /\n\&time|' \
+    "a restart must keep every input"
+# t_end before the checkpoint (at t = 0.3): exit 2 naming time.t_end and the checkpoint's time
+bad "restart with t_end before the checkpoint" "half_euler.h5" 's/t_end=0.6/t_end=0.1/' time.t_end "t = 0.3"
+# the output may never be the file restarted from: its own .h5, or the .h5.part of a killed run
+bad "restart into its own file" "half_euler.h5" "s|prefix='bad'|prefix='half_euler'|" "is the file this run writes"
+bad "restart into its own file by another path" "half_euler.h5" "s|prefix='bad'|prefix='./../$(basename "$PWD")/half_euler'|" \
+    "is the file this run writes"
+bad "restart into the .h5 of its own .h5.part" "long.h5.part" "s|prefix='bad'|prefix='long'|" "is the file this run writes"
+# what may change: t_end, output intervals, checkpoint interval, quiet, prefix
+make_input ok.nml ok 0.35 euler "restart_from='half_euler.h5'"
+sed -i -e 's/checkpoint_every=250/checkpoint_every=100 series_every=2/' -e 's/snapshot_every=100/snapshot_every=50/' -e 's/quiet=.true./quiet=.false./' ok.nml
+if "$exe" ok.nml > /dev/null 2>&1; then echo "PASS restart with other t_end and &output settings runs"
+else fail "restart with other t_end and &output settings: exit $?"; fi
 
 echo "test_restart: $failures failed"
 [ $failures -eq 0 ]

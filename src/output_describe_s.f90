@@ -1,0 +1,58 @@
+!> Self-description of output_m's datasets: long_name and units (CF style; '1' is
+!> nondimensional, and long_name names the scale of (2.10)), and with &material the factor
+!> to SI units. A submodule, so that it reaches the writer's open datasets.
+submodule (output_m) output_describe_s
+    implicit none
+
+contains
+
+    !> A dataset's long_name: the table's, and for a nondimensional quantity the scale of
+    !> (2.10) it is measured in (root attribute scale.<scale> with &material).
+    pure module function described(long_name, scale) result(text)
+        character(len=*), intent(in) :: long_name, scale
+        character(len=:), allocatable :: text
+
+        text = trim(long_name)
+        if (scale /= '') text = text//' (nondimensional, scale: '//trim(scale)//')'
+    end function described
+
+    !> The CF-style attributes of a dataset: long_name and units ('1': nondimensional).
+    module subroutine writer_describe(w, dset_id, what, long_name, units)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: what, long_name, units
+
+        if (dset_id < 0) call w%fail('internal error: no dataset '//what)
+        call w%attr_str('long_name', trim(long_name), on=dset_id)
+        call w%attr_str('units', trim(units), on=dset_id)
+    end subroutine writer_describe
+
+    !> Attributes si_factor and si_units on every dataset whose quantity has fields_m's
+    !> scale `scale`: its value in SI units is si_factor times the stored value.
+    module subroutine writer_describe_si(w, scale, factor, si_units)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: scale, si_units
+        real(dp), intent(in) :: factor
+        integer :: k
+
+        do k = 1, N_SERIES
+            if (SERIES(k)%scale /= scale) cycle
+            call w%attr_real('si_factor', factor, on=w%series_ids(k))
+            call w%attr_str('si_units', si_units, on=w%series_ids(k))
+        end do
+        if (SERIES(S_T)%scale == scale) then
+            call w%attr_real('si_factor', factor, on=w%snap_t_id)
+            call w%attr_str('si_units', si_units, on=w%snap_t_id)
+        end if
+        do k = 1, N_OUTPUT_FIELDS
+            if (FIELDS(OUTPUT_ORDER(k))%scale /= scale) cycle
+            call w%attr_real('si_factor', factor, on=w%snap_field_ids(k))
+            call w%attr_str('si_units', si_units, on=w%snap_field_ids(k))
+        end do
+        if (scale == 'position') then
+            call w%attr_real('si_factor', factor, on=w%mesh_x_id)
+            call w%attr_str('si_units', si_units, on=w%mesh_x_id)
+        end if
+    end subroutine writer_describe_si
+
+end submodule output_describe_s

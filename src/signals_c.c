@@ -1,0 +1,45 @@
+/* Clean stop on a scheduler's signal (SIGTERM, SIGINT, SIGUSR1: what Slurm's --signal and
+ * scancel send, and Ctrl-C): the handler only records the signal in a volatile
+ * sig_atomic_t; run_m polls it once per time step through stop_signal_m and stops after
+ * the step. SA_RESETHAND restores the default action, so a second signal of the same kind
+ * ends the program at once (a second Ctrl-C when the clean stop takes too long). */
+#include <signal.h>
+#include <string.h>
+
+static volatile sig_atomic_t received = 0;
+
+static void record_signal(int sig)
+{
+    received = sig;
+}
+
+/* Install the handler for SIGTERM, SIGINT and SIGUSR1; 0 on success, -1 on failure. */
+int rc_install_stop_handlers(void)
+{
+    static const int signals[] = {SIGTERM, SIGINT, SIGUSR1};
+    struct sigaction action;
+    size_t k;
+
+    memset(&action, 0, sizeof action);
+    action.sa_handler = record_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART | SA_RESETHAND;
+    for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
+        if (sigaction(signals[k], &action, NULL) != 0)
+            return -1;
+    return 0;
+}
+
+/* The number of the signal received since the handlers were installed, 0 if none. */
+int rc_stop_signal(void)
+{
+    return received;
+}
+
+/* The numbers of SIGTERM, SIGINT, SIGUSR1 (platform-dependent; for the names). */
+void rc_stop_signal_numbers(int *term, int *intr, int *usr1)
+{
+    *term = SIGTERM;
+    *intr = SIGINT;
+    *usr1 = SIGUSR1;
+}

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Clean stop on a signal (issue 14, deliverable 6): a run sent SIGTERM, SIGINT or SIGUSR1
+# finishes its step, writes a checkpoint (here with checkpoint_every = 0), leaves a valid
+# <prefix>.h5.part with status 'interrupted: <signal>' and no <prefix>.h5, and exits 5;
+# restart_from on that .h5.part continues bit for bit: /series and /snapshots equal those of
+# an uninterrupted run to the same t_end.
+# Usage: bash test_signal.sh <rodcontact> <source dir> <scratch dir>
+set -u
+exe=$1; src=$2; scratch=$3
+py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py to compare the files"; exit 77; }
+cd "$scratch" && rm -rf ./* || exit 1
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+make_input() {   # make_input <file> <prefix> <t_end> [extra &time text]: exp1 on 100 elements
+    sed -e 's/n_elements=500/n_elements=100/' -e "s|t_end=3.0 /|t_end=$3 ${4:-} /|" \
+        -e "s|prefix='out/exp1'|prefix='$2' quiet=.true.|" "$src/input/exp1.nml" > "$1"
+}
+
+for sig in TERM INT USR1; do
+    name=long_$sig
+    make_input $name.nml $name 1000.0          # 10^7 steps: the signal lands mid-run
+    "$exe" $name.nml & pid=$!
+    sleep 1
+    kill -s $sig $pid
+    wait $pid; status=$?
+    [ $status -eq 5 ] || fail "SIG$sig: expected exit 5, got $status"
+    [ -f $name.h5.part ] || { fail "SIG$sig: no $name.h5.part left"; continue; }
+    [ -e $name.h5 ] && fail "SIG$sig: a final $name.h5 exists although the run was stopped"
+    read -r file_status step < <("$py" -c "
+import h5py
+f = h5py.File('$name.h5.part', 'r')
+c = f['checkpoint/slot%d/counters' % int(f['checkpoint/current'][0])][:]
+print(f.attrs['status'].replace(' ', '_'), int(c[0]))") || { fail "SIG$sig: .h5.part or its checkpoint unreadable"; continue; }
+    [ "$file_status" = "interrupted:_SIG$sig" ] || fail "SIG$sig: status '$file_status', expected 'interrupted: SIG$sig'"
+    echo "SIG$sig: exit $status, status '$file_status', checkpoint at step $step"
+    # continue 3000 steps past the stop, compare with one run from t = 0 to there
+    t_end=$(awk -v n="$step" 'BEGIN { printf "%.4f", (n + 3000) * 1e-4 }')
+    make_input rest_$sig.nml rest_$sig "$t_end" "restart_from='$name.h5.part'"
+    make_input ref_$sig.nml ref_$sig "$t_end"
+    "$exe" rest_$sig.nml || { fail "SIG$sig: restart exit $?"; continue; }
+    "$exe" ref_$sig.nml || { fail "SIG$sig: reference run exit $?"; continue; }
+    if out=$("$py" - ref_$sig.h5 rest_$sig.h5 <<'PY'
+import sys, h5py, numpy as np
+a, b = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
+bad = []
+for g in ("series", "snapshots"):
+    if set(a[g]) != set(b[g]):
+        bad.append(f"/{g}: datasets {sorted(a[g])} vs {sorted(b[g])}")
+    for k in a[g]:
+        x, y = a[g][k][:], b[g][k][:]
+        if x.shape != y.shape or x.tobytes() != y.tobytes():
+            bad.append(f"/{g}/{k}: shapes {x.shape} vs {y.shape}, differ bitwise")
+for k in ("status", "steps", "energy_max_relative_rise", "solver.linear_solves"):
+    if a.attrs[k] != b.attrs[k]:
+        bad.append(f"attribute {k}: {a.attrs[k]} vs {b.attrs[k]}")
+print("\n".join(bad) if bad else "identical")
+sys.exit(1 if bad else 0)
+PY
+    ); then echo "PASS SIG$sig: stopped, restarted = uninterrupted, bit for bit ($out)"
+    else fail "SIG$sig: restarted run differs from the uninterrupted one:"; echo "$out"; fi
+done
+
+echo "test_signal: $failures failed"
+[ $failures -eq 0 ]

@@ -5,7 +5,10 @@ compare a run file with its reference.
     regression.py compare RUN.h5 REF.h5    # exit 1 (with what differs) beyond the tolerances
 
 Tolerances: every value within RTOL * (largest |value| of that dataset in the reference) of
-the reference, integer datasets equal, same shapes, same status. A change meant to alter
+the reference, integer datasets equal, same shapes, same status. RTOL = 1e-8: a Debug build
+(-O0) rounds differently from Release, and the Signorini multiplier (a gap divided by
+dt^2 z_s) amplifies that to ~2e-10 of its scale; a change of the scheme moves results far more
+(a 1e-6 relative change of the penalty fails 7 cases). A change meant to alter
 results regenerates the references (tests/test_regression.sh --update) and says why in the
 commit.
 """
@@ -14,7 +17,7 @@ import sys
 import h5py
 import numpy as np
 
-RTOL = 1e-10
+RTOL = 1e-8
 GROUPS = ("mesh", "series", "snapshots")
 
 

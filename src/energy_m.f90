@@ -7,6 +7,7 @@ module energy_m
     use contact_law_m, only: contact_law_t
     use time_scheme_m, only: time_scheme_t
     use state_m, only: state_t
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: discrete_energy, linear_energy, bdf2_energy, energy_monitor_t
@@ -104,6 +105,8 @@ contains
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
         type(model_t), intent(in), optional :: law_model   !< default: model
+        integer :: stat
+        character(len=256) :: message
 
         self%model = model
         self%law_model = model
@@ -116,8 +119,12 @@ contains
         if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w)
         self%have_law = .not. self%bdf2
         self%max_rise = 0.0_dp
-        if (self%bdf2) allocate (self%u_work, mold=state%u)
-        if (self%bdf2) allocate (self%w_work, mold=state%w)
+        if (self%bdf2) then
+            allocate (self%u_work, mold=state%u, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the energy monitor''s work arrays')
+            allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the energy monitor''s work arrays')
+        end if
     end subroutine monitor_init
 
     !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for

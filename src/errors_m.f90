@@ -4,7 +4,7 @@ module errors_m
     implicit none
     private
     public :: EXIT_OK, EXIT_INPUT, EXIT_NUMERIC, EXIT_OUTPUT, EXIT_INTERRUPTED
-    public :: fatal
+    public :: fatal, check_allocation
 
     integer, parameter :: EXIT_OK = 0       !< success
     integer, parameter :: EXIT_INPUT = 2    !< bad input: file, syntax, unknown variable, out-of-range value
@@ -26,5 +26,15 @@ contains
         ! plain STOP: ERROR STOP makes gfortran print a backtrace, which is noise for an input error
         stop code, quiet=.true.
     end subroutine fatal
+
+    !> After `allocate (..., stat=stat, errmsg=message)`: a failed allocation (out of memory)
+    !> stops with EXIT_NUMERIC, naming what could not be allocated.
+    subroutine check_allocation(stat, message, what)
+        integer, intent(in) :: stat
+        character(len=*), intent(in) :: message, what
+
+        if (stat /= 0) call fatal(EXIT_NUMERIC, 'memory', 'cannot allocate '//what//': '//trim(message)// &
+                                  '; a smaller mesh (&mesh n_elements) or fewer snapshots need less')
+    end subroutine check_allocation
 
 end module errors_m

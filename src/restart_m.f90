@@ -14,7 +14,7 @@ module restart_m
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, KIND_REAL, KIND_INTEGER, &
                             KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
-    use errors_m, only: fatal, EXIT_INPUT
+    use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use state_m, only: state_t
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file
@@ -56,7 +56,8 @@ contains
         real(dp), intent(out) :: counters(N_COUNTERS)
         real(dp), allocatable :: packed(:, :), values(:)
         character(len=:), allocatable :: slot
-        integer :: s
+        integer :: s, stat
+        character(len=256) :: message
 
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
@@ -75,7 +76,8 @@ contains
         state%w = packed(:, 2:)
         if (dataset_exists(file, slot//'/previous')) then
             call read_real_2d(file, slot//'/previous', packed)
-            allocate (state%u_prev(0:s), state%w_prev(0:s, N_FIELDS))
+            allocate (state%u_prev(0:s), state%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the previous level')
             state%u_prev = packed(:, 1)
             state%w_prev = packed(:, 2:)
         end if
@@ -188,12 +190,14 @@ contains
         real(dp), allocatable :: column(:), rows(:, :), snap_t(:), snap(:, :), snaps(:, :, :)
         integer, allocatable :: whole(:)
         real(dp) :: t_last
-        integer :: k, n
+        integer :: k, n, stat
+        character(len=256) :: message
 
         t_last = t_checkpoint * (1.0_dp + 1.0e-12_dp)
         call read_real_1d(file, '/series/'//trim(SERIES(S_T)%name), column)
         n = rows_to_copy(column, t_last)
-        allocate (rows(n, N_SERIES))
+        allocate (rows(n, N_SERIES), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the copied series')
         do k = 1, N_SERIES
             if (SERIES(k)%is_integer) then
                 call read_int_1d(file, '/series/'//trim(SERIES(k)%name), whole)
@@ -212,7 +216,10 @@ contains
         do k = 1, N_OUTPUT_FIELDS
             call read_real_2d(file, '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name), snap)
             call require_rows(file, '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name), size(snap, 2), n)
-            if (.not. allocated(snaps)) allocate (snaps(size(snap, 1), N_OUTPUT_FIELDS, n))
+            if (.not. allocated(snaps)) then
+                allocate (snaps(size(snap, 1), N_OUTPUT_FIELDS, n), stat=stat, errmsg=message)
+                call check_allocation(stat, message, 'the copied snapshots')
+            end if
             snaps(:, k, :) = snap(:, 1:n)
         end do
         do k = 1, n

@@ -23,7 +23,7 @@ module stepper_m
     use kinds_m, only: dp
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t
-    use errors_m, only: fatal, EXIT_NUMERIC
+    use errors_m, only: fatal, EXIT_NUMERIC, check_allocation
     use banded_m, only: band_t, lapack_info_message
     use block_tridiagonal_m, only: block_tridiagonal_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
@@ -148,7 +148,8 @@ contains
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt
         type(step_result_t), intent(inout) :: result
-        integer :: info
+        integer :: info, stat
+        character(len=256) :: message
 
         self%paper_dt = dt
         call assemble_matrix(self%model, self%s, dt, THERMAL_SLOTS, self%thermal)
@@ -157,7 +158,10 @@ contains
         call assemble_matrix(self%model, self%s, dt, MECHANICAL_SLOTS, self%mechanical)
         call self%mechanical%factor(info)
         if (info /= 0) call fail(result, 'mechanical block: '//lapack_info_message('dgbtrf', info))
-        if (.not. allocated(self%xt)) allocate (self%xt(self%thermal%n), self%x(self%mechanical%n))
+        if (.not. allocated(self%xt)) then
+            allocate (self%xt(self%thermal%n), self%x(self%mechanical%n), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the paper iteration''s work arrays')
+        end if
     end subroutine setup_paper
 
     !> The factored system of (6.1) with step dt_eff: one kept from an earlier step, or the
@@ -188,7 +192,8 @@ contains
         type(monolithic_system_t), intent(out) :: sys
         type(step_result_t), intent(inout) :: result
         type(band_t) :: unfactored
-        integer :: info
+        integer :: info, stat
+        character(len=256) :: message
 
         call assemble_matrix(self%step_model, self%s, dt_eff, self%slots, sys%a)
         call sys%blocks%factor(sys%a, count(self%active), info)
@@ -201,7 +206,8 @@ contains
         end if
         sys%dt_eff = dt_eff
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
-        allocate (sys%z(sys%a%n))
+        allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the contact response')
         sys%z = 0.0_dp
         sys%z(sys%contact_dof) = 1.0_dp
         call sys%a%solve(sys%z)
@@ -446,8 +452,15 @@ contains
     subroutine keep_previous_level(state)
         type(state_t), intent(inout) :: state
 
-        if (.not. allocated(state%u_prev)) allocate (state%u_prev, mold=state%u)
-        if (.not. allocated(state%w_prev)) allocate (state%w_prev, mold=state%w)
+        integer :: stat
+        character(len=256) :: message
+
+        if (.not. allocated(state%u_prev)) then
+            allocate (state%u_prev, mold=state%u, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the previous level')
+            allocate (state%w_prev, mold=state%w, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the previous level')
+        end if
         state%u_prev = state%u
         state%w_prev = state%w
     end subroutine keep_previous_level
@@ -462,9 +475,11 @@ contains
         real(dp), intent(inout) :: x(:)               !< work array of the system's size
         real(dp), allocatable :: b(:), reference(:)
         integer :: k, trial
+        character(len=256) :: message
 
         blocks_agree = .true.
-        allocate (b(size(x)))
+        allocate (b(size(x)), stat=trial, errmsg=message)
+        call check_allocation(trial, message, 'the block solver check')
         do trial = 1, 2
             if (trial == 1) then
                 b = 0.0_dp

@@ -2,7 +2,7 @@
 !> many times with dgbtrs. Every LAPACK info is decoded into a readable message.
 module banded_m
     use kinds_m, only: dp
-    use errors_m, only: fatal, EXIT_NUMERIC
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: band_t, lapack_info_message
@@ -53,7 +53,7 @@ contains
         if (allocated(self%ab)) deallocate (self%ab)
         if (allocated(self%ipiv)) deallocate (self%ipiv)
         allocate (self%ab(2 * kl + ku + 1, n), self%ipiv(n), stat=stat, errmsg=message)
-        if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate a band matrix: '//trim(message))
+        call check_allocation(stat, message, 'a band matrix')
         call self%zero()
     end subroutine band_init
 

@@ -4,11 +4,11 @@ module state_m
     use config_m, only: config_t
     use fe_m, only: mesh_nodes
     use initial_data_m, only: profile
-    use errors_m, only: fatal, EXIT_NUMERIC
+    use errors_m, only: check_allocation
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: state_t, initial_state, field_values, advance_time
+    public :: state_t, initial_state, field_values, advance_time, accept_step
 
     type :: state_t
         integer :: s = 0                !< number of elements
@@ -40,7 +40,7 @@ contains
         s = cfg%mesh%n_elements
         state%s = s
         allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s), stat=stat, errmsg=message)
-        if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate the state: '//trim(message))
+        call check_allocation(stat, message, 'the state')
         x = mesh_nodes(s)            ! x is allocated first so that it keeps the bounds 0:s
         do i = 0, s
             state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
@@ -70,13 +70,36 @@ contains
         end if
     end function field_values
 
-    !> The time of the level after a step of size dt: t_anchor + (n + 1 - step_anchor) dt,
-    !> the anchor moved to the current level when the step size changes.
+    !> The time of the level after a step of size dt (see next_anchor).
     pure real(dp) function advance_time(state, dt) result(t_new)
         type(state_t), intent(in) :: state
         real(dp), intent(in) :: dt
         real(dp) :: t_anchor
         integer :: step_anchor
+
+        call next_anchor(state, dt, t_anchor, step_anchor)
+        t_new = t_anchor + real(state%step + 1 - step_anchor, dp) * dt
+    end function advance_time
+
+    !> The state has taken a step of size dt to t_new: the level counter, the time, the last
+    !> step size and the anchor move on.
+    pure subroutine accept_step(state, dt, t_new)
+        type(state_t), intent(inout) :: state
+        real(dp), intent(in) :: dt, t_new
+
+        call next_anchor(state, dt, state%t_anchor, state%step_anchor)
+        state%step = state%step + 1
+        state%t = t_new
+        state%dt_last = dt
+    end subroutine accept_step
+
+    !> t_n = t_anchor + (n - step_anchor) dt while the step size stays dt; the anchor moves
+    !> to the current level when a step of another size follows.
+    pure subroutine next_anchor(state, dt, t_anchor, step_anchor)
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: dt
+        real(dp), intent(out) :: t_anchor
+        integer, intent(out) :: step_anchor
 
         t_anchor = state%t_anchor
         step_anchor = state%step_anchor
@@ -84,7 +107,6 @@ contains
             t_anchor = state%t
             step_anchor = state%step
         end if
-        t_new = t_anchor + real(state%step + 1 - step_anchor, dp) * dt
-    end function advance_time
+    end subroutine next_anchor
 
 end module state_m

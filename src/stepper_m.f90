@@ -23,7 +23,7 @@ module stepper_m
     use kinds_m, only: dp
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t
-    use errors_m, only: fatal, EXIT_NUMERIC, check_allocation
+    use errors_m, only: check_allocation
     use banded_m, only: band_t, lapack_info_message
     use block_tridiagonal_m, only: block_tridiagonal_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
@@ -31,7 +31,7 @@ module stepper_m
                         assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
-    use state_m, only: state_t, advance_time
+    use state_m, only: state_t, advance_time, accept_step
     use sources_m, only: source_t, add_source_terms
     implicit none
     private
@@ -116,7 +116,8 @@ contains
         allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
                   self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%u_star(0:s), &
                   self%w_star(0:s, N_FIELDS), stat=stat, errmsg=message)
-        if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate the work arrays: '//trim(message))
+        call check_allocation(stat, message, 'the work arrays')
+        self%w_new = 0.0_dp
         select case (trim(cfg%solver%method))
         case ('paper')
             self%method = METHOD_PAPER
@@ -126,7 +127,7 @@ contains
             self%active = active_fields(self%step_model, initial_data_present(cfg) .or. present(source))
             self%slots = slots_of(self%active)
             allocate (self%x(count(self%active) * (s + 1)), stat=stat, errmsg=message)
-            if (stat /= 0) call fatal(EXIT_NUMERIC, 'mesh.n_elements', 'cannot allocate the system: '//trim(message))
+            call check_allocation(stat, message, 'the system')
             call find_system(self, self%dt, k, result)
         end select
     end subroutine stepper_init
@@ -275,13 +276,7 @@ contains
             end if
         end select
         if (.not. result%ok) return
-        if (state%step > 0 .and. step_size /= state%dt_last) then
-            state%t_anchor = state%t
-            state%step_anchor = state%step
-        end if
-        state%step = state%step + 1
-        state%t = t_new
-        state%dt_last = step_size
+        call accept_step(state, step_size, t_new)
         result%in_contact = result%contact_force > 0.0_dp
         if (result%in_contact) self%n_contact_steps = self%n_contact_steps + 1
         self%n_solves = self%n_solves + result%iterations
@@ -336,7 +331,8 @@ contains
     !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the
     !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
     !> force (contact_law_m's midpoint_impulse); then X^n = 2 Y - X^{n-1}, except for the
-    !> algebraic fields (X^n = Y), and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new.
+    !> algebraic fields (X^n = Y), and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new (whose
+    !> columns of fields left out of the system stay zero from set-up).
     subroutine advance_midpoint(self, sys, state, result)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys
@@ -352,7 +348,6 @@ contains
         end associate
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
-        self%w_new = 0.0_dp
         call gather_fields(self%slots, self%x, self%w_new)
         do f = 1, N_FIELDS
             if (self%algebraic(f)) then

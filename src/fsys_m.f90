@@ -7,6 +7,7 @@
 module fsys_m
     use iso_c_binding, only: c_char, c_int, c_ptr, c_size_t, c_null_char, c_associated, &
                              c_f_pointer
+    use strings_m, only: from_c_chars
     implicit none
     private
     public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
@@ -256,16 +257,13 @@ contains
 
         type(c_ptr) :: cp
         character(kind=c_char), pointer :: chars(:)
-        integer :: n, i
+        integer :: n
 
         cp = c_strerror(int(err, c_int))
         if (c_associated(cp)) then
             n = int(c_strlen(cp))
             call c_f_pointer(cp, chars, [n])
-            allocate (character(len=n) :: text)
-            do i = 1, n
-                text(i:i) = chars(i)
-            end do
+            text = from_c_chars(chars)
         else
             text = 'unknown error'
         end if

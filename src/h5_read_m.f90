@@ -10,6 +10,7 @@ module h5_read_m
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: file_exists
+    use strings_m, only: from_c_chars
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
                     h5sclose_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
@@ -196,7 +197,7 @@ contains
         character(len=:), allocatable :: what
         integer(hid_t) :: file_id, attr_id, file_type, mem_type
         integer(size_t) :: type_size
-        integer :: hdferr, type_class, i, n
+        integer :: hdferr, type_class, n
         logical :: is_variable
         type(c_ptr), target :: vl_ptr(1)
         type(c_ptr) :: buf_ptr   ! h5aread_f wants a variable, not an expression
@@ -224,10 +225,7 @@ contains
             if (c_associated(vl_ptr(1))) then
                 n = int(c_strlen(vl_ptr(1)))
                 call c_f_pointer(vl_ptr(1), chars, [n])
-                allocate (character(len=n) :: value)
-                do i = 1, n
-                    value(i:i) = chars(i)
-                end do
+                value = from_c_chars(chars)
                 if (c_h5free_memory(vl_ptr(1)) < 0) call fail(file, what, 'H5free_memory failed')
             else
                 value = ''
@@ -242,18 +240,7 @@ contains
             if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
             ! null-terminated, null-padded or space-padded: stop at the first NUL, drop
             ! trailing blanks
-            n = int(type_size)
-            do i = 1, int(type_size)
-                if (fixed(i) == achar(0, kind=c_char)) then
-                    n = i - 1
-                    exit
-                end if
-            end do
-            allocate (character(len=n) :: value)
-            do i = 1, n
-                value(i:i) = fixed(i)
-            end do
-            value = trim(value)
+            value = trim(from_c_chars(fixed))
         end if
 
         call h5tclose_f(mem_type, hdferr)

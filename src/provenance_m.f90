@@ -6,7 +6,7 @@ module provenance_m
     use iso_fortran_env, only: compiler_version
     use hdf5, only: h5get_libversion_f
     use h5_read_m, only: h5_library_init
-    use strings_m, only: int_str
+    use strings_m, only: int_str, from_c_chars
     implicit none
     private
     public :: utc_now, host_name, command_line, hdf5_version, fortran_compiler
@@ -35,7 +35,7 @@ contains
         character(kind=c_char) :: buf(32)
 
         if (c_utc_now(buf, size(buf, kind=c_int)) == 0) then
-            text = from_c(buf)
+            text = from_c_chars(buf)
         else
             text = 'unknown'
         end if
@@ -47,7 +47,7 @@ contains
         character(kind=c_char) :: buf(256)
 
         if (c_hostname(buf, size(buf, kind=c_int)) == 0) then
-            text = from_c(buf)
+            text = from_c_chars(buf)
         else
             text = 'unknown'
         end if
@@ -87,24 +87,5 @@ contains
 
         text = compiler_version()
     end function fortran_compiler
-
-    !> A NUL-terminated C string as a Fortran string.
-    function from_c(buf) result(text)
-        character(kind=c_char), intent(in) :: buf(:)
-        character(len=:), allocatable :: text
-        integer :: k, n
-
-        n = size(buf)
-        do k = 1, size(buf)
-            if (buf(k) == c_null_char) then
-                n = k - 1
-                exit
-            end if
-        end do
-        allocate (character(len=n) :: text)
-        do k = 1, n
-            text(k:k) = buf(k)
-        end do
-    end function from_c
 
 end module provenance_m

@@ -2,12 +2,13 @@
 !> blanks, quoting, Fortran names, and plain forms of numbers for messages.
 module strings_m
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
+    use, intrinsic :: iso_c_binding, only: c_char, c_null_char
     use kinds_m, only: dp
     implicit none
     private
     public :: lower, keyword, squeeze, excerpt, quoted, quoted_string, doubled_quotes
     public :: identifier_at, is_name_char
-    public :: int_str, format_real
+    public :: int_str, format_real, from_c_chars
 
 contains
 
@@ -167,5 +168,24 @@ contains
         write (buf, '(i0)', iostat=ios) n
         s = trim(buf)
     end function int_str
+
+    !> C characters as a Fortran string, up to the first NUL (all of them if there is none).
+    pure function from_c_chars(chars) result(text)
+        character(kind=c_char), intent(in) :: chars(:)
+        character(len=:), allocatable :: text
+        integer :: k, n
+
+        n = size(chars)
+        do k = 1, size(chars)
+            if (chars(k) == c_null_char) then
+                n = k - 1
+                exit
+            end if
+        end do
+        allocate (character(len=n) :: text)
+        do k = 1, n
+            text(k:k) = chars(k)
+        end do
+    end function from_c_chars
 
 end module strings_m

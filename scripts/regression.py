@@ -3,6 +3,8 @@ compare a run file with its reference.
 
     regression.py store RUN.h5 REF.h5      # /mesh, /series, /snapshots and the status, gzip
     regression.py compare RUN.h5 REF.h5    # exit 1 (with what differs) beyond the tolerances
+    regression.py same A.h5 B.h5           # exit 1 unless /series and /snapshots are equal bit
+                                           # for bit, with the same run counters (restarts)
 
 Tolerances: every value within RTOL * (largest |value| of that dataset in the reference) of
 the reference, integer datasets equal, same shapes, same status. RTOL = 1e-8: a Debug build
@@ -58,10 +60,37 @@ def compare(run, ref):
     return 1 if problems else 0
 
 
+SAME_ATTRIBUTES = ("status", "steps", "energy_max_relative_rise", "solver.linear_solves", "solver.contact_steps")
+
+
+def same(first, second):
+    """Bit-for-bit equality of two runs (a restarted and an uninterrupted one): the same
+    /series and /snapshots datasets with the same bytes, and the same run counters."""
+    bad = []
+    with h5py.File(first, "r") as a, h5py.File(second, "r") as b:
+        for g in ("series", "snapshots"):
+            if set(a[g]) != set(b[g]):
+                bad.append(f"/{g}: datasets {sorted(a[g])} vs {sorted(b[g])}")
+            for k in a[g]:
+                if k not in b[g] or not isinstance(a[g][k], h5py.Dataset):
+                    continue
+                x, y = a[g][k][()], b[g][k][()]
+                if x.shape != y.shape or x.tobytes() != y.tobytes():
+                    diff = float(np.max(np.abs(x - y))) if x.shape == y.shape else "n/a"
+                    bad.append(f"/{g}/{k}: shapes {x.shape} vs {y.shape}, max diff {diff}")
+        for k in SAME_ATTRIBUTES:
+            if a.attrs[k] != b.attrs[k]:
+                bad.append(f"attribute {k}: {a.attrs[k]} vs {b.attrs[k]}")
+    print("\n".join(bad) if bad else "identical")
+    return 1 if bad else 0
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("store", "compare"):
+    if len(sys.argv) != 4 or sys.argv[1] not in ("store", "compare", "same"):
         sys.exit(__doc__)
     if sys.argv[1] == "store":
         store(sys.argv[2], sys.argv[3])
         sys.exit(0)
+    if sys.argv[1] == "same":
+        sys.exit(same(sys.argv[2], sys.argv[3]))
     sys.exit(compare(sys.argv[2], sys.argv[3]))

@@ -30,25 +30,7 @@ mkdir -p "$scratch" && cd "$scratch" || exit 1
 scan="$src/scripts/scan.sh"
 export RODCONTACT=$prog
 
-n_checks=0
-n_failed=0
-check() {   # check <description> <command ...>: the command must succeed
-    local what=$1
-    shift
-    n_checks=$((n_checks + 1))
-    if "$@"; then
-        echo "PASS $what"
-    else
-        n_failed=$((n_failed + 1))
-        echo "FAIL $what"
-    fi
-}
-equals() {  # equals <expected> <got>
-    [[ "$1" == "$2" ]] && return 0
-    echo "  expected: $1"
-    echo "  got:      $2"
-    return 1
-}
+. "$src/tests/lib/checks.sh"   # check, equals, n_checks, n_failed
 
 # 3 x 2 points of experiment 2 at its own mesh and time step, t_end = 0.6 (contact at
 # t ~ 0.3 for amplitude 20): ~0.2-0.5 s per point.

@@ -57,25 +57,7 @@ if ! have_all; then
     have_all || skip "slurm-wlm, munge and parallel installed, but a command is still missing"
 fi
 
-n_checks=0
-n_failed=0
-check() {   # check <description> <command ...>: the command must succeed
-    local what=$1
-    shift
-    n_checks=$((n_checks + 1))
-    if "$@"; then
-        echo "PASS $what"
-    else
-        n_failed=$((n_failed + 1))
-        echo "FAIL $what"
-    fi
-}
-equals() {  # equals <expected> <got>
-    [[ "$1" == "$2" ]] && return 0
-    echo "  expected: $1"
-    echo "  got:      $2"
-    return 1
-}
+. "$src/tests/lib/checks.sh"   # check, equals, n_checks, n_failed
 elapsed() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$1" "$(date +%s.%N)"; }
 
 # ---------------------------------------------------------------- the cluster

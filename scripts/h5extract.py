@@ -29,6 +29,10 @@ import sys
 import h5py
 import numpy as np
 
+# curve colours, early to late: plotdata.py's hue ramp (nine times differ in hue, not only
+# in lightness; the viridis ramp used before made t >= 0.5 hard to tell apart)
+from plotdata import colours
+
 # Marked times of the profile families (see docs/reproduction.md, "Figures").
 TIMES = {
     "all": [0.0, 0.02, 0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 3.0],
@@ -42,24 +46,6 @@ PROFILE_SETS = {           # run -> (sets, fields)
 }
 SERIES_RUNS = ["exp1", "exp1_varpi05", "exp1_varpi1", "exp2"]
 MAX_SERIES_ROWS = 4000
-
-# Curve colours, early to late: dark blue, blue, cyan, green, gold, orange, red, dark red
-# (a 'turbo'-like ramp without its pale middle; the same as scripts/plotdata.py). Nine
-# times differ in hue, not only in lightness (the viridis ramp used before made t >= 0.5
-# hard to tell apart).
-RAMP = ["#30123b", "#4145ab", "#2d9bd6", "#1bbc8f", "#67b51e", "#d9a800", "#f36a00", "#d0190f", "#7a0403"]
-
-
-def colour(frac):
-    """Colour at frac in [0, 1] along RAMP, as #rrggbb."""
-    stops = RAMP
-    pos = frac * (len(stops) - 1)
-    k = min(int(pos), len(stops) - 2)
-    w = pos - k
-    a = [int(stops[k][i:i + 2], 16) for i in (1, 3, 5)]
-    b = [int(stops[k + 1][i:i + 2], 16) for i in (1, 3, 5)]
-    return "#" + "".join("%02x" % round((1 - w) * p + w * q) for p, q in zip(a, b))
-
 
 def fmt_time(t):
     return ("%.2f" % t).rstrip("0").rstrip(".") if t != 0 else "0"
@@ -130,7 +116,7 @@ def main(argv):
                     idx = pick_times(t_snap, TIMES[s])
                     times = [float(t_snap[k]) for k in idx]
                     n = len(idx)
-                    cols = [colour(k / (n - 1) if n > 1 else 0.0) for k in range(n)]
+                    cols = colours(n)
                     param(f"n_{run}_{s}", n)
                     param(f"times_{run}_{s}", " ".join("%.10g" % t for t in times))
                     param(f"colours_{run}_{s}", " ".join(cols))

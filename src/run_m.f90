@@ -62,6 +62,8 @@ contains
             monitor%law_energy = counters(COUNTER_LAW_ENERGY)
             monitor%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
             monitor%max_rise = counters(COUNTER_MAX_RISE)
+            stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
+            stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
         end if
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
         call record_inputs(writer, cfg)
@@ -78,10 +80,6 @@ contains
             call write_snapshot(writer, state)
         end if
 
-        if (cfg%time%restart_from /= '') then
-            stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
-            stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
-        end if
         failure = ''
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
         first_step = state%step + 1

@@ -67,7 +67,7 @@ module time_scheme_m
 
 contains
 
-    !> The scheme named by &time scheme ('euler' or 'bdf2'; validate_m has checked it).
+    !> The scheme named by &time scheme ('euler', 'bdf2' or 'midpoint'; validate_m has checked it).
     pure function time_scheme(name) result(scheme)
         character(len=*), intent(in) :: name
         type(time_scheme_t) :: scheme
@@ -96,19 +96,12 @@ contains
         end if
         if (self%kind /= SCHEME_BDF2 .or. .not. have_previous .or. .not. (dt_last > 0.0_dp)) return
         plan%from_history = .true.
-        if (dt == dt_last) then
-            ! w = 1, written so that constant-step runs keep their exact operations
-            plan%dt_eff = 2.0_dp * dt / 3.0_dp
-            plan%a = 4.0_dp
-            plan%b = 1.0_dp
-            plan%d = 3.0_dp
-        else
-            w = dt / dt_last
-            plan%dt_eff = dt * (1.0_dp + w) / (1.0_dp + 2.0_dp * w)
-            plan%a = (1.0_dp + w)**2
-            plan%b = w**2
-            plan%d = 1.0_dp + 2.0_dp * w
-        end if
+        ! constant steps: w = 1 exactly, and these are 2 dt / 3, 4, 1, 3 exactly
+        w = dt / dt_last
+        plan%dt_eff = dt * (1.0_dp + w) / (1.0_dp + 2.0_dp * w)
+        plan%a = (1.0_dp + w)**2
+        plan%b = w**2
+        plan%d = 1.0_dp + 2.0_dp * w
     end function scheme_plan
 
     !> Does the scheme need X^{n-1} kept when X^n is computed?

@@ -41,12 +41,17 @@ module config_m
         integer :: n_elements = 500
     end type mesh_t
 
-    !> &time: implicit Euler step dt up to t_end.
+    !> &time: step dt up to t_end; with adaptive = .true., dt is the first step and the
+    !> steps are chosen by the local error estimate (step_control_m) within [dt_min, dt_max].
     type :: time_t
         real(dp) :: dt = 1.0e-4_dp
         real(dp) :: t_end = 1.0_dp
         character(len=LEN_NAME) :: scheme = 'euler'
         character(len=LEN_PATH) :: restart_from = ''
+        logical :: adaptive = .false.
+        real(dp) :: error_tol = 1.0e-5_dp   !< local error per step / largest energy norm so far
+        real(dp) :: dt_min = 1.0e-10_dp
+        real(dp) :: dt_max = 1.0_dp
     end type time_t
 
     !> &initial: initial data (2.12) as polynomials in x plus optional steps (amp, x_end).
@@ -72,6 +77,7 @@ module config_m
     type :: output_t
         character(len=LEN_PATH) :: prefix = 'out/run'
         integer :: snapshot_every = 100
+        real(dp) :: snapshot_dt = 0.0_dp   !< > 0: snapshots at t = k snapshot_dt (then snapshot_every is unused)
         integer :: series_every = 1
         integer :: checkpoint_every = 0
         logical :: quiet = .false.

@@ -21,6 +21,9 @@ module energy_m
         logical :: bdf2 = .false.
         logical :: own_law_model = .false.   !< law_model differs from model
         real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
+        !> BDF2 only: the largest relative rise at steps whose size differs from the step
+        !> before (w /= 1), where its law is not stated (not in max_rise)
+        real(dp) :: max_rise_step_change = 0.0_dp
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
     contains
@@ -129,12 +132,15 @@ contains
 
     !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for
     !> Euler, the G-energy of bdf2_energy for BDF2 (defined once a previous level exists,
-    !> compared from the first BDF2 step on).
-    subroutine monitor_observe(self, state)
+    !> compared from the first BDF2 step on). BDF2's law is stated for constant steps: a
+    !> rise at a step of another size than the one before (step_changed) is kept apart in
+    !> max_rise_step_change.
+    subroutine monitor_observe(self, state, step_changed)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
-        real(dp) :: law_old, energy_lin
-        logical :: had_law
+        logical, intent(in), optional :: step_changed
+        real(dp) :: law_old, energy_lin, rise
+        logical :: had_law, changed
 
         law_old = self%law_energy
         had_law = self%have_law
@@ -147,8 +153,15 @@ contains
             if (self%have_law) call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &
                                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin)
         end if
-        if (had_law .and. self%have_law) &
-            self%max_rise = max(self%max_rise, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
+        if (.not. (had_law .and. self%have_law)) return
+        rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
+        changed = .false.
+        if (present(step_changed)) changed = step_changed .and. self%bdf2
+        if (changed) then
+            self%max_rise_step_change = max(self%max_rise_step_change, rise)
+        else
+            self%max_rise = max(self%max_rise, rise)
+        end if
     end subroutine monitor_observe
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1

@@ -64,6 +64,10 @@ module input_vars_m
         input_var_t('time', 't_end', KIND_REAL, .false., ''), &
         input_var_t('time', 'scheme', KIND_STRING, .true., ''), &
         input_var_t('time', 'restart_from', KIND_STRING, .false., ''), &
+        input_var_t('time', 'adaptive', KIND_LOGICAL, .false., ''), &
+        input_var_t('time', 'error_tol', KIND_REAL, .false., ''), &
+        input_var_t('time', 'dt_min', KIND_REAL, .false., ''), &
+        input_var_t('time', 'dt_max', KIND_REAL, .false., ''), &
         input_var_t('initial', 'u0_poly', KIND_COEFFS, .false., ''), &
         input_var_t('initial', 'u1_poly', KIND_COEFFS, .false., ''), &
         input_var_t('initial', 'theta0_poly', KIND_COEFFS, .false., ''), &
@@ -77,6 +81,7 @@ module input_vars_m
         input_var_t('solver', 'max_iter', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'prefix', KIND_STRING, .false., ''), &
         input_var_t('output', 'snapshot_every', KIND_INTEGER, .false., ''), &
+        input_var_t('output', 'snapshot_dt', KIND_REAL, .false., ''), &
         input_var_t('output', 'series_every', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'checkpoint_every', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'quiet', KIND_LOGICAL, .false., ''), &
@@ -141,6 +146,9 @@ contains
             changes_history = .true.
         case ('time')
             changes_history = var%name /= 't_end' .and. var%name /= 'restart_from'
+        case ('output')
+            ! the steps land on the snapshot times (run_m)
+            changes_history = var%name == 'snapshot_dt'
         case default
             changes_history = .false.
         end select
@@ -226,21 +234,21 @@ contains
         ! The namelist objects: one local per input variable, named as in the input. &model
         ! and &material share d (D), tau0 and tau; only one group is read at a time.
         real(dp) :: rho, alpha, varpi, gamma1, gamma2, c, d, r, hbar, tau0, tau
-        real(dp) :: g, eps, dt, t_end, tol
+        real(dp) :: g, eps, dt, t_end, tol, error_tol, dt_min, dt_max, snapshot_dt
         real(dp), dimension(0:MAX_POLY_DEGREE) :: u0_poly, u1_poly, theta0_poly, p0_poly, q0_poly, eta0_poly
         real(dp) :: theta0_step(2), p0_step(2)
         real(dp) :: T0, rho0, cE, kappa, lambda, mu, alpha_t, alpha_c, nu, varrho, ell, lambda_v, mu_v
         integer :: n_elements, max_iter, snapshot_every, series_every, checkpoint_every
         character(len=LEN_NAME) :: law, scheme, method
         character(len=LEN_PATH) :: restart_from, prefix
-        logical :: quiet
+        logical :: quiet, adaptive
         namelist /model/ rho, alpha, varpi, gamma1, gamma2, c, d, r, hbar, tau0, tau
         namelist /contact/ g, eps, law
         namelist /mesh/ n_elements
-        namelist /time/ dt, t_end, scheme, restart_from
+        namelist /time/ dt, t_end, scheme, restart_from, adaptive, error_tol, dt_min, dt_max
         namelist /initial/ u0_poly, u1_poly, theta0_poly, p0_poly, q0_poly, eta0_poly, theta0_step, p0_step
         namelist /solver/ method, tol, max_iter
-        namelist /output/ prefix, snapshot_every, series_every, checkpoint_every, quiet
+        namelist /output/ prefix, snapshot_every, snapshot_dt, series_every, checkpoint_every, quiet
         namelist /material/ T0, rho0, cE, kappa, lambda, mu, alpha_t, alpha_c, D, nu, varrho, ell, tau0, tau, &
                             lambda_v, mu_v
         type(input_item_t) :: work
@@ -300,6 +308,10 @@ contains
             case ('time.t_end'); call link(it, act, r=cfg%time%t_end, r_local=t_end)
             case ('time.scheme'); call link(it, act, s=cfg%time%scheme, s_local=scheme)
             case ('time.restart_from'); call link(it, act, s=cfg%time%restart_from, s_local=restart_from)
+            case ('time.adaptive'); call link(it, act, l=cfg%time%adaptive, l_local=adaptive)
+            case ('time.error_tol'); call link(it, act, r=cfg%time%error_tol, r_local=error_tol)
+            case ('time.dt_min'); call link(it, act, r=cfg%time%dt_min, r_local=dt_min)
+            case ('time.dt_max'); call link(it, act, r=cfg%time%dt_max, r_local=dt_max)
             case ('initial.u0_poly'); call link(it, act, a=cfg%initial%u0_poly, a_local=u0_poly)
             case ('initial.u1_poly'); call link(it, act, a=cfg%initial%u1_poly, a_local=u1_poly)
             case ('initial.theta0_poly'); call link(it, act, a=cfg%initial%theta0_poly, a_local=theta0_poly)
@@ -313,6 +325,7 @@ contains
             case ('solver.max_iter'); call link(it, act, i=cfg%solver%max_iter, i_local=max_iter)
             case ('output.prefix'); call link(it, act, s=cfg%output%prefix, s_local=prefix)
             case ('output.snapshot_every'); call link(it, act, i=cfg%output%snapshot_every, i_local=snapshot_every)
+            case ('output.snapshot_dt'); call link(it, act, r=cfg%output%snapshot_dt, r_local=snapshot_dt)
             case ('output.series_every'); call link(it, act, i=cfg%output%series_every, i_local=series_every)
             case ('output.checkpoint_every'); call link(it, act, i=cfg%output%checkpoint_every, i_local=checkpoint_every)
             case ('output.quiet'); call link(it, act, l=cfg%output%quiet, l_local=quiet)

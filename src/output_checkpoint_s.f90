@@ -1,7 +1,7 @@
 !> The checkpoint writer of output_m (see restart_m for what a checkpoint holds): a
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
-    use hdf5, only: h5lexists_f, h5dopen_f
+    use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f
     implicit none
 
 contains
@@ -13,11 +13,14 @@ contains
     !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
     !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
     !> flushed). A run killed at any moment leaves the last complete checkpoint readable.
-    module subroutine writer_write_checkpoint(w, state, counters, previous)
+    module subroutine writer_write_checkpoint(w, state, counters, previous, control, history, events)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: state(:, :)
         real(dp), intent(in) :: counters(:)
         real(dp), intent(in), optional :: previous(:, :)
+        real(dp), intent(in), optional :: control(:)      !< step control's scalars (step_control_m)
+        real(dp), intent(in), optional :: history(:, :)   !< the error estimator's past levels
+        real(dp), intent(in), optional :: events(:, :)    !< (n_events, 2): t and kind of each event
 
         integer(hid_t) :: group_id
         logical :: exists
@@ -42,10 +45,30 @@ contains
         call w%put_real(slot//'/state', state, [size(state, 1), size(state, 2)])
         call w%put_real(slot//'/counters', counters, [size(counters), 1])
         if (present(previous)) call w%put_real(slot//'/previous', previous, [size(previous, 1), size(previous, 2)])
+        if (present(control)) call w%put_real(slot//'/control', control, [size(control), 1])
+        if (present(history)) call w%put_real(slot//'/history', history, [size(history, 1), size(history, 2)])
+        call w%drop(slot//'/events')
+        if (present(events)) then
+            if (size(events, 1) > 0) call w%put_real(slot//'/events', events, [size(events, 1), size(events, 2)])
+        end if
         call w%flush()
         call w%put_real('/checkpoint/current', [real(w%checkpoint_slot, dp)], [1, 1])
         call w%flush()
     end subroutine writer_write_checkpoint
+
+    !> Remove the dataset `name` if it exists (a slot's event list changes length).
+    module subroutine writer_drop(w, name)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        logical :: exists
+        integer :: hdferr
+
+        call h5lexists_f(w%file_id, name, exists, hdferr)
+        call w%check(hdferr, 'h5lexists_f '//name)
+        if (.not. exists) return
+        call h5ldelete_f(w%file_id, name, hdferr)
+        call w%check(hdferr, 'h5ldelete_f '//name)
+    end subroutine writer_drop
 
     !> Write a fixed-size real dataset (rank 1 when shape(2) == 1, else rank 2), creating it
     !> on the first call.

@@ -74,10 +74,12 @@ module output_m
         procedure :: describe_si => writer_describe_si
         procedure :: flush => writer_flush
         procedure :: write_checkpoint => writer_write_checkpoint
+        procedure :: write_events => writer_write_events
         procedure :: finish => writer_finish
         procedure :: abandon => writer_abandon
         procedure, private :: check => writer_check
         procedure, private :: put_real => writer_put_real
+        procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
         procedure, private :: attr_target => writer_attr_target
@@ -87,13 +89,28 @@ module output_m
         procedure, private :: describe => writer_describe
     end type h5_writer_t
 
-    interface   ! the checkpoint writer (src/output_checkpoint_s.f90), dataset descriptions (src/output_describe_s.f90)
-        module subroutine writer_write_checkpoint(w, state, counters, previous)
+    interface   ! the checkpoint writer (src/output_checkpoint_s.f90), dataset descriptions (src/output_describe_s.f90),
+                ! the contact events (src/output_events_s.f90)
+        module subroutine writer_write_events(w, t, kind)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: t(:)
+            integer, intent(in) :: kind(:)
+        end subroutine writer_write_events
+
+        module subroutine writer_write_checkpoint(w, state, counters, previous, control, history, events)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
             real(dp), intent(in), optional :: previous(:, :)
+            real(dp), intent(in), optional :: control(:)
+            real(dp), intent(in), optional :: history(:, :)
+            real(dp), intent(in), optional :: events(:, :)
         end subroutine writer_write_checkpoint
+
+        module subroutine writer_drop(w, name)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: name
+        end subroutine writer_drop
 
         module subroutine writer_put_real(w, name, values, shape2)
             class(h5_writer_t), intent(inout) :: w

@@ -49,11 +49,14 @@ contains
     !> may continue it: `file` is not the file this run writes, every input that changes the
     !> computed history equals the one recorded in `file`, and t_end is not before the
     !> checkpoint. Any of these failing is an input error (exit 2) that leaves no output.
-    subroutine read_checkpoint(file, cfg, state, counters)
+    subroutine read_checkpoint(file, cfg, state, counters, control, history, events)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
         type(state_t), intent(inout) :: state
         real(dp), intent(out) :: counters(N_COUNTERS)
+        !> step control's scalars and past levels (absent in the checkpoint: not allocated)
+        real(dp), allocatable, intent(out) :: control(:), history(:, :)
+        real(dp), allocatable, intent(out) :: events(:, :)   !< (n_events, 2); (0, 2) if none
         real(dp), allocatable :: packed(:, :), values(:)
         character(len=:), allocatable :: slot
         integer :: s, stat
@@ -81,6 +84,13 @@ contains
             state%u_prev = packed(:, 1)
             state%w_prev = packed(:, 2:)
         end if
+        if (dataset_exists(file, slot//'/control')) call read_real_1d(file, slot//'/control', control)
+        if (dataset_exists(file, slot//'/history')) call read_real_2d(file, slot//'/history', history)
+        if (dataset_exists(file, slot//'/events')) then
+            call read_real_2d(file, slot//'/events', events)
+        else
+            allocate (events(0, 2))
+        end if
         call read_real_1d(file, slot//'/counters', values)
         if (size(values) /= N_COUNTERS) call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/counters is not "// &
                                                    "from this version of rodcontact")
@@ -90,11 +100,24 @@ contains
         state%dt_last = counters(COUNTER_DT_LAST)
         state%t_anchor = counters(COUNTER_T_ANCHOR)
         state%step_anchor = nint(counters(COUNTER_STEP_ANCHOR))
-        if (number_of_steps(cfg%time%dt, cfg%time%t_end) < state%step) call fatal(EXIT_INPUT, 'time.t_end', &
+        if (ends_before(cfg, state)) call fatal(EXIT_INPUT, 'time.t_end', &
             'got '//format_real(cfg%time%t_end)//"; the checkpoint in '"//file//"' is at t = "// &
             format_real(state%t)//' (step '//int_str(state%step)//'): a restart continues a run up to t_end, '// &
             'so t_end must be >= '//format_real(state%t))
     end subroutine read_checkpoint
+
+    !> Does the run cfg end before the checkpoint's state? Fixed steps: its last step comes
+    !> before the checkpoint's; adaptive steps: t_end < t.
+    pure logical function ends_before(cfg, state)
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(in) :: state
+
+        if (cfg%time%adaptive) then
+            ends_before = cfg%time%t_end < state%t
+        else
+            ends_before = number_of_steps(cfg%time%dt, cfg%time%t_end) < state%step
+        end if
+    end function ends_before
 
     !> The file restarted from must not be one this run writes: <prefix>.h5.part is created
     !> (truncated) at the start and renamed to <prefix>.h5 at the end, and either would

@@ -11,9 +11,13 @@ module run_m
     use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_name
     use fe_m, only: mesh_nodes
-    use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, &
-                        N_OUTPUT_FIELDS, OUTPUT_ORDER
-    use state_m, only: state_t, initial_state, field_values, advance_time
+    use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
+                        N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
+    use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state
+    use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, &
+                              pack_control, unpack_control
+    use contact_law_m, only: contact_law_t
+    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use restart_m, only: N_COUNTERS, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, COUNTER_LAW_ENERGY, &
@@ -28,25 +32,43 @@ module run_m
     private
     public :: run_simulation
 
+    !> The progress report of an adaptive run counts t / t_end in these units.
+    integer, parameter :: PROGRESS_UNITS = 1000
+
 contains
 
     !> Run the validated configuration cfg and write <prefix>.h5. A numerical failure
     !> finishes the file with status 'failed: ...' and stops with EXIT_NUMERIC.
+    !>
+    !> The time loop takes steps of &time dt (fixed) or of the size step_control_m's
+    !> controller proposes (adaptive). Adaptive steps are tried: a step whose local error
+    !> estimate exceeds the tolerance is rejected (the state restored) and retried smaller,
+    !> and so is a step that changes the contact state while longer than the event tolerance
+    !> (max(error_tol, dt_min)), retried to end just before the crossing, so that the step
+    !> across a contact event is at most that long. Steps are shortened to land on the
+    !> snapshot times (&output snapshot_dt) and on t_end.
     subroutine run_simulation(cfg)
         type(config_t), intent(in) :: cfg
-        type(state_t) :: state
+        type(state_t) :: state, saved
         type(stepper_t) :: stepper
         type(step_result_t) :: result
         type(h5_writer_t) :: writer
         type(progress_t) :: progress
         type(energy_monitor_t) :: monitor
-        integer :: n, n_steps, first_step, last_written
+        type(error_estimator_t) :: estimator
+        type(step_controller_t) :: control
+        type(event_log_t) :: events
+        integer :: n_steps, last_written, n_snapshot_next
         integer(int64) :: clock_start, clock_rate
-        real(dp) :: counters(N_COUNTERS)
+        real(dp) :: counters(N_COUNTERS), dt_try, target, t_before, gap_start, gap_end, est, err, proposal, event_tol, &
+                    saved_dt_last
+        logical :: adaptive, lands, at_snapshot, in_contact, contact_now, flipped, last, warned_forced
+        real(dp), allocatable :: control_values(:), history(:, :), event_table(:, :)
         character(len=320) :: failure
         character(len=:), allocatable :: interrupted
 
         call system_clock(clock_start, clock_rate)
+        adaptive = cfg%time%adaptive
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
         call initial_state(cfg, state)
         call stepper%init(cfg, result)
@@ -55,22 +77,40 @@ contains
         else
             call monitor%init(cfg%model, stepper%law, stepper%scheme, state)
         end if
+        call estimator%init(trim(cfg%time%scheme), state%s)
+        call control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, estimator%order, cfg%time%dt)
+        event_tol = max(cfg%time%error_tol, cfg%time%dt_min)
+        control%scale = energy_norm(monitor%energy)
+        call estimator%push(state%u, state%w, 0.0_dp)
+        in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
         if (cfg%time%restart_from /= '') then
             ! everything the restart needs is read and checked before the new file exists
-            call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters)
+            call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters, control_values, history, &
+                                 event_table)
             monitor%energy = counters(COUNTER_ENERGY)
             monitor%law_energy = counters(COUNTER_LAW_ENERGY)
             monitor%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
             monitor%max_rise = counters(COUNTER_MAX_RISE)
             stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
             stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
+            call estimator%reset()
+            call estimator%push(state%u, state%w, state%dt_last)
+            in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
+            if (allocated(control_values) .and. allocated(history)) then
+                call unpack_control(control_values(:N_CONTROL_VALUES), history, control, estimator)
+                in_contact = control_values(N_CONTROL_VALUES + 1) > 0.0_dp
+                monitor%max_rise_step_change = control_values(N_CONTROL_VALUES + 2)
+            end if
+            call events%restore(event_table)
         end if
+        n_snapshot_next = 0
+        if (cfg%output%snapshot_dt > 0.0_dp) n_snapshot_next = floor(state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
         call record_provenance(writer)
         if (cfg%material%present) call record_scales(writer, cfg)
-        call writer%attr_int('steps_planned', n_steps)
+        if (.not. adaptive) call writer%attr_int('steps_planned', n_steps)
         if (cfg%time%restart_from /= '') then
             call copy_history(writer, trim(cfg%time%restart_from), state%t)
             call writer%attr_int('restart_step', state%step)
@@ -82,43 +122,107 @@ contains
 
         failure = ''
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
-        first_step = state%step + 1
         last_written = 0
         interrupted = ''
+        warned_forced = .false.
         call install_stop_handlers()
-        call progress%start(n_steps, cfg%output%quiet)
-        do n = first_step, n_steps
-            if (failure /= '') exit
-            if (interrupted /= '') exit
-            call stepper%advance(state, result)
+        if (adaptive) then
+            call progress%start(PROGRESS_UNITS, cfg%output%quiet)
+        else
+            call progress%start(n_steps, cfg%output%quiet)
+        end if
+        do
+            if (failure /= '' .or. interrupted /= '') exit
+            if (finished(state)) exit
+            call choose_step(state, dt_try, target, lands, at_snapshot)
+            t_before = state%t
+            saved_dt_last = state%dt_last
+            gap_start = state%u(state%s) - stepper%law%g
+            if (adaptive) call copy_state(state, saved)
+            call stepper%advance(state, result, dt_try)
             if (.not. result%ok) then
-                failure = step_failure(n, advance_time(state, cfg%time%dt), trim(result%message))
+                failure = step_failure(state%step + 1, advance_time(state, dt_try), trim(result%message))
                 exit
             end if
-            call monitor%observe(state)
+            call contact_state(stepper%law, state, result, contact_now, gap_end)
+            flipped = contact_now .neqv. in_contact
+            est = 0.0_dp
+            err = -1.0_dp
+            if (estimator%ready() .and. .not. flipped) then
+                est = estimator%estimate(cfg%model, state%u, state%w, dt_try)
+                err = control%ratio(est)
+            end if
+            if (adaptive) then
+                if (flipped .and. dt_try > event_tol) then
+                    ! retry to end just before the crossing (or, close to it, across it
+                    ! within event_tol)
+                    call undo_step(stepper, result, saved, state)
+                    control%dt_next = retry_before_event(dt_try, gap_start, gap_end, event_tol)
+                    control%no_growth = .true.
+                    cycle
+                end if
+                if (err > 1.0_dp .and. dt_try > cfg%time%dt_min) then
+                    call undo_step(stepper, result, saved, state)
+                    call control%reject(dt_try, err)
+                    cycle
+                end if
+                if (err > 1.0_dp) then
+                    control%n_forced = control%n_forced + 1
+                    if (.not. warned_forced) call warn_forced(state%t, cfg%time%dt_min)
+                    warned_forced = .true.
+                end if
+            end if
+            ! the step is accepted
+            if (lands .and. adaptive) call land_on(state, target)
+            if (flipped) then
+                call events%add(crossing_time(t_before, dt_try, gap_start, gap_end), &
+                                merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
+                if (adaptive) call estimator%reset()
+            end if
+            in_contact = contact_now
+            call estimator%push(state%u, state%w, dt_try)
+            if (err >= 0.0_dp) then
+                control%error_sum = control%error_sum + est
+                control%n_estimated = control%n_estimated + 1
+            end if
+            if (adaptive) then
+                proposal = control%dt_next
+                call control%accept(dt_try, err)
+                ! a step shortened to land on an output time says nothing against the proposal
+                if (lands) control%dt_next = max(control%dt_next, min(proposal, cfg%time%dt_max))
+            end if
+            call monitor%observe(state, step_changed=dt_try /= saved_dt_last)
             if (.not. ieee_is_finite(monitor%energy)) then
-                failure = step_failure(n, state%t, 'the discrete energy is not finite')
+                failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
                 exit
             end if
-            if (mod(n, cfg%output%series_every) == 0 .or. n == n_steps) &
+            control%scale = max(control%scale, energy_norm(monitor%energy))
+            if (at_snapshot) n_snapshot_next = n_snapshot_next + 1
+            last = finished(state)
+            if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
                 call write_series(writer, stepper, state, monitor%energy, result)
-            if (mod(n, cfg%output%snapshot_every) == 0 .or. n == n_steps) call write_snapshot(writer, state)
-            last_written = n
+            if (snapshot_due(state%step, at_snapshot) .or. last) call write_snapshot(writer, state)
+            last_written = state%step
             if (cfg%output%checkpoint_every > 0) then
-                if (mod(n, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, monitor)
+                if (mod(state%step, cfg%output%checkpoint_every) == 0) &
+                    call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
             end if
-            call progress%update(n, state%t, result%in_contact)
+            if (adaptive) then
+                call progress%update(progress_position(state%t), state%t, result%in_contact)
+            else
+                call progress%update(state%step, state%t, result%in_contact)
+            end if
             ! a signal stops the run after this step, with a checkpoint of it (below)
-            if (n < n_steps) interrupted = stop_signal_name()
+            if (.not. last) interrupted = stop_signal_name()
         end do
         call progress%finish()
         if (interrupted /= '') then
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
             ! checkpoint, so the file must hold exactly those an uninterrupted run has
             if (cfg%output%checkpoint_every == 0) then
-                call write_checkpoint(writer, state, stepper, monitor)
+                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
             else if (mod(state%step, cfg%output%checkpoint_every) /= 0) then
-                call write_checkpoint(writer, state, stepper, monitor)
+                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
             end if
         end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
@@ -127,16 +231,20 @@ contains
             call write_series(writer, stepper, state, monitor%energy, result)
         end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
-            mod(last_written, cfg%output%snapshot_every) /= 0) call write_snapshot(writer, state)
+            .not. snapshot_due(last_written, .false.)) call write_snapshot(writer, state)
 
+        call writer%write_events(events%times(), events%kinds())
         call writer%attr_int('steps', state%step)
         call writer%attr_real('t_final', state%t)
         call writer%attr_real('wall_seconds', seconds_since(clock_start, clock_rate))
         call writer%attr_real('energy_max_relative_rise', monitor%max_rise)
+        if (stepper%scheme%is_bdf2() .and. (adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
+            call writer%attr_real('energy_max_relative_rise_step_change', monitor%max_rise_step_change)
         call writer%attr_str('energy_law', stepper%scheme%law())
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
+        call record_time_error(writer, control, adaptive)
         if (interrupted /= '') then
             call writer%finish('interrupted: '//interrupted, keep_part=.true.)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
@@ -151,7 +259,168 @@ contains
                        trim(cfg%output%prefix)//'.h5 (status attribute: failed)')
         end if
         call writer%finish('complete')
+
+    contains
+
+        !> Has the run reached its end? Fixed steps without snapshot_dt: n_steps steps (as
+        !> always, t_N = N dt); otherwise t_end (adaptive) or N dt (fixed), to round-off.
+        logical function finished(state)
+            type(state_t), intent(in) :: state
+
+            if (.not. adaptive .and. cfg%output%snapshot_dt <= 0.0_dp) then
+                finished = state%step >= n_steps
+            else
+                finished = state%t >= t_stop() - 1.0e-9_dp * cfg%time%dt_min
+                if (.not. adaptive) finished = state%t >= t_stop() - 1.0e-9_dp * cfg%time%dt
+            end if
+        end function finished
+
+        !> The end time: t_end (adaptive), N dt (fixed: number_of_steps).
+        real(dp) function t_stop()
+            if (adaptive) then
+                t_stop = cfg%time%t_end
+            else
+                t_stop = real(n_steps, dp) * cfg%time%dt
+            end if
+        end function t_stop
+
+        !> The next step: &time dt or the controller's proposal (at most GROWTH_MAX times the
+        !> last step), shortened to end on the next snapshot time or the end (target; lands).
+        !> Adaptive steps that would leave less than a step to the target take half the
+        !> distance instead, so no tiny step follows.
+        subroutine choose_step(state, dt_try, target, lands, at_snapshot)
+            type(state_t), intent(in) :: state
+            real(dp), intent(out) :: dt_try, target
+            logical, intent(out) :: lands, at_snapshot
+            real(dp) :: remaining, slack
+
+            if (adaptive) then
+                dt_try = control%dt_next
+                if (state%dt_last > 0.0_dp) dt_try = min(dt_try, GROWTH_MAX * state%dt_last)
+                dt_try = min(max(dt_try, cfg%time%dt_min), cfg%time%dt_max)
+                slack = 1.0e-9_dp * dt_try
+            else
+                dt_try = cfg%time%dt
+                slack = 1.0e-9_dp * cfg%time%dt
+            end if
+            target = t_stop()
+            at_snapshot = .false.
+            if (cfg%output%snapshot_dt > 0.0_dp) then
+                if (real(n_snapshot_next, dp) * cfg%output%snapshot_dt < target - slack) then
+                    target = real(n_snapshot_next, dp) * cfg%output%snapshot_dt
+                    at_snapshot = .true.
+                end if
+            end if
+            remaining = target - state%t
+            lands = dt_try >= remaining - slack
+            if (lands) then
+                if (adaptive .or. dt_try > remaining + slack) dt_try = remaining
+            else if (adaptive .and. dt_try > 0.5_dp * remaining) then
+                dt_try = 0.5_dp * remaining
+            end if
+            at_snapshot = at_snapshot .and. lands
+        end subroutine choose_step
+
+        !> Snapshot after step n: at the snapshot times (snapshot_dt), else every snapshot_every steps.
+        logical function snapshot_due(n, at_snapshot)
+            integer, intent(in) :: n
+            logical, intent(in) :: at_snapshot
+
+            if (cfg%output%snapshot_dt > 0.0_dp) then
+                snapshot_due = at_snapshot
+            else
+                snapshot_due = mod(n, cfg%output%snapshot_every) == 0
+            end if
+        end function snapshot_due
+
+        !> Where the progress report stands in an adaptive run: t / t_end in PROGRESS_UNITS.
+        integer function progress_position(t)
+            real(dp), intent(in) :: t
+
+            progress_position = max(1, min(PROGRESS_UNITS, nint(real(PROGRESS_UNITS, dp) * t / cfg%time%t_end)))
+        end function progress_position
+
     end subroutine run_simulation
+
+    !> The contact state after a step, as events are counted: penalty, u^n(1) > g (the end
+    !> position; the midpoint rule's force may act a step longer); Signorini, an active
+    !> multiplier. gap: the gap at the step's end the crossing time is interpolated to,
+    !> u^n(1) - g (penalty) or the trial gap (Signorini, whose u^n(1) stops at g).
+    subroutine contact_state(law, state, result, in_contact, gap)
+        type(contact_law_t), intent(in) :: law
+        type(state_t), intent(in) :: state
+        type(step_result_t), intent(in) :: result
+        logical, intent(out) :: in_contact
+        real(dp), intent(out) :: gap
+
+        if (law%is_signorini()) then
+            in_contact = result%in_contact
+            gap = result%trial_gap
+        else
+            gap = state%u(state%s) - law%g
+            in_contact = gap > 0.0_dp
+        end if
+    end subroutine contact_state
+
+    !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).
+    pure real(dp) function energy_norm(energy)
+        real(dp), intent(in) :: energy
+
+        energy_norm = sqrt(2.0_dp * max(energy, 0.0_dp))
+    end function energy_norm
+
+    !> A rejected step: the state as before it, and the step's contact count taken back.
+    subroutine undo_step(stepper, result, saved, state)
+        type(stepper_t), intent(inout) :: stepper
+        type(step_result_t), intent(in) :: result
+        type(state_t), intent(in) :: saved
+        type(state_t), intent(inout) :: state
+
+        if (result%in_contact) stepper%n_contact_steps = stepper%n_contact_steps - 1
+        call copy_state(saved, state)
+    end subroutine undo_step
+
+    !> The retry of a step of size dt that changed the contact state: the trial gap went
+    !> from gap_start to gap_end; end event_tol/2 before the interpolated crossing, or take
+    !> a step of event_tol across it when the crossing is that close (events_m's crossing_time;
+    !> a release from a zero gap (Signorini) halves the step).
+    pure real(dp) function retry_before_event(dt, gap_start, gap_end, event_tol) result(dt_new)
+        real(dp), intent(in) :: dt, gap_start, gap_end, event_tol
+        real(dp) :: to_crossing
+
+        to_crossing = crossing_time(0.0_dp, dt, gap_start, gap_end)
+        if (to_crossing >= dt) to_crossing = 0.5_dp * dt
+        dt_new = to_crossing - 0.5_dp * event_tol
+        if (to_crossing <= event_tol) dt_new = event_tol
+        dt_new = min(dt_new, dt - 0.5_dp * event_tol)
+    end function retry_before_event
+
+    !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
+    subroutine warn_forced(t, dt_min)
+        real(dp), intent(in) :: t, dt_min
+
+        write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', t, &
+            ' a step of dt_min = ', dt_min, ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
+            '(the count is in the root attribute time_steps_at_dt_min)'
+        flush (error_unit)
+    end subroutine warn_forced
+
+    !> The time error of the run (root attributes): the sum of the local error estimates of
+    !> the accepted steps (step_control_m), absolute (energy norm) and relative to the largest
+    !> energy norm of the solution; with it the counts of the step control.
+    subroutine record_time_error(writer, control, adaptive)
+        type(h5_writer_t), intent(inout) :: writer
+        type(step_controller_t), intent(in) :: control
+        logical, intent(in) :: adaptive
+
+        call writer%attr_real('time_error_estimate', control%error_sum)
+        call writer%attr_real('time_error_estimate_relative', control%error_sum / max(control%scale, tiny(1.0_dp)))
+        call writer%attr_int('time_steps_estimated', control%n_estimated)
+        if (.not. adaptive) return
+        call writer%attr_int('time_steps_rejected', control%n_rejected)
+        call writer%attr_int('time_steps_at_dt_min', control%n_forced)
+    end subroutine record_time_error
+
 
     !> 'step n (t = ...): reason' for the failure message and the status attribute.
     function step_failure(n, t, reason) result(text)
@@ -165,13 +434,20 @@ contains
         text = trim(buf)//': '//reason
     end function step_failure
 
-    !> /checkpoint: the state, the level before (BDF2) and the counters to continue exactly.
-    subroutine write_checkpoint(writer, state, stepper, monitor)
+    !> /checkpoint: the state, the level before (BDF2), the counters, the step control
+    !> (step_control_m, with the contact state in_contact appended) and the events, so that
+    !> the run continues exactly.
+    subroutine write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
         type(h5_writer_t), intent(inout) :: writer
         type(state_t), intent(in) :: state
         type(stepper_t), intent(in) :: stepper
         type(energy_monitor_t), intent(in) :: monitor
-        real(dp) :: counters(N_COUNTERS)
+        type(step_controller_t), intent(in) :: control
+        type(error_estimator_t), intent(in) :: estimator
+        type(event_log_t), intent(in) :: events
+        logical, intent(in) :: in_contact
+        real(dp) :: counters(N_COUNTERS), values(N_CONTROL_VALUES + 2)
+        real(dp) :: history(0:state%s, (1 + N_FIELDS) * MAX_LEVELS)
 
         counters(COUNTER_STEP) = real(state%step, dp)
         counters(COUNTER_T) = state%t
@@ -184,10 +460,15 @@ contains
         counters(COUNTER_DT_LAST) = state%dt_last
         counters(COUNTER_T_ANCHOR) = state%t_anchor
         counters(COUNTER_STEP_ANCHOR) = real(state%step_anchor, dp)
+        call pack_control(control, estimator, values(:N_CONTROL_VALUES), history)
+        values(N_CONTROL_VALUES + 1) = merge(1.0_dp, 0.0_dp, in_contact)
+        values(N_CONTROL_VALUES + 2) = monitor%max_rise_step_change
         if (allocated(state%u_prev)) then
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters, pack_state(state%u_prev, state%w_prev))
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, pack_state(state%u_prev, state%w_prev), &
+                                         control=values, history=history, events=events%packed())
         else
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters)
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, control=values, history=history, &
+                                         events=events%packed())
         end if
     end subroutine write_checkpoint
 
@@ -207,6 +488,7 @@ contains
         values(S_PENETRATION) = stepper%law%penetration(state%u(state%s))
         values(S_CONTACT_STRESS) = -result%contact_force
         values(S_ITERATIONS) = real(result%iterations, dp)
+        values(S_DT) = state%dt_last
         call writer%append_series(values)
     end subroutine write_series
 

@@ -8,7 +8,7 @@ module state_m
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: state_t, initial_state, field_values, advance_time, accept_step
+    public :: state_t, initial_state, field_values, advance_time, accept_step, land_on, copy_state
 
     type :: state_t
         integer :: s = 0                !< number of elements
@@ -108,5 +108,52 @@ contains
             step_anchor = state%step
         end if
     end subroutine next_anchor
+
+    !> The step just accepted was sized to end at t_target (an output time or t_end):
+    !> take t_n = t_target exactly, and count the following steps from there.
+    pure subroutine land_on(state, t_target)
+        type(state_t), intent(inout) :: state
+        real(dp), intent(in) :: t_target
+
+        state%t = t_target
+        state%t_anchor = t_target
+        state%step_anchor = state%step
+    end subroutine land_on
+
+    !> copy = state, reusing copy's arrays (a rejected adaptive step restores from it; the
+    !> intrinsic assignment would allocate every step).
+    subroutine copy_state(state, copy)
+        type(state_t), intent(in) :: state
+        type(state_t), intent(inout) :: copy
+        integer :: stat
+        character(len=256) :: message
+
+        copy%s = state%s
+        copy%step = state%step
+        copy%t = state%t
+        copy%dt_last = state%dt_last
+        copy%t_anchor = state%t_anchor
+        copy%step_anchor = state%step_anchor
+        if (.not. allocated(copy%u)) then
+            allocate (copy%u, mold=state%u, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the saved state')
+            allocate (copy%w, mold=state%w, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the saved state')
+        end if
+        copy%u = state%u
+        copy%w = state%w
+        if (allocated(state%u_prev)) then
+            if (.not. allocated(copy%u_prev)) then
+                allocate (copy%u_prev, mold=state%u_prev, stat=stat, errmsg=message)
+                call check_allocation(stat, message, 'the saved state')
+                allocate (copy%w_prev, mold=state%w_prev, stat=stat, errmsg=message)
+                call check_allocation(stat, message, 'the saved state')
+            end if
+            copy%u_prev = state%u_prev
+            copy%w_prev = state%w_prev
+        else if (allocated(copy%u_prev)) then
+            deallocate (copy%u_prev, copy%w_prev)
+        end if
+    end subroutine copy_state
 
 end module state_m

@@ -46,6 +46,9 @@ module stepper_m
         character(len=256) :: message = ''
         integer :: iterations = 0        !< linear solves of the step (paper: iterations)
         logical :: in_contact = .false.  !< the contact node is active after the step
+        !> u(1) - g at the step's end without contact force (monolithic): its sign decides the
+        !> contact state of the step; step_control locates contact events with it
+        real(dp) :: trial_gap = 0.0_dp
         real(dp) :: contact_force = 0.0_dp  !< lambda = -sigma(1,t_n): (1/eps)[u^n(1)-g]_+, or the
                                             !< Signorini multiplier
     end type step_result_t
@@ -317,6 +320,7 @@ contains
             gap = u_end_from + dt * self%x(sys%contact_dof) - self%law%g
             impulse = self%law%implicit_impulse(gap, dt, z_s)
         end associate
+        result%trial_gap = gap
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
         if (self%scheme%keeps_previous_level()) call keep_previous_level(state)
@@ -345,6 +349,7 @@ contains
         result%iterations = 1
         associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), u_old => state%u(self%s))
             impulse = self%law%midpoint_impulse(u_old + dt * self%x(sys%contact_dof), u_old, dt, z_s)
+            result%trial_gap = u_old + 2.0_dp * dt * self%x(sys%contact_dof) - self%law%g
         end associate
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return

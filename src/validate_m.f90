@@ -51,7 +51,7 @@ contains
         call validate_initial(cfg%initial, cfg%contact%g)
         call validate_solver(cfg%solver)
         call validate_combination(cfg)
-        call validate_output(cfg%output, cfg%mesh%n_elements, n_steps)
+        call validate_output(cfg%output, cfg%mesh%n_elements, n_steps, cfg%time%t_end)
     end subroutine validate_config
 
     ! ---------------------------------------------------------------- one check per group
@@ -113,7 +113,25 @@ contains
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
         n_steps = real(number_of_steps(time%dt, time%t_end), dp)
         call require_one_of(time%scheme, [character(len=8) :: 'euler', 'bdf2', 'midpoint'], 'time.scheme')
+        if (time%adaptive) call validate_step_control(time)
     end subroutine validate_time
+
+    !> &time adaptive = .true.: a relative tolerance in (0, 1) and dt_min <= dt <= dt_max.
+    subroutine validate_step_control(time)
+        type(time_t), intent(in) :: time
+
+        call require_positive(time%error_tol, 'time.error_tol', scaled=.true.)
+        if (time%error_tol >= 1.0_dp) call fatal(EXIT_INPUT, 'time.error_tol', 'got ' // &
+            format_real(time%error_tol) // '; must be in (0, 1): the local error allowed per step, ' // &
+            'relative to the largest energy norm of the solution so far (e.g. 1e-5)')
+        call require_positive(time%dt_min, 'time.dt_min', scaled=.true.)
+        call require_positive(time%dt_max, 'time.dt_max', scaled=.true.)
+        if (time%dt_min > time%dt_max) call fatal(EXIT_INPUT, 'time.dt_min', 'got ' // format_real(time%dt_min) // &
+            ' > dt_max = ' // format_real(time%dt_max) // '; must be <= dt_max')
+        if (time%dt < time%dt_min .or. time%dt > time%dt_max) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
+            format_real(time%dt) // ' with adaptive = .true.; the first step must lie in [dt_min, dt_max] = [' // &
+            format_real(time%dt_min) // ', ' // format_real(time%dt_max) // ']')
+    end subroutine validate_step_control
 
     !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
     !> u0, u1, q0, eta0 in S_h vanish at x = 0, theta0, P0 in V_h vanish at x = 1; u0(1) <= g.
@@ -148,6 +166,9 @@ contains
         type(config_t), intent(in) :: cfg
 
         if (cfg%solver%method /= 'paper') return
+        if (cfg%time%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with time.adaptive = " // &
+            ".true.: the paper's iteration runs with one fixed step; method must be 'monolithic' for " // &
+            'adaptive steps')
         if (cfg%contact%law /= 'penalty') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the penalty term and " // &
             "has no Signorini form; method must be 'monolithic' with this law")
@@ -166,10 +187,10 @@ contains
 
     !> Output settings, and the size of <prefix>.h5: a warning above OUTPUT_WARN, an error
     !> above OUTPUT_LIMIT (counting snapshots and series as run_m writes them).
-    subroutine validate_output(output, n_elements, n_steps)
+    subroutine validate_output(output, n_elements, n_steps, t_end)
         type(output_t), intent(in) :: output
         integer, intent(in) :: n_elements
-        real(dp), intent(in) :: n_steps
+        real(dp), intent(in) :: n_steps, t_end
         real(dp) :: nodes, snapshot_bytes, series_bytes, total
         character(len=:), allocatable :: where
 
@@ -179,12 +200,18 @@ contains
         call require_at_least(output%snapshot_every, 1, 'output.snapshot_every')
         call require_at_least(output%series_every, 1, 'output.series_every')
         call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
+        call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', '(0: snapshots every snapshot_every steps)')
         ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
-        snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
+        if (output%snapshot_dt > 0.0_dp) then
+            snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
+        else
+            snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
+        end if
         series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
         total = snapshot_bytes + series_bytes + 8.0_dp * nodes
         where = 'output.snapshot_every'
+        if (output%snapshot_dt > 0.0_dp) where = 'output.snapshot_dt'
         if (series_bytes > snapshot_bytes) where = 'output.series_every'
         if (total > OUTPUT_LIMIT) call fatal(EXIT_INPUT, where, 'the output file would be about ' // &
             gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots, ' // gib_str(series_bytes) // &

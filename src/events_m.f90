@@ -1,0 +1,105 @@
+!> Contact events: the times at which the contact node becomes active (onset) or inactive
+!> (release), as /events/t and /events/kind record them (SPEC section 4).
+module events_m
+    use kinds_m, only: dp
+    use errors_m, only: check_allocation
+    implicit none
+    private
+    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
+
+    integer, parameter :: EVENT_ONSET = 1, EVENT_RELEASE = -1
+
+    !> The events of a run, in order.
+    type :: event_log_t
+        integer :: n = 0
+        real(dp), allocatable :: t(:)
+        integer, allocatable :: kind(:)
+    contains
+        procedure :: add => log_add
+        procedure :: times => log_times
+        procedure :: kinds => log_kinds
+        procedure :: packed => log_packed
+        procedure :: restore => log_restore
+    end type event_log_t
+
+contains
+
+    !> Record an event of kind EVENT_ONSET or EVENT_RELEASE at time t.
+    subroutine log_add(self, t, kind)
+        class(event_log_t), intent(inout) :: self
+        real(dp), intent(in) :: t
+        integer, intent(in) :: kind
+        real(dp), allocatable :: t_new(:)
+        integer, allocatable :: kind_new(:)
+        integer :: stat
+        character(len=256) :: message
+
+        if (.not. allocated(self%t)) then
+            allocate (self%t(16), self%kind(16), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the event list')
+        end if
+        if (self%n == size(self%t)) then
+            allocate (t_new(2 * self%n), kind_new(2 * self%n), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the event list')
+            t_new(:self%n) = self%t
+            kind_new(:self%n) = self%kind
+            call move_alloc(t_new, self%t)
+            call move_alloc(kind_new, self%kind)
+        end if
+        self%n = self%n + 1
+        self%t(self%n) = t
+        self%kind(self%n) = kind
+    end subroutine log_add
+
+    !> The n event times.
+    pure function log_times(self) result(t)
+        class(event_log_t), intent(in) :: self
+        real(dp) :: t(self%n)
+
+        if (self%n > 0) t = self%t(:self%n)
+    end function log_times
+
+    !> The n event kinds (EVENT_ONSET, EVENT_RELEASE).
+    pure function log_kinds(self) result(kind)
+        class(event_log_t), intent(in) :: self
+        integer :: kind(self%n)
+
+        if (self%n > 0) kind = self%kind(:self%n)
+    end function log_kinds
+
+    !> (n, 2): t and kind, for a checkpoint.
+    pure function log_packed(self) result(table)
+        class(event_log_t), intent(in) :: self
+        real(dp) :: table(self%n, 2)
+
+        if (self%n == 0) return
+        table(:, 1) = self%t(:self%n)
+        table(:, 2) = real(self%kind(:self%n), dp)
+    end function log_packed
+
+    !> The log of a checkpoint's table (n, 2).
+    subroutine log_restore(self, table)
+        class(event_log_t), intent(inout) :: self
+        real(dp), intent(in) :: table(:, :)
+        integer :: k
+
+        self%n = 0
+        do k = 1, size(table, 1)
+            call self%add(table(k, 1), nint(table(k, 2)))
+        end do
+    end subroutine log_restore
+
+    !> The time in [t_start, t_start + dt] at which the contact state of a step changes: the
+    !> trial gap u(1) - g (the gap the step would have without contact force) goes from
+    !> gap_start at t_start to gap_end at t_start + dt; interpolated linearly when the two
+    !> have strictly opposite signs, else the end of the step (e.g. a Signorini release,
+    !> which starts from a zero gap).
+    pure real(dp) function crossing_time(t_start, dt, gap_start, gap_end) result(t)
+        real(dp), intent(in) :: t_start, dt, gap_start, gap_end
+
+        t = t_start + dt
+        if ((gap_start < 0.0_dp .and. gap_end > 0.0_dp) .or. (gap_start > 0.0_dp .and. gap_end < 0.0_dp)) &
+            t = t_start + dt * gap_start / (gap_start - gap_end)
+    end function crossing_time
+
+end module events_m

@@ -306,7 +306,9 @@ contains
             target = t_stop()
             at_snapshot = .false.
             if (cfg%output%snapshot_dt > 0.0_dp) then
-                if (real(n_snapshot_next, dp) * cfg%output%snapshot_dt < target - slack) then
+                ! a snapshot time that is t_end to round-off is the target (not t_end): so
+                ! a run to t_end takes the steps a longer run takes up to there
+                if (real(n_snapshot_next, dp) * cfg%output%snapshot_dt <= target + slack) then
                     target = real(n_snapshot_next, dp) * cfg%output%snapshot_dt
                     at_snapshot = .true.
                 end if

@@ -36,6 +36,24 @@ for scheme in euler bdf2 midpoint; do
     else fail "$scheme: restarted run differs from the uninterrupted one:"; echo "$out"; fi
 done
 
+# adaptive steps (with the contact events of exp1 inside both halves' range and snapshots
+# at exact times): the controller, the estimator's levels and the events continue exactly
+for scheme in euler bdf2 midpoint; do
+    ad="adaptive=.true. error_tol=1e-5"
+    make_input afull_$scheme.nml afull_$scheme 0.6 $scheme "$ad"
+    make_input ahalf_$scheme.nml ahalf_$scheme 0.3 $scheme "$ad"
+    make_input arest_$scheme.nml arest_$scheme 0.6 $scheme "$ad restart_from='ahalf_$scheme.h5'"
+    sed -i -e 's/checkpoint_every=250/checkpoint_every=7 snapshot_dt=0.05/' afull_$scheme.nml ahalf_$scheme.nml arest_$scheme.nml
+    "$exe" afull_$scheme.nml || fail "adaptive $scheme: uninterrupted run exit $?"
+    "$exe" ahalf_$scheme.nml || fail "adaptive $scheme: first half exit $?"
+    "$exe" arest_$scheme.nml || fail "adaptive $scheme: restarted run exit $?"
+    if out=$(same afull_$scheme.h5 arest_$scheme.h5); then echo "PASS adaptive $scheme: split and restarted = uninterrupted ($out)"
+    else fail "adaptive $scheme: restarted run differs from the uninterrupted one:"; echo "$out"; fi
+    ev=$("$py" -c "import h5py; a, b = h5py.File('afull_$scheme.h5'), h5py.File('arest_$scheme.h5')
+print(list(a['events/t'][:]) == list(b['events/t'][:]) and list(a['events/kind'][:]) == list(b['events/kind'][:]) and len(a['events/t']) > 0)")
+    [ "$ev" = True ] || fail "adaptive $scheme: /events differ after the restart (or are empty)"
+done
+
 # killed run: long enough (10^7 steps) that the kill lands mid-run; checkpoints every 250 steps
 make_input long.nml long 1000.0 euler
 timeout -s KILL 1 "$exe" long.nml

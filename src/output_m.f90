@@ -15,6 +15,7 @@
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
     use kinds_m, only: dp
+    use config_m, only: MAX_COMPRESSION
     use errors_m, only: fatal, EXIT_OUTPUT
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
     use h5_read_m, only: h5_library_init
@@ -22,7 +23,8 @@ module output_m
     use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
     use hdf5, only: hid_t, hsize_t, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
-                    h5pset_chunk_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, &
+                    h5pset_chunk_f, h5pset_deflate_f, h5pset_shuffle_f, h5pset_fclose_degree_f, &
+                    H5P_FILE_ACCESS_F, H5P_FILE_CREATE_F, h5pset_istore_k_f, &
                     H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
                     h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
                     H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
@@ -31,14 +33,23 @@ module output_m
     implicit none
     private
     public :: h5_writer_t
-    public :: SERIES_BUFFER_SIZE
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, SNAPSHOT_CHUNK_BYTES
 
-    !> Series entries held in memory between writes; also the chunk length of the series
-    !> datasets, so that each full flush fills exactly one chunk.
+    !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
+    !> reals (192 KiB) whatever the length of the run.
     integer, parameter :: SERIES_BUFFER_SIZE = 4096
-    !> Target size of one chunk of a snapshot field: a few rows per chunk keeps chunks well
-    !> inside HDF5's default 1 MiB per-dataset chunk cache while rows are appended one by one.
-    integer, parameter :: SNAPSHOT_CHUNK_BYTES = 256 * 1024
+    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64.
+    !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
+    !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
+    integer, parameter :: SERIES_CHUNK = 256
+    !> Target size of one chunk of a snapshot field: as many rows as fit in 4 KiB, at least
+    !> one (s >= 511: one row per chunk). Rows are appended one at a time, so a chunk of one
+    !> row is written once and never read back; a file with 2 snapshots holds 2 rows.
+    integer, parameter :: SNAPSHOT_CHUNK_BYTES = 4096
+    !> Half the number of entries of a node of a chunk index (a B-tree; HDF5's default 32
+    !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
+    !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
+    integer, parameter :: ISTORE_K = 4
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
     !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
@@ -51,6 +62,7 @@ module output_m
         character(len=:), allocatable :: final_path
         character(len=:), allocatable :: part_path
         integer :: n_nodes = 0
+        integer :: compression = 0                 !< deflate level of the extendible datasets (0: none)
         integer(hid_t) :: file_id = -1
         integer(hid_t) :: series_ids(N_SERIES) = -1
         integer(hid_t) :: snap_t_id = -1
@@ -123,15 +135,18 @@ module output_m
 contains
 
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
-    !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes.
-    subroutine writer_create(w, prefix, x)
+    !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes;
+    !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of /series and
+    !> /snapshots (with the shuffle filter before it; 0: no filters).
+    subroutine writer_create(w, prefix, x, compression)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: prefix
         real(dp), intent(in) :: x(0:)
+        integer, intent(in), optional :: compression
 
         character(len=:), allocatable :: dir, message
         logical :: ok
-        integer(hid_t) :: fapl_id, group_id, space_id, dset_id
+        integer(hid_t) :: fapl_id, fcpl_id, group_id, space_id, dset_id
         integer(hsize_t) :: dims(1), dims2(2), chunk_rows
         integer :: hdferr, k
 
@@ -143,6 +158,10 @@ contains
         w%creating = .true.
         if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
         w%n_nodes = size(x)
+        w%compression = 0
+        if (present(compression)) w%compression = compression
+        if (w%compression < 0 .or. w%compression > MAX_COMPRESSION) &
+            call w%fail('internal error: compression level outside 0 .. 9')
         w%n_series_written = 0
         w%n_snap = 0
         w%n_buf = 0
@@ -171,8 +190,14 @@ contains
         call w%check(hdferr, 'h5pcreate_f (file access)')
         call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
         call w%check(hdferr, 'h5pset_fclose_degree_f')
-        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, access_prp=fapl_id)
+        call h5pcreate_f(H5P_FILE_CREATE_F, fcpl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (file creation)')
+        call h5pset_istore_k_f(fcpl_id, ISTORE_K, hdferr)
+        call w%check(hdferr, 'h5pset_istore_k_f')
+        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, creation_prp=fcpl_id, access_prp=fapl_id)
         call w%check(hdferr, 'h5fcreate_f')
+        call h5pclose_f(fcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (file creation)')
         call h5pclose_f(fapl_id, hdferr)
         call w%check(hdferr, 'h5pclose_f (file access)')
 
@@ -193,14 +218,14 @@ contains
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /mesh')
 
-        ! /series/*: 1D, growing by SERIES_BUFFER_SIZE entries at a time
+        ! /series/*: 1D, chunks of SERIES_CHUNK entries, written SERIES_BUFFER_SIZE at a time
         call h5gcreate_f(w%file_id, 'series', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /series')
         dims = 0
         do k = 1, N_SERIES
             call w%create_extendible(group_id, '/series/', trim(SERIES(k)%name), &
                                      merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
-                                     dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_ids(k))
+                                     dims, [int(SERIES_CHUNK, hsize_t)], w%series_ids(k))
             call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), &
                             described(SERIES(k)%long_name, SERIES(k)%scale), SERIES(k)%units)
         end do
@@ -210,9 +235,9 @@ contains
         ! /snapshots/*: t is 1D, the fields are (s+1, n_snap) growing by one row per snapshot
         call h5gcreate_f(w%file_id, 'snapshots', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /snapshots')
-        chunk_rows = int(max(1, min(64, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes))), hsize_t)
-        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, [256_hsize_t], &
-                                 w%snap_t_id)
+        chunk_rows = int(max(1, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes)), hsize_t)
+        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, &
+                                 [int(SERIES_CHUNK, hsize_t)], w%snap_t_id)
         call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
                         SERIES(S_T)%units)
         dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
@@ -532,6 +557,14 @@ contains
         call w%check(hdferr, 'h5pcreate_f (dataset creation) '//what)
         call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
         call w%check(hdferr, 'h5pset_chunk_f '//what)
+        if (w%compression > 0) then
+            ! shuffle first: grouping the bytes of each float by significance lets deflate
+            ! find the repeated exponent and sign bytes (docs/performance.md, "Output")
+            call h5pset_shuffle_f(dcpl_id, hdferr)
+            call w%check(hdferr, 'h5pset_shuffle_f '//what)
+            call h5pset_deflate_f(dcpl_id, w%compression, hdferr)
+            call w%check(hdferr, 'h5pset_deflate_f '//what)
+        end if
         call h5dcreate_f(group_id, name, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
         call w%check(hdferr, 'h5dcreate_f '//what)
         call h5pclose_f(dcpl_id, hdferr)

@@ -65,7 +65,7 @@ contains
             stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
             stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
         end if
-        call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
+        call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements), cfg%output%compression)
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
         call record_provenance(writer)

@@ -15,13 +15,17 @@
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
     use kinds_m, only: dp
+    use iso_fortran_env, only: int64
+    use strings_m, only: int_str
     use config_m, only: MAX_COMPRESSION
-    use errors_m, only: fatal, EXIT_OUTPUT
-    use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
+    use errors_m, only: fatal, fatal_now, EXIT_OUTPUT
+    use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
+                      write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
     use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
     use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
-    use hdf5, only: hid_t, hsize_t, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
+    use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
+                    h5pset_cache_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
                     h5pset_chunk_f, h5pset_deflate_f, h5pset_shuffle_f, h5pset_fclose_degree_f, &
                     H5P_FILE_ACCESS_F, H5P_FILE_CREATE_F, h5pset_istore_k_f, &
@@ -33,19 +37,16 @@ module output_m
     implicit none
     private
     public :: h5_writer_t
-    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, SNAPSHOT_CHUNK_BYTES
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK
 
     !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
     !> reals (192 KiB) whatever the length of the run.
     integer, parameter :: SERIES_BUFFER_SIZE = 4096
-    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64.
+    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64
+    !> (snapshot fields: one row per chunk, see create()).
     !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
     !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
     integer, parameter :: SERIES_CHUNK = 256
-    !> Target size of one chunk of a snapshot field: as many rows as fit in 4 KiB, at least
-    !> one (s >= 511: one row per chunk). Rows are appended one at a time, so a chunk of one
-    !> row is written once and never read back; a file with 2 snapshots holds 2 rows.
-    integer, parameter :: SNAPSHOT_CHUNK_BYTES = 4096
     !> Half the number of entries of a node of a chunk index (a B-tree; HDF5's default 32
     !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
     !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
@@ -70,6 +71,8 @@ module output_m
         integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
         integer(hsize_t) :: n_snap = 0             !< snapshots in the file
         integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
+        !> what the last complete checkpoint is ('step 250 (t = 2.5000E-02)'), '' before the first
+        character(len=:), allocatable :: checkpoint_note
         integer :: n_buf = 0                       !< series entries waiting in the buffer
         real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
         character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
@@ -92,6 +95,7 @@ module output_m
         procedure, private :: put_real => writer_put_real
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
+        procedure, private :: reserve => writer_reserve
         procedure, private :: attr_target => writer_attr_target
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: select_append => writer_select_append
@@ -100,10 +104,11 @@ module output_m
     end type h5_writer_t
 
     interface   ! the checkpoint writer (src/output_checkpoint_s.f90), dataset descriptions (src/output_describe_s.f90)
-        module subroutine writer_write_checkpoint(w, state, counters, previous)
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
+            character(len=*), intent(in) :: note
             real(dp), intent(in), optional :: previous(:, :)
         end subroutine writer_write_checkpoint
 
@@ -136,8 +141,8 @@ contains
 
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
     !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes;
-    !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of /series and
-    !> /snapshots (with the shuffle filter before it; 0: no filters).
+    !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of the /snapshots
+    !> fields (with the shuffle filter before it; 0: no filters).
     subroutine writer_create(w, prefix, x, compression)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: prefix
@@ -166,6 +171,7 @@ contains
         w%n_snap = 0
         w%n_buf = 0
         w%logical_names = ''
+        w%checkpoint_note = ''
 
         dir = parent_dir(prefix)
         if (len(dir) > 0) then
@@ -190,6 +196,13 @@ contains
         call w%check(hdferr, 'h5pcreate_f (file access)')
         call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
         call w%check(hdferr, 'h5pset_fclose_degree_f')
+        ! no chunk cache: every chunk is written, and its space allocated, by the h5dwrite_f
+        ! that fills it, so that a full disk fails there, between flushes, and a flush
+        ! (flush()) writes metadata only, into space reserved for it first. Appends write
+        ! whole chunks (a snapshot row, 256 series entries) except at a flush, so the cache
+        ! would save nothing.
+        call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
+        call w%check(hdferr, 'h5pset_cache_f')
         call h5pcreate_f(H5P_FILE_CREATE_F, fcpl_id, hdferr)
         call w%check(hdferr, 'h5pcreate_f (file creation)')
         call h5pset_istore_k_f(fcpl_id, ISTORE_K, hdferr)
@@ -235,7 +248,7 @@ contains
         ! /snapshots/*: t is 1D, the fields are (s+1, n_snap) growing by one row per snapshot
         call h5gcreate_f(w%file_id, 'snapshots', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /snapshots')
-        chunk_rows = int(max(1, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes)), hsize_t)
+        chunk_rows = 1   ! one row per chunk: each append writes whole chunks (see h5pset_cache_f)
         call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, &
                                  [int(SERIES_CHUNK, hsize_t)], w%snap_t_id)
         call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
@@ -244,7 +257,8 @@ contains
         do k = 1, N_OUTPUT_FIELDS
             associate (field => FIELDS(OUTPUT_ORDER(k)))
                 call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
-                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k))
+                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k), &
+                                         compress=.true.)
                 call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), &
                                 described(field%long_name, field%scale), field%units)
             end associate
@@ -388,9 +402,29 @@ contains
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
         call w%flush_series()
+        call w%reserve()
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
     end subroutine writer_flush
+
+    !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
+    !> flush writes the metadata that lies there. A flush that fails half-way (disk full, file
+    !> size limit) would write the superblock with the new end of the file but not all that
+    !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
+    !> leaves the file as the previous flush wrote it, with its checkpoint.
+    subroutine writer_reserve(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer(hsize_t) :: bytes
+        integer :: hdferr
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        call h5fget_filesize_f(w%file_id, bytes, hdferr)
+        call w%check(hdferr, 'h5fget_filesize_f')
+        call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
+        if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
+    end subroutine writer_reserve
 
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
@@ -410,6 +444,7 @@ contains
         call w%flush_series()
         call w%attr_str('status', status)
         call w%attr_str('logical_attributes', w%logical_names)
+        call w%flush()   ! with its space reserved; closing then writes nothing new
 
         call h5dclose_f(w%mesh_x_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /mesh/x')
@@ -482,8 +517,9 @@ contains
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: reason
 
-        character(len=:), allocatable :: path
+        character(len=:), allocatable :: path, system, keep
 
+        system = write_failure_reason()   ! first: errno of the failed write, before any other call
         if (allocated(w%part_path)) then
             path = w%part_path
         else
@@ -497,8 +533,21 @@ contains
                        '; &output prefix must name a file in a directory that exists or can be created, '// &
                        'and that this user may write to')
         else
-            call w%abandon()
-            call fatal(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason)
+            ! A failed write (disk full, file size limit, I/O error): the file on disk is as
+            ! the last flush left it (every checkpoint flushes), plus raw data past its end.
+            ! Closing it, or HDF5's own shutdown at exit, would flush the caches half-way
+            ! and could leave a file that no longer opens; so it is left as it is, like the
+            ! .part of a killed run, and the process ends at once (fatal_now).
+            if (system /= '') system = ' ('//system//')'
+            if (w%checkpoint_note /= '') then
+                keep = '; the file is left as its last flush wrote it, with the checkpoint of '// &
+                       w%checkpoint_note//": free space, then continue with --set time.restart_from='"// &
+                       path//"' and another output.prefix"
+            else
+                keep = "; the file is left as its last flush wrote it; it holds no checkpoint (&output "// &
+                       'checkpoint_every > 0 makes a long run restartable after such a failure)'
+            end if
+            call fatal_now(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason//system//keep)
         end if
     end subroutine writer_fail
 
@@ -532,7 +581,12 @@ contains
 
     !> Create an empty dataset `name` in group_id whose last dimension is unlimited.
     !> dims gives the initial size (last entry 0), chunk the chunk shape.
-    subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id)
+    !> With compress (the snapshot fields only) and compression > 0: shuffle and deflate.
+    !> Only datasets whose chunks are written once, whole, are compressed: rewriting a
+    !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
+    !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
+    !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
+    subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id, compress)
         class(h5_writer_t), intent(inout) :: w
         integer(hid_t), intent(in) :: group_id
         character(len=*), intent(in) :: group_path
@@ -541,7 +595,9 @@ contains
         integer(hsize_t), intent(in) :: dims(:)
         integer(hsize_t), intent(in) :: chunk(:)
         integer(hid_t), intent(out) :: dset_id
+        logical, intent(in), optional :: compress
 
+        logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
         integer(hsize_t) :: maxdims(size(dims))
         integer :: hdferr, rank
@@ -557,7 +613,9 @@ contains
         call w%check(hdferr, 'h5pcreate_f (dataset creation) '//what)
         call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
         call w%check(hdferr, 'h5pset_chunk_f '//what)
-        if (w%compression > 0) then
+        filtered = .false.
+        if (present(compress)) filtered = compress .and. w%compression > 0
+        if (filtered) then
             ! shuffle first: grouping the bytes of each float by significance lets deflate
             ! find the repeated exponent and sign bytes (docs/performance.md, "Output")
             call h5pset_shuffle_f(dcpl_id, hdferr)

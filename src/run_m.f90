@@ -9,7 +9,7 @@ module run_m
     use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
     use iso_fortran_env, only: error_unit
     use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
-    use stop_signal_m, only: install_stop_handlers, stop_signal_name
+    use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
     use fe_m, only: mesh_nodes
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, &
                         N_OUTPUT_FIELDS, OUTPUT_ORDER
@@ -65,6 +65,8 @@ contains
             stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
             stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
         end if
+        ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
+        call ignore_file_size_signal()
         call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements), cfg%output%compression)
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
@@ -80,6 +82,9 @@ contains
             call write_snapshot(writer, state)
         end if
 
+        ! from here on the .part is a valid file (inputs, provenance, the initial state), also
+        ! if the run is killed or the disk fills up before its first checkpoint
+        call writer%flush()
         failure = ''
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
         first_step = state%step + 1
@@ -172,6 +177,7 @@ contains
         type(stepper_t), intent(in) :: stepper
         type(energy_monitor_t), intent(in) :: monitor
         real(dp) :: counters(N_COUNTERS)
+        character(len=:), allocatable :: note
 
         counters(COUNTER_STEP) = real(state%step, dp)
         counters(COUNTER_T) = state%t
@@ -184,10 +190,13 @@ contains
         counters(COUNTER_DT_LAST) = state%dt_last
         counters(COUNTER_T_ANCHOR) = state%t_anchor
         counters(COUNTER_STEP_ANCHOR) = real(state%step_anchor, dp)
+        note = step_failure(state%step, state%t, '')
+        note = note(1:len(note) - 2)   ! 'step n (t = ...)'
         if (allocated(state%u_prev)) then
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters, pack_state(state%u_prev, state%w_prev))
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, &
+                                         pack_state(state%u_prev, state%w_prev))
         else
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters)
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, note)
         end if
     end subroutine write_checkpoint
 

@@ -146,9 +146,9 @@ ok = [r for r in exp1 if float(r["seconds"]) <= 1.10 * t0]
 best = min(ok, key=lambda r: (int(r["bytes"]), int(r["compression"])))
 print()
 print("Every compressed file holds the same data as the uncompressed one (`scripts/regression.py same`). "
-      "Compression is the shuffle filter followed by deflate at the given level, on `/series` and "
-      "`/snapshots` (chunks of one 4 KiB row of a field at s = 500, of 256 series entries); `/mesh/x` and "
-      "`/checkpoint` are not compressed. Doubles of a smooth solution compress little (their low "
+      "Compression is the shuffle filter followed by deflate at the given level, on the snapshot fields "
+      "(chunks of one row, 4 KiB at s = 500); `/series`, `/snapshots/t`, `/mesh/x` and `/checkpoint` are "
+      "not compressed (docs/output.md, \"Chunks and compression\"). Doubles of a smooth solution compress little (their low "
       "mantissa bytes are noise); what shuffle + deflate finds is the exponent and sign bytes, the "
       "boundary zeros and the fields that stay zero or constant for a while.\n")
 print(f"**Default: `compression = {default}`.** Rule: the level with the smallest experiment 1 file whose "

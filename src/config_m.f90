@@ -75,7 +75,7 @@ module config_m
         integer :: snapshot_every = 100
         integer :: series_every = 1
         integer :: checkpoint_every = 0
-        !> deflate level of /series and /snapshots, 0 (none) .. MAX_COMPRESSION; the default is
+        !> deflate level of the /snapshots fields, 0 (none) .. MAX_COMPRESSION; the default is
         !> chosen by measurement (docs/performance.md, "Output: chunks and compression")
         integer :: compression = 0
         logical :: quiet = .false.

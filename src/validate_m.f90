@@ -181,7 +181,7 @@ contains
         call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
-            'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of /series and /snapshots)')
+            'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
         ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
         snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)

@@ -174,7 +174,8 @@ contains
             '  see docs/input.md for every variable, its default and allowed range.', &
             '', &
             'Output: <prefix>.h5 (HDF5: /mesh/x, /series/*, /snapshots/*, root attributes),', &
-            '  written as <prefix>.h5.part and renamed when complete.', &
+            '  written as <prefix>.h5.part and renamed when complete; &output compression=0..9 deflates', &
+            '  the snapshot fields (default 0). Text for gnuplot: scripts/h5extract.py (docs/output.md).', &
             'Parameter scans: scripts/scan.sh (docs/scans.md).', &
             '', &
             'Stopping: SIGTERM, SIGINT (Ctrl-C) or SIGUSR1 (Slurm: --signal=USR1@<seconds>) ends a run', &
@@ -182,8 +183,10 @@ contains
             "  'interrupted: <signal>'; continue it with --set time.restart_from=<prefix>.h5.part and", &
             '  another output.prefix. A second signal of the same kind ends the program at once.', &
             '', &
-            'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure,', &
-            '  5 stopped by a signal (checkpoint in <prefix>.h5.part).'
+            'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure (cannot create', &
+            '  or write the file; a full disk or file size limit leaves <prefix>.h5.part as its last', &
+            '  checkpoint wrote it, to continue with restart_from), 5 stopped by a signal (checkpoint in', &
+            '  <prefix>.h5.part).'
     end subroutine print_help
 
 end program rodcontact

@@ -21,7 +21,8 @@
 #  4. where a step's time goes (valgrind callgrind: instructions per step by function, the
 #     difference of a 1000- and a 2000-step run) and heap allocations per step and per
 #     snapshot (valgrind memcheck's heap summary, same difference);
-#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png).
+#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png);
+#  6. output file size and wall time against &output compression (scripts/bench_output.sh).
 #
 # OpenBLAS: if libopenblas0-pthread is not installed, it is installed with apt-get (needs
 # root or sudo; without them the OpenBLAS runs are skipped and the page says so). Installing
@@ -348,4 +349,6 @@ record exp1_tend "$exp1_tend"
 record long_tend "${long_tend:-none}"
 record bench_seconds "$(($(date +%s) - t_start))"
 "$python" "$repo_root/scripts/bench_report.py" "$out" "$doc"
+# the section "Output: chunks and compression" (file size and wall time against &output compression)
+EXE="$exe" BENCH_OUT="$out" DOC="$doc" RUNS="$(( runs < 3 ? runs : 3 ))" "$repo_root/scripts/bench_output.sh" $( ((quick)) && echo --quick )
 say "wrote $doc (raw data in $out); took $(($(date +%s) - t_start)) s"

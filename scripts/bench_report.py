@@ -344,10 +344,11 @@ def main():
     w("")
     if len(rss) > 1:
         w("The peak RSS grows a little with t_end and levels off; it is not a per-step leak (memcheck finds no "
-          "allocation per step, below). HDF5 keeps up to 1 MiB of recently written chunks per open dataset "
-          "(its default chunk cache; 6 series and 6 snapshot datasets, so at most ~12 MiB), and the series "
-          "chunks (4096 entries, 32 KiB) fill that cache only after ~130,000 steps; the same growth is seen "
-          "without any snapshots. The output file, not the memory, is what grows with t_end.")
+          "allocation per step, below). The output writer holds at most 4096 series entries in memory "
+          "(192 KiB) and keeps no HDF5 chunk cache: each chunk (one snapshot row, 256 series entries) is "
+          "written by the call that fills it (docs/output.md, \"Chunks and compression\"; before issue 14 "
+          "HDF5's default cache of up to 1 MiB per dataset filled up over ~130,000 steps). The output "
+          "file, not the memory, is what grows with t_end.")
         w("")
 
     # ---------------------------------------------------------------- energy with BDF2

@@ -1,10 +1,35 @@
-"""Extract the data of the paper's Figures 2-7 from rodcontact HDF5 files into
-whitespace-separated text files that gnuplot reads (scripts/gnuplot/fig*.gp).
+"""Text export of rodcontact HDF5 files for gnuplot and other tools (any run file: complete,
+failed, interrupted or still running), and the data of the paper's Figures 2-7.
 
-    <python with h5py> scripts/h5extract.py OUT_DIR DATA_DIR
+    <python with h5py> scripts/h5extract.py series   RUN.h5 [--datasets t,energy,...] [--every K] [--si]
+    <python with h5py> scripts/h5extract.py snapshot RUN.h5 --time T [--fields u,theta,...] [--si]
+    <python with h5py> scripts/h5extract.py matrix   RUN.h5 --field F [--format columns|nonuniform]
+                                                     [--t-max T] [--si]
+    <python with h5py> scripts/h5extract.py figures  OUT_DIR DATA_DIR
+    <python with h5py> scripts/h5extract.py OUT_DIR DATA_DIR          (the same as figures)
 
-OUT_DIR holds exp1.h5, exp1_varpi05.h5, exp1_varpi1.h5, exp2.h5, exp3.h5 (as written by
-scripts/figures.sh). DATA_DIR receives
+series    the /series datasets as columns (all, in the file's order with t first, or the
+          chosen ones), one row per entry; --every K keeps every K-th row (and the last).
+snapshot  the snapshot nearest to time T: x, then one column per field (all of /snapshots,
+          or the chosen ones). The header and stderr say which time was taken.
+matrix    one field over (x, t), for gnuplot's splot. --format columns (default): lines
+          'x t value', one block per snapshot, blocks separated by a blank line:
+              splot 'theta.dat' using 1:2:3 with pm3d
+          --format nonuniform: gnuplot's nonuniform matrix (first line: the number of nodes
+          and x; then one line per snapshot: t and the values):
+              splot 'theta.mat' nonuniform matrix using 1:2:3 with pm3d
+          --t-max T keeps the snapshots at t <= T.
+--si      values in SI units (si_factor and si_units of each dataset; files of runs with
+          &material only).
+-o FILE   write to FILE instead of standard output.
+
+The text modes start with comment lines ('#': gnuplot and numpy.loadtxt skip them): the
+file, its status, and one line naming every column with its units, e.g.
+    # t [1] energy [1] u_end [1]
+('1': nondimensional; the long_name of each dataset says its scale, see docs/output.md).
+
+figures   OUT_DIR holds exp1.h5, exp1_varpi05.h5, exp1_varpi1.h5, exp2.h5, exp3.h5 (as
+written by scripts/figures.sh). DATA_DIR receives
 
     <run>.<set>.<field>.dat   x and one column per marked time: the profiles field(x, t_k)
                               ('set' is 'all' for experiment 1, 'early' and 'late' for
@@ -17,11 +42,15 @@ scripts/figures.sh). DATA_DIR receives
 
 Marked times that the run does not reach (shortened --quick runs) are left out; when
 fewer than three remain, evenly spaced snapshots are used instead.
+
 The script does not choose an interpreter (no shebang): run it with one that can import
-h5py (scripts/find_python.sh). Exit status: 0 written, 1 a file is missing, incomplete
-or unreadable, 2 usage.
+h5py (scripts/find_python.sh). Exit status: 0 written; 1 (figures) a file is missing,
+incomplete or unreadable; 2 usage: unknown mode or option, a missing or unreadable file,
+a file that is not a rodcontact output file, an unknown dataset or field, a bad time
+(message on stderr).
 """
 
+import argparse
 import math
 import os
 import sys
@@ -31,7 +60,232 @@ import numpy as np
 
 # curve colours, early to late: plotdata.py's hue ramp (nine times differ in hue, not only
 # in lightness; the viridis ramp used before made t >= 0.5 hard to tell apart)
-from plotdata import colours
+from plotdata import colours, check_rodcontact, decode
+
+MODES = ("series", "snapshot", "matrix", "figures")
+
+
+class UsageError(Exception):
+    """A usage error: message on stderr, exit status 2."""
+
+
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise UsageError(message)
+
+
+def open_any(path):
+    """Open a rodcontact output file for reading, or raise UsageError saying why not."""
+    if not os.path.exists(path):
+        raise UsageError(f"{path}: no such file")
+    if os.path.isdir(path):
+        raise UsageError(f"{path} is a directory, not a rodcontact output file")
+    try:
+        f = h5py.File(path, "r")
+    except OSError as exc:
+        raise UsageError(f"cannot open {path} as HDF5: {exc}")
+    try:
+        check_rodcontact(f, path)
+    except ValueError as exc:
+        f.close()
+        raise UsageError(str(exc))
+    return f
+
+
+def units_of(d, si):
+    """Factor and units of dataset d: (1, its units) or, with si, (si_factor, si_units)."""
+    if not si:
+        return 1.0, decode(d.attrs.get("units", "1"))
+    if "si_factor" not in d.attrs:
+        raise UsageError(f"--si: {d.name} has no si_factor (only runs with &material have SI units)")
+    return float(d.attrs["si_factor"]), decode(d.attrs["si_units"])
+
+
+def header(out, f, path, what, names, units, long_names):
+    out.write(f"# rodcontact {what} of {path} (status: {decode(f.attrs['status'])})\n")
+    for k, (n, ln) in enumerate(zip(names, long_names), 1):
+        out.write(f"#   column {k}: {n}: {ln}\n")
+    out.write("# " + " ".join(f"{n} [{u}]" for n, u in zip(names, units)) + "\n")
+
+
+def chosen(listing, available, kind, path):
+    """The comma-separated names in listing (all available ones when None), checked."""
+    if listing is None:
+        return list(available)
+    names = [s.strip() for s in listing.split(",") if s.strip()]
+    if not names:
+        raise UsageError(f"no {kind} given")
+    bad = [n for n in names if n not in available]
+    if bad:
+        raise UsageError(f"{path} has no {kind} {', '.join(bad)}; it has: {', '.join(available)}")
+    return names
+
+
+def snapshot_fields(f):
+    """Names of the /snapshots fields of f (2D, one row per snapshot, one column per node)."""
+    n_snap, n_x = f["snapshots/t"].shape[0], f["mesh/x"].shape[0]
+    return [k for k, d in f["snapshots"].items()
+            if isinstance(d, h5py.Dataset) and d.shape == (n_snap, n_x)]
+
+
+def parse_time(text, what):
+    try:
+        t = float(text)
+    except ValueError:
+        raise UsageError(f"{what}: got '{text}'; must be a number")
+    if not math.isfinite(t):
+        raise UsageError(f"{what}: got '{text}'; must be a finite number")
+    return t
+
+
+def fmt_row(values):
+    return " ".join("%.17g" % v for v in values) + "\n"
+
+
+def write_series(f, path, a, out):
+    series = f["series"]
+    names = [k for k in series if isinstance(series[k], h5py.Dataset)]
+    names = ["t"] + [k for k in names if k != "t"]
+    names = chosen(a.datasets, names, "series dataset(s)", path)
+    if a.every < 1:
+        raise UsageError(f"--every: got {a.every}; must be an integer >= 1")
+    n = series["t"].shape[0]
+    keep = np.unique(np.r_[np.arange(0, n, a.every), n - 1]) if n > 0 else np.arange(0)
+    cols, units = [], []
+    for k in names:
+        factor, u = units_of(series[k], a.si)
+        cols.append(series[k][:][keep] * factor if factor != 1.0 else series[k][:][keep])
+        units.append(u)
+    header(out, f, path, "series", names, units, [decode(series[k].attrs.get("long_name", k)) for k in names])
+    for row in zip(*cols):
+        out.write(fmt_row(row))
+
+
+def write_snapshot(f, path, a, out):
+    t_req = parse_time(a.time, "--time")
+    ts = f["snapshots/t"][:]
+    if ts.size == 0:
+        raise UsageError(f"{path} holds no snapshot")
+    tol = 1e-9 * max(1.0, abs(t_req))
+    if t_req < ts[0] - tol or t_req > ts[-1] + tol:
+        raise UsageError(f"--time: got {t_req:g}; the snapshots of {path} are at {ts[0]:g} <= t <= {ts[-1]:g}")
+    k = int(np.argmin(np.abs(ts - t_req)))
+    fields = chosen(a.fields, snapshot_fields(f), "field(s)", path)
+    x = f["mesh/x"]
+    fx, ux = units_of(x, a.si)
+    ft, ut = units_of(f["snapshots/t"], a.si)
+    cols, units = [x[:] * fx], [ux]
+    for name in fields:
+        d = f["snapshots/" + name]
+        factor, u = units_of(d, a.si)
+        cols.append(d[k, :] * factor)
+        units.append(u)
+    note = f"snapshot {k} of {ts.size} at t = {ts[k] * ft:.17g} [{ut}] (nearest to the requested t = {t_req:g})"
+    sys.stderr.write(f"h5extract.py: {note}\n")
+    header(out, f, path, note, ["x"] + fields, units,
+           [decode(x.attrs.get("long_name", "x"))] + [decode(f["snapshots/" + n].attrs.get("long_name", n)) for n in fields])
+    for row in zip(*cols):
+        out.write(fmt_row(row))
+
+
+def write_matrix(f, path, a, out):
+    fields = snapshot_fields(f)
+    if a.field not in fields:
+        raise UsageError(f"{path} has no field {a.field}; it has: {', '.join(fields)}")
+    ts = f["snapshots/t"][:]
+    keep = np.arange(ts.size)
+    if a.t_max is not None:
+        t_max = parse_time(a.t_max, "--t-max")
+        keep = np.nonzero(ts <= t_max * (1 + 1e-12) + 1e-300)[0]
+        if keep.size == 0:
+            raise UsageError(f"--t-max: got {t_max:g}; the first snapshot of {path} is at t = {ts[0]:g}")
+    d, x = f["snapshots/" + a.field], f["mesh/x"]
+    fv, uv = units_of(d, a.si)
+    fx, ux = units_of(x, a.si)
+    ft, ut = units_of(f["snapshots/t"], a.si)
+    xs = x[:] * fx
+    values = d[keep[0]:keep[-1] + 1, :] * fv
+    times = ts[keep] * ft
+    names = ["x", "t", a.field]
+    units = [ux, ut, uv]
+    long_names = [decode(x.attrs.get("long_name", "x")), decode(f["snapshots/t"].attrs.get("long_name", "t")),
+                  decode(d.attrs.get("long_name", a.field))]
+    if a.format == "columns":
+        header(out, f, path, f"field {a.field} over (x, t): one block per snapshot "
+               "(splot FILE using 1:2:3 with pm3d)", names, units, long_names)
+        for j, t in enumerate(times):
+            if j > 0:
+                out.write("\n")
+            for xv, v in zip(xs, values[j]):
+                out.write(fmt_row((xv, t, v)))
+    else:
+        header(out, f, path, f"field {a.field} as a gnuplot nonuniform matrix: first line the number "
+               "of nodes and x, then per snapshot t and the values "
+               "(splot FILE nonuniform matrix using 1:2:3 with pm3d)", names, units, long_names)
+        out.write(fmt_row([xs.size] + list(xs)))
+        for j, t in enumerate(times):
+            out.write(fmt_row([t] + list(values[j])))
+
+
+def run_mode(argv):
+    mode = argv[0]
+    p = Parser(prog=f"h5extract.py {mode}", add_help=False)
+    p.add_argument("run")
+    p.add_argument("-o", "--output", default=None)
+    p.add_argument("--si", action="store_true")
+    if mode == "series":
+        p.add_argument("--datasets", default=None)
+        p.add_argument("--every", type=int, default=1)
+    elif mode == "snapshot":
+        p.add_argument("--time", required=True)
+        p.add_argument("--fields", default=None)
+    else:
+        p.add_argument("--field", required=True)
+        p.add_argument("--format", choices=("columns", "nonuniform"), default="columns")
+        p.add_argument("--t-max", default=None)
+    a = p.parse_args(argv[1:])
+    with open_any(a.run) as f:
+        target = open(a.output, "w", encoding="utf-8") if a.output else sys.stdout
+        try:
+            {"series": write_series, "snapshot": write_snapshot, "matrix": write_matrix}[mode](f, a.run, a, target)
+        finally:
+            if a.output:
+                target.close()
+    return 0
+
+
+def main(argv):
+    args = argv[1:]
+    if not args or args[0] in ("-h", "--help"):
+        (sys.stdout if args else sys.stderr).write(__doc__)
+        return 0 if args else 2
+    try:
+        if args[0] in ("series", "snapshot", "matrix"):
+            if any(x in ("-h", "--help") for x in args[1:]):
+                sys.stdout.write(__doc__)
+                return 0
+            return run_mode(args)
+        if args[0] == "figures":
+            args = args[1:]
+            if len(args) != 2:
+                raise UsageError("figures needs OUT_DIR DATA_DIR")
+        elif len(args) != 2 or not os.path.isdir(args[0]):
+            # the older form OUT_DIR DATA_DIR (scripts/figures.sh) starts with a directory
+            raise UsageError(f"unknown mode '{args[0]}'; must be one of {', '.join(MODES)} "
+                             "(or OUT_DIR DATA_DIR, a directory first, for the figures)")
+        if not os.path.isdir(args[0]):
+            raise UsageError(f"figures: OUT_DIR {args[0]} is not a directory")
+        try:
+            os.makedirs(args[1], exist_ok=True)
+        except OSError as exc:
+            raise UsageError(f"figures: cannot create DATA_DIR {args[1]}: {exc}")
+        return figures_main(args[0], args[1])
+    except UsageError as exc:
+        sys.stderr.write(f"h5extract.py: {exc} (h5extract.py --help for the usage)\n")
+        return 2
+    except BrokenPipeError:
+        return 0
+
 
 # Marked times of the profile families (see docs/reproduction.md, "Figures").
 TIMES = {
@@ -91,11 +345,8 @@ def contact_interval(t, pen):
     return float(t[on[0]]), float(t[on[-1]])
 
 
-def main(argv):
-    if len(argv) != 3 or argv[1] in ("-h", "--help"):
-        sys.stderr.write(__doc__)
-        return 2
-    out_dir, data_dir = argv[1], argv[2]
+def figures_main(out_dir, data_dir):
+    """The figures mode: see the module docstring."""
     os.makedirs(data_dir, exist_ok=True)
     params = []
 

@@ -7,12 +7,13 @@ module config_m
     implicit none
     private
     public :: model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, material_t, config_t
-    public :: MAX_POLY_DEGREE, LEN_NAME, LEN_PATH
+    public :: MAX_POLY_DEGREE, LEN_NAME, LEN_PATH, MAX_COMPRESSION
     public :: number_of_steps
 
     integer, parameter :: MAX_POLY_DEGREE = 8   !< *_poly coefficients 0..8 (constant term first)
     integer, parameter :: LEN_NAME = 32         !< length of keyword values ('penalty', 'euler', ...)
     integer, parameter :: LEN_PATH = 1024       !< length of path values (prefix, restart_from)
+    integer, parameter :: MAX_COMPRESSION = 9   !< &output compression: HDF5's deflate levels 0 (none) .. 9
 
     !> &model: nondimensional coefficients of (2.11); defaults are the copper values (7.1).
     type :: model_t
@@ -80,6 +81,9 @@ module config_m
         real(dp) :: snapshot_dt = 0.0_dp   !< > 0: snapshots at t = k snapshot_dt (then snapshot_every is unused)
         integer :: series_every = 1
         integer :: checkpoint_every = 0
+        !> deflate level of the /snapshots fields, 0 (none) .. MAX_COMPRESSION; the default is
+        !> chosen by measurement (docs/performance.md, "Output: chunks and compression")
+        integer :: compression = 0
         logical :: quiet = .false.
     end type output_t
 

@@ -1,7 +1,10 @@
 /* File identity for fsys_m: whether two paths name the same file (through any mix of
  * relative paths, symbolic and hard links). Kept in C because struct stat's layout is
  * platform-specific. */
+#include <errno.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* 1 when both paths exist and are the same file (same device and inode), else 0. */
 int rc_same_file(const char *a, const char *b)
@@ -11,4 +14,33 @@ int rc_same_file(const char *a, const char *b)
     if (stat(a, &sa) != 0 || stat(b, &sb) != 0)
         return 0;
     return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+/* errno when it says that a write failed for want of space or by a device fault (disk
+ * full, file size limit, quota, I/O error, read-only file system), else 0: for the message
+ * of an output failure, read right after the failing HDF5 call (output_m). */
+int rc_write_errno(void)
+{
+    int e = errno;
+
+    return (e == ENOSPC || e == EFBIG || e == EDQUOT || e == EIO || e == EROFS) ? e : 0;
+}
+
+/* Make sure the first `bytes` bytes of file `path` have disk space (posix_fallocate; the
+ * file grows to `bytes` if shorter, with zeros, and existing data stay as they are). 0 on
+ * success or when the file system cannot reserve space at all, else the errno (ENOSPC: disk
+ * full, EFBIG: file size limit, ...). The output writer calls it before each flush
+ * (output_m), so that a flush never fails half-way for want of space. */
+int rc_reserve_file_size(const char *path, long long bytes)
+{
+    int fd, rc;
+
+    fd = open(path, O_WRONLY);
+    if (fd < 0)
+        return errno;
+    rc = posix_fallocate(fd, 0, (off_t)bytes);
+    close(fd);
+    if (rc == EOPNOTSUPP || rc == EINVAL)
+        return 0;
+    return rc;
 }

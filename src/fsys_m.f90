@@ -5,13 +5,14 @@
 !> errno is read through glibc's `__errno_location` (also provided by musl); this ties the
 !> module to Linux, which is the platform rodcontact is built for.
 module fsys_m
-    use iso_c_binding, only: c_char, c_int, c_ptr, c_size_t, c_null_char, c_associated, &
+    use iso_c_binding, only: c_char, c_int, c_long_long, c_ptr, c_size_t, c_null_char, c_associated, &
                              c_f_pointer
+    use iso_fortran_env, only: int64
     use strings_m, only: from_c_chars
     implicit none
     private
     public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
-              parent_dir, create_empty_file, same_file
+              parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size
 
     integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
     integer(c_int), parameter :: MODE_0755 = 493_c_int   !< octal 0755 = rwxr-xr-x
@@ -76,6 +77,18 @@ module fsys_m
             import :: c_ptr
             type(c_ptr) :: p
         end function c_errno_location
+
+        function c_reserve(path, bytes) bind(C, name='rc_reserve_file_size') result(err)   ! src/fsys_c.c
+            import :: c_char, c_int, c_long_long
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_long_long), value, intent(in) :: bytes
+            integer(c_int) :: err
+        end function c_reserve
+
+        function c_write_errno() bind(C, name='rc_write_errno') result(err)   ! src/fsys_c.c
+            import :: c_int
+            integer(c_int) :: err
+        end function c_write_errno
 
         function c_same_file(a, b) bind(C, name='rc_same_file') result(same)   ! src/fsys_c.c
             import :: c_char, c_int
@@ -249,6 +262,34 @@ contains
         call c_f_pointer(c_errno_location(), p)
         err = int(p)
     end function errno
+
+    !> Reserve disk space for the first `bytes` bytes of file `path` (it grows to that size if
+    !> shorter; its contents stay). ok=.false. and the system's reason ('No space left on
+    !> device', 'File too large') when the space is not there.
+    subroutine reserve_file_size(path, bytes, ok, message)
+        character(len=*), intent(in) :: path
+        integer(int64), intent(in) :: bytes
+        logical, intent(out) :: ok
+        character(len=:), allocatable, intent(out) :: message
+        integer(c_int) :: err
+
+        err = c_reserve(trim(path)//c_null_char, int(bytes, c_long_long))
+        ok = err == 0
+        message = ''
+        if (.not. ok) message = strerror(int(err))
+    end subroutine reserve_file_size
+
+    !> The system's reason for a failed write when errno names one about space or the device
+    !> ('No space left on device', 'File too large', 'Disk quota exceeded', ...), else ''.
+    !> Call it right after the failing call (HDF5 keeps the errno of its failed write).
+    function write_failure_reason() result(text)
+        character(len=:), allocatable :: text
+        integer(c_int) :: err
+
+        err = c_write_errno()
+        text = ''
+        if (err /= 0) text = strerror(int(err))
+    end function write_failure_reason
 
     !> strerror(err) as a Fortran string.
     function strerror(err) result(text)

@@ -84,6 +84,7 @@ module input_vars_m
         input_var_t('output', 'snapshot_dt', KIND_REAL, .false., ''), &
         input_var_t('output', 'series_every', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'checkpoint_every', KIND_INTEGER, .false., ''), &
+        input_var_t('output', 'compression', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'quiet', KIND_LOGICAL, .false., ''), &
         input_var_t('material', 'T0', KIND_REAL, .false., 'K'), &
         input_var_t('material', 'rho0', KIND_REAL, .false., 'kg/m^3'), &
@@ -238,7 +239,7 @@ contains
         real(dp), dimension(0:MAX_POLY_DEGREE) :: u0_poly, u1_poly, theta0_poly, p0_poly, q0_poly, eta0_poly
         real(dp) :: theta0_step(2), p0_step(2)
         real(dp) :: T0, rho0, cE, kappa, lambda, mu, alpha_t, alpha_c, nu, varrho, ell, lambda_v, mu_v
-        integer :: n_elements, max_iter, snapshot_every, series_every, checkpoint_every
+        integer :: n_elements, max_iter, snapshot_every, series_every, checkpoint_every, compression
         character(len=LEN_NAME) :: law, scheme, method
         character(len=LEN_PATH) :: restart_from, prefix
         logical :: quiet, adaptive
@@ -248,7 +249,7 @@ contains
         namelist /time/ dt, t_end, scheme, restart_from, adaptive, error_tol, dt_min, dt_max
         namelist /initial/ u0_poly, u1_poly, theta0_poly, p0_poly, q0_poly, eta0_poly, theta0_step, p0_step
         namelist /solver/ method, tol, max_iter
-        namelist /output/ prefix, snapshot_every, snapshot_dt, series_every, checkpoint_every, quiet
+        namelist /output/ prefix, snapshot_every, snapshot_dt, series_every, checkpoint_every, compression, quiet
         namelist /material/ T0, rho0, cE, kappa, lambda, mu, alpha_t, alpha_c, D, nu, varrho, ell, tau0, tau, &
                             lambda_v, mu_v
         type(input_item_t) :: work
@@ -328,6 +329,7 @@ contains
             case ('output.snapshot_dt'); call link(it, act, r=cfg%output%snapshot_dt, r_local=snapshot_dt)
             case ('output.series_every'); call link(it, act, i=cfg%output%series_every, i_local=series_every)
             case ('output.checkpoint_every'); call link(it, act, i=cfg%output%checkpoint_every, i_local=checkpoint_every)
+            case ('output.compression'); call link(it, act, i=cfg%output%compression, i_local=compression)
             case ('output.quiet'); call link(it, act, l=cfg%output%quiet, l_local=quiet)
             case ('material.T0'); call link(it, act, r=cfg%material%T0, r_local=T0)
             case ('material.rho0'); call link(it, act, r=cfg%material%rho0, r_local=rho0)

@@ -8,15 +8,17 @@ contains
 
     !> Write the restart data: state (s+1, 6) with columns u, q, theta, v, P, eta; counters
     !> (a real vector, see restart_m); previous (s+1, 6), the level before, for multistep
-    !> schemes. Raw data reach the file as they are written, so a kill in the middle of a
+    !> schemes; note says which state it is ('step 250 (t = ...)', for the message of a later
+    !> output failure). Raw data reach the file as they are written, so a kill in the middle of a
     !> checkpoint would leave a torn one; there are therefore two slots,
     !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
     !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
     !> flushed). A run killed at any moment leaves the last complete checkpoint readable.
-    module subroutine writer_write_checkpoint(w, state, counters, previous, control, history, events)
+    module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: state(:, :)
         real(dp), intent(in) :: counters(:)
+        character(len=*), intent(in) :: note
         real(dp), intent(in), optional :: previous(:, :)
         real(dp), intent(in), optional :: control(:)      !< step control's scalars (step_control_m)
         real(dp), intent(in), optional :: history(:, :)   !< the error estimator's past levels
@@ -54,6 +56,7 @@ contains
         call w%flush()
         call w%put_real('/checkpoint/current', [real(w%checkpoint_slot, dp)], [1, 1])
         call w%flush()
+        w%checkpoint_note = note
     end subroutine writer_write_checkpoint
 
     !> Remove the dataset `name` if it exists (a slot's event list changes length).

@@ -15,14 +15,20 @@
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
     use kinds_m, only: dp
-    use errors_m, only: fatal, EXIT_OUTPUT
-    use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file
+    use iso_fortran_env, only: int64
+    use strings_m, only: int_str
+    use config_m, only: MAX_COMPRESSION
+    use errors_m, only: fatal, fatal_now, EXIT_OUTPUT
+    use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
+                      write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
     use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
     use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
-    use hdf5, only: hid_t, hsize_t, h5fcreate_f, h5fclose_f, h5fflush_f, H5F_ACC_TRUNC_F, &
+    use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
+                    h5pset_cache_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
-                    h5pset_chunk_f, h5pset_fclose_degree_f, H5P_FILE_ACCESS_F, &
+                    h5pset_chunk_f, h5pset_deflate_f, h5pset_shuffle_f, h5pset_fclose_degree_f, &
+                    H5P_FILE_ACCESS_F, H5P_FILE_CREATE_F, h5pset_istore_k_f, &
                     H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
                     h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
                     H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
@@ -31,14 +37,20 @@ module output_m
     implicit none
     private
     public :: h5_writer_t
-    public :: SERIES_BUFFER_SIZE
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK
 
-    !> Series entries held in memory between writes; also the chunk length of the series
-    !> datasets, so that each full flush fills exactly one chunk.
+    !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
+    !> reals (192 KiB) whatever the length of the run.
     integer, parameter :: SERIES_BUFFER_SIZE = 4096
-    !> Target size of one chunk of a snapshot field: a few rows per chunk keeps chunks well
-    !> inside HDF5's default 1 MiB per-dataset chunk cache while rows are appended one by one.
-    integer, parameter :: SNAPSHOT_CHUNK_BYTES = 256 * 1024
+    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64
+    !> (snapshot fields: one row per chunk, see create()).
+    !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
+    !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
+    integer, parameter :: SERIES_CHUNK = 256
+    !> Half the number of entries of a node of a chunk index (a B-tree; HDF5's default 32
+    !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
+    !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
+    integer, parameter :: ISTORE_K = 4
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
     !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
@@ -51,6 +63,7 @@ module output_m
         character(len=:), allocatable :: final_path
         character(len=:), allocatable :: part_path
         integer :: n_nodes = 0
+        integer :: compression = 0                 !< deflate level of the extendible datasets (0: none)
         integer(hid_t) :: file_id = -1
         integer(hid_t) :: series_ids(N_SERIES) = -1
         integer(hid_t) :: snap_t_id = -1
@@ -58,6 +71,8 @@ module output_m
         integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
         integer(hsize_t) :: n_snap = 0             !< snapshots in the file
         integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
+        !> what the last complete checkpoint is ('step 250 (t = 2.5000E-02)'), '' before the first
+        character(len=:), allocatable :: checkpoint_note
         integer :: n_buf = 0                       !< series entries waiting in the buffer
         real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
         character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
@@ -82,6 +97,7 @@ module output_m
         procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
+        procedure, private :: reserve => writer_reserve
         procedure, private :: attr_target => writer_attr_target
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: select_append => writer_select_append
@@ -97,10 +113,11 @@ module output_m
             integer, intent(in) :: kind(:)
         end subroutine writer_write_events
 
-        module subroutine writer_write_checkpoint(w, state, counters, previous, control, history, events)
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
+            character(len=*), intent(in) :: note
             real(dp), intent(in), optional :: previous(:, :)
             real(dp), intent(in), optional :: control(:)
             real(dp), intent(in), optional :: history(:, :)
@@ -140,15 +157,18 @@ module output_m
 contains
 
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
-    !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes.
-    subroutine writer_create(w, prefix, x)
+    !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes;
+    !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of the /snapshots
+    !> fields (with the shuffle filter before it; 0: no filters).
+    subroutine writer_create(w, prefix, x, compression)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: prefix
         real(dp), intent(in) :: x(0:)
+        integer, intent(in), optional :: compression
 
         character(len=:), allocatable :: dir, message
         logical :: ok
-        integer(hid_t) :: fapl_id, group_id, space_id, dset_id
+        integer(hid_t) :: fapl_id, fcpl_id, group_id, space_id, dset_id
         integer(hsize_t) :: dims(1), dims2(2), chunk_rows
         integer :: hdferr, k
 
@@ -160,10 +180,15 @@ contains
         w%creating = .true.
         if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
         w%n_nodes = size(x)
+        w%compression = 0
+        if (present(compression)) w%compression = compression
+        if (w%compression < 0 .or. w%compression > MAX_COMPRESSION) &
+            call w%fail('internal error: compression level outside 0 .. 9')
         w%n_series_written = 0
         w%n_snap = 0
         w%n_buf = 0
         w%logical_names = ''
+        w%checkpoint_note = ''
 
         dir = parent_dir(prefix)
         if (len(dir) > 0) then
@@ -188,8 +213,21 @@ contains
         call w%check(hdferr, 'h5pcreate_f (file access)')
         call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
         call w%check(hdferr, 'h5pset_fclose_degree_f')
-        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, access_prp=fapl_id)
+        ! no chunk cache: every chunk is written, and its space allocated, by the h5dwrite_f
+        ! that fills it, so that a full disk fails there, between flushes, and a flush
+        ! (flush()) writes metadata only, into space reserved for it first. Appends write
+        ! whole chunks (a snapshot row, 256 series entries) except at a flush, so the cache
+        ! would save nothing.
+        call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
+        call w%check(hdferr, 'h5pset_cache_f')
+        call h5pcreate_f(H5P_FILE_CREATE_F, fcpl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (file creation)')
+        call h5pset_istore_k_f(fcpl_id, ISTORE_K, hdferr)
+        call w%check(hdferr, 'h5pset_istore_k_f')
+        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, creation_prp=fcpl_id, access_prp=fapl_id)
         call w%check(hdferr, 'h5fcreate_f')
+        call h5pclose_f(fcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (file creation)')
         call h5pclose_f(fapl_id, hdferr)
         call w%check(hdferr, 'h5pclose_f (file access)')
 
@@ -210,14 +248,14 @@ contains
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /mesh')
 
-        ! /series/*: 1D, growing by SERIES_BUFFER_SIZE entries at a time
+        ! /series/*: 1D, chunks of SERIES_CHUNK entries, written SERIES_BUFFER_SIZE at a time
         call h5gcreate_f(w%file_id, 'series', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /series')
         dims = 0
         do k = 1, N_SERIES
             call w%create_extendible(group_id, '/series/', trim(SERIES(k)%name), &
                                      merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
-                                     dims, [int(SERIES_BUFFER_SIZE, hsize_t)], w%series_ids(k))
+                                     dims, [int(SERIES_CHUNK, hsize_t)], w%series_ids(k))
             call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), &
                             described(SERIES(k)%long_name, SERIES(k)%scale), SERIES(k)%units)
         end do
@@ -227,16 +265,17 @@ contains
         ! /snapshots/*: t is 1D, the fields are (s+1, n_snap) growing by one row per snapshot
         call h5gcreate_f(w%file_id, 'snapshots', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /snapshots')
-        chunk_rows = int(max(1, min(64, SNAPSHOT_CHUNK_BYTES / (8 * w%n_nodes))), hsize_t)
-        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, [256_hsize_t], &
-                                 w%snap_t_id)
+        chunk_rows = 1   ! one row per chunk: each append writes whole chunks (see h5pset_cache_f)
+        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, &
+                                 [int(SERIES_CHUNK, hsize_t)], w%snap_t_id)
         call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
                         SERIES(S_T)%units)
         dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
         do k = 1, N_OUTPUT_FIELDS
             associate (field => FIELDS(OUTPUT_ORDER(k)))
                 call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
-                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k))
+                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k), &
+                                         compress=.true.)
                 call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), &
                                 described(field%long_name, field%scale), field%units)
             end associate
@@ -380,9 +419,29 @@ contains
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
         call w%flush_series()
+        call w%reserve()
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
     end subroutine writer_flush
+
+    !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
+    !> flush writes the metadata that lies there. A flush that fails half-way (disk full, file
+    !> size limit) would write the superblock with the new end of the file but not all that
+    !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
+    !> leaves the file as the previous flush wrote it, with its checkpoint.
+    subroutine writer_reserve(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer(hsize_t) :: bytes
+        integer :: hdferr
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        call h5fget_filesize_f(w%file_id, bytes, hdferr)
+        call w%check(hdferr, 'h5fget_filesize_f')
+        call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
+        if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
+    end subroutine writer_reserve
 
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
@@ -402,6 +461,7 @@ contains
         call w%flush_series()
         call w%attr_str('status', status)
         call w%attr_str('logical_attributes', w%logical_names)
+        call w%flush()   ! with its space reserved; closing then writes nothing new
 
         call h5dclose_f(w%mesh_x_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /mesh/x')
@@ -474,8 +534,9 @@ contains
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: reason
 
-        character(len=:), allocatable :: path
+        character(len=:), allocatable :: path, system, keep
 
+        system = write_failure_reason()   ! first: errno of the failed write, before any other call
         if (allocated(w%part_path)) then
             path = w%part_path
         else
@@ -489,8 +550,21 @@ contains
                        '; &output prefix must name a file in a directory that exists or can be created, '// &
                        'and that this user may write to')
         else
-            call w%abandon()
-            call fatal(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason)
+            ! A failed write (disk full, file size limit, I/O error): the file on disk is as
+            ! the last flush left it (every checkpoint flushes), plus raw data past its end.
+            ! Closing it, or HDF5's own shutdown at exit, would flush the caches half-way
+            ! and could leave a file that no longer opens; so it is left as it is, like the
+            ! .part of a killed run, and the process ends at once (fatal_now).
+            if (system /= '') system = ' ('//system//')'
+            if (w%checkpoint_note /= '') then
+                keep = '; the file is left as its last flush wrote it, with the checkpoint of '// &
+                       w%checkpoint_note//": free space, then continue with --set time.restart_from='"// &
+                       path//"' and another output.prefix"
+            else
+                keep = "; the file is left as its last flush wrote it; it holds no checkpoint (&output "// &
+                       'checkpoint_every > 0 makes a long run restartable after such a failure)'
+            end if
+            call fatal_now(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason//system//keep)
         end if
     end subroutine writer_fail
 
@@ -524,7 +598,12 @@ contains
 
     !> Create an empty dataset `name` in group_id whose last dimension is unlimited.
     !> dims gives the initial size (last entry 0), chunk the chunk shape.
-    subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id)
+    !> With compress (the snapshot fields only) and compression > 0: shuffle and deflate.
+    !> Only datasets whose chunks are written once, whole, are compressed: rewriting a
+    !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
+    !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
+    !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
+    subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id, compress)
         class(h5_writer_t), intent(inout) :: w
         integer(hid_t), intent(in) :: group_id
         character(len=*), intent(in) :: group_path
@@ -533,7 +612,9 @@ contains
         integer(hsize_t), intent(in) :: dims(:)
         integer(hsize_t), intent(in) :: chunk(:)
         integer(hid_t), intent(out) :: dset_id
+        logical, intent(in), optional :: compress
 
+        logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
         integer(hsize_t) :: maxdims(size(dims))
         integer :: hdferr, rank
@@ -549,6 +630,16 @@ contains
         call w%check(hdferr, 'h5pcreate_f (dataset creation) '//what)
         call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
         call w%check(hdferr, 'h5pset_chunk_f '//what)
+        filtered = .false.
+        if (present(compress)) filtered = compress .and. w%compression > 0
+        if (filtered) then
+            ! shuffle first: grouping the bytes of each float by significance lets deflate
+            ! find the repeated exponent and sign bytes (docs/performance.md, "Output")
+            call h5pset_shuffle_f(dcpl_id, hdferr)
+            call w%check(hdferr, 'h5pset_shuffle_f '//what)
+            call h5pset_deflate_f(dcpl_id, w%compression, hdferr)
+            call w%check(hdferr, 'h5pset_deflate_f '//what)
+        end if
         call h5dcreate_f(group_id, name, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
         call w%check(hdferr, 'h5dcreate_f '//what)
         call h5pclose_f(dcpl_id, hdferr)

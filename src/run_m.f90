@@ -9,7 +9,7 @@ module run_m
     use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
     use iso_fortran_env, only: error_unit
     use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
-    use stop_signal_m, only: install_stop_handlers, stop_signal_name
+    use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
     use fe_m, only: mesh_nodes
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
                         N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
@@ -105,7 +105,9 @@ contains
         end if
         n_snapshot_next = 0
         if (cfg%output%snapshot_dt > 0.0_dp) n_snapshot_next = floor(state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
-        call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements))
+        ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
+        call ignore_file_size_signal()
+        call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements), cfg%output%compression)
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
         call record_provenance(writer)
@@ -120,6 +122,9 @@ contains
             call write_snapshot(writer, state)
         end if
 
+        ! from here on the .part is a valid file (inputs, provenance, the initial state), also
+        ! if the run is killed or the disk fills up before its first checkpoint
+        call writer%flush()
         failure = ''
         if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
         last_written = 0
@@ -450,6 +455,7 @@ contains
         logical, intent(in) :: in_contact
         real(dp) :: counters(N_COUNTERS), values(N_CONTROL_VALUES + 2)
         real(dp) :: history(0:state%s, (1 + N_FIELDS) * MAX_LEVELS)
+        character(len=:), allocatable :: note
 
         counters(COUNTER_STEP) = real(state%step, dp)
         counters(COUNTER_T) = state%t
@@ -465,11 +471,13 @@ contains
         call pack_control(control, estimator, values(:N_CONTROL_VALUES), history)
         values(N_CONTROL_VALUES + 1) = merge(1.0_dp, 0.0_dp, in_contact)
         values(N_CONTROL_VALUES + 2) = monitor%max_rise_step_change
+        note = step_failure(state%step, state%t, '')
+        note = note(1:len(note) - 2)   ! 'step n (t = ...)'
         if (allocated(state%u_prev)) then
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters, pack_state(state%u_prev, state%w_prev), &
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, pack_state(state%u_prev, state%w_prev), &
                                          control=values, history=history, events=events%packed())
         else
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters, control=values, history=history, &
+            call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, control=values, history=history, &
                                          events=events%packed())
         end if
     end subroutine write_checkpoint

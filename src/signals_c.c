@@ -43,3 +43,16 @@ void rc_stop_signal_numbers(int *term, int *intr, int *usr1)
     *intr = SIGINT;
     *usr1 = SIGUSR1;
 }
+
+/* Ignore SIGXFSZ, whose default action kills a process that writes past its file size
+ * limit (ulimit -f): the write then fails with EFBIG, and the output writer stops with a
+ * message and exit status 4 as on a full disk. 0 on success, -1 on failure. */
+int rc_ignore_file_size_signal(void)
+{
+    struct sigaction action;
+
+    memset(&action, 0, sizeof action);
+    action.sa_handler = SIG_IGN;
+    sigemptyset(&action.sa_mask);
+    return sigaction(SIGXFSZ, &action, NULL) == 0 ? 0 : -1;
+}

@@ -7,7 +7,7 @@ module stop_signal_m
     use errors_m, only: fatal, EXIT_OUTPUT
     implicit none
     private
-    public :: install_stop_handlers, stop_signal_name
+    public :: install_stop_handlers, stop_signal_name, ignore_file_size_signal
 
     interface
         function c_install() bind(C, name='rc_install_stop_handlers') result(rc)
@@ -19,6 +19,11 @@ module stop_signal_m
             import :: c_int
             integer(c_int) :: sig
         end function c_stop_signal
+
+        function c_ignore_xfsz() bind(C, name='rc_ignore_file_size_signal') result(rc)
+            import :: c_int
+            integer(c_int) :: rc
+        end function c_ignore_xfsz
 
         subroutine c_numbers(term, intr, usr1) bind(C, name='rc_stop_signal_numbers')
             import :: c_int
@@ -33,6 +38,13 @@ contains
         if (c_install() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot install the handlers of SIGTERM, ' // &
                                          'SIGINT and SIGUSR1 (sigaction failed)')
     end subroutine install_stop_handlers
+
+    !> A write past the file size limit (ulimit -f) fails with EFBIG instead of killing the
+    !> run with SIGXFSZ, so that it ends like a full disk: message, exit status 4, the
+    !> .h5.part with its last checkpoint left to restart from (output_m).
+    subroutine ignore_file_size_signal()
+        if (c_ignore_xfsz() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot ignore SIGXFSZ (sigaction failed)')
+    end subroutine ignore_file_size_signal
 
     !> 'SIGTERM', 'SIGINT' or 'SIGUSR1' when one of them has arrived, else ''.
     function stop_signal_name() result(name)

@@ -9,7 +9,7 @@ module validate_m
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
-                        number_of_steps
+                        number_of_steps, MAX_COMPRESSION
     use strings_m, only: format_real, int_str
     use initial_data_m, only: profile
     implicit none
@@ -201,6 +201,9 @@ contains
         call require_at_least(output%series_every, 1, 'output.series_every')
         call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
         call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', '(0: snapshots every snapshot_every steps)')
+        if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
+            'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
+            'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
         ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
         if (output%snapshot_dt > 0.0_dp) then

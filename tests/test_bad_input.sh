@@ -161,6 +161,8 @@ run_case stdin solver.max_iter ">= 1"              "&solver max_iter = 0 /"
 # --- &output
 run_case file  output.snapshot_every ">= 1"        "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. snapshot_every = 0 /"
 run_case stdin output.checkpoint_every ">= 0" "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. checkpoint_every = -10 /"
+run_case stdin output.compression "from 0 (no compression) to 9" "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. compression = 10 /"
+run_case stdin output.compression "from 0 (no compression) to 9" "&output prefix='$scratch/case$((n_case + 1))/run' quiet=.true. compression = -1 /"
 run_case file  output.prefix   "non-empty"         "&output prefix = '' /"
 run_case stdin output.snapshot_every "GiB"         "&mesh n_elements = 100000 /
 &time dt = 1e-6, t_end = 1 /

@@ -1,0 +1,163 @@
+!> Adaptive time steps (step_control_m):
+!>  1. the controller rejects a step whose estimate exceeds the tolerance (smaller retry, no
+!>     growth right after), grows the step (by at most 2) when the estimate is small, keeps
+!>     it inside the deadband and inside [dt_min, dt_max];
+!>  2. the local error estimate tracks the true local error within a factor of 3, for all
+!>     fields at once in the energy norm, on the manufactured solution of tests/lib/mms_m
+!>     (no contact), for Euler, BDF2 and the midpoint rule, over step sizes 0.04 ... 0.005
+!>     with constant and with varying past steps. The true local error of a step is its
+!>     difference from the same mesh's solution computed with 64 times smaller midpoint
+!>     steps from the same past levels (the time error alone).
+program test_step_control
+    use kinds_m, only: dp
+    use config_m, only: config_t, model_t
+    use state_m, only: state_t
+    use stepper_m, only: stepper_t, step_result_t
+    use step_control_m, only: error_estimator_t, step_controller_t
+    use energy_m, only: linear_energy
+    use fields_m, only: N_FIELDS, is_dirichlet
+    use mms_m, only: mms_t, mms_no_contact, U_FIELD
+    use testing_m, only: check => check_true, test_summary
+    implicit none
+
+    integer, parameter :: S = 16, FINE = 64
+    real(dp), parameter :: T_STEP_END = 0.3_dp   !< the tested step ends here
+    character(len=8), parameter :: SCHEMES(3) = [character(len=8) :: 'euler', 'bdf2', 'midpoint']
+    real(dp), parameter :: DTS(4) = [0.04_dp, 0.02_dp, 0.01_dp, 0.005_dp]
+    type(mms_t) :: mms
+    integer :: k, j
+    real(dp) :: ratio
+    character(len=160) :: detail
+
+    call controller_checks()
+    mms = mms_no_contact(model_t(rho=1.0_dp, alpha=1.0_dp, varpi=0.1_dp, gamma1=0.5_dp, gamma2=0.5_dp, c=1.0_dp, &
+                                 d=0.1_dp, r=1.0_dp, hbar=1.0_dp, tau0=0.5_dp, tau=0.5_dp))
+    do k = 1, size(SCHEMES)
+        do j = 1, size(DTS)
+            ratio = estimate_over_true(trim(SCHEMES(k)), DTS(j), [1.0_dp, 1.0_dp, 1.0_dp])
+            write (detail, '(a,a,a,es9.2,a,f7.3)') 'estimate/true, ', trim(SCHEMES(k)), ', dt = ', DTS(j), &
+                ', constant steps: ', ratio
+            write (*, '(a)') trim(detail)
+            call check(trim(detail), ratio >= 1.0_dp / 3.0_dp .and. ratio <= 3.0_dp)
+            ratio = estimate_over_true(trim(SCHEMES(k)), DTS(j), [1.0_dp, 0.6_dp, 1.5_dp])
+            write (detail, '(a,a,a,es9.2,a,f7.3)') 'estimate/true, ', trim(SCHEMES(k)), ', dt = ', DTS(j), &
+                ', past steps 0.6 dt, 1.5 dt (new step / last = 1/0.6): ', ratio
+            write (*, '(a)') trim(detail)
+            call check(trim(detail), ratio >= 1.0_dp / 3.0_dp .and. ratio <= 3.0_dp)
+        end do
+    end do
+    call test_summary('test_step_control')
+
+contains
+
+    subroutine controller_checks()
+        type(step_controller_t) :: c
+
+        call c%init(1.0e-3_dp, 1.0e-6_dp, 0.1_dp, 2, 0.01_dp)
+        c%scale = 1.0_dp
+        call check('ratio est / (tol S) = 8 for est = 8e-3', abs(c%ratio(8.0e-3_dp) - 8.0_dp) < 1.0e-12_dp)
+        call c%reject(0.01_dp, 8.0_dp)
+        call check('a rejected step is retried smaller (0.45 dt for err = 8, order 2)', &
+                   abs(c%dt_next - 0.01_dp * 0.9_dp * 0.5_dp) < 1.0e-15_dp .and. c%n_rejected == 1)
+        call c%accept(c%dt_next, 1.0e-6_dp)
+        call check('no growth on the step right after a rejection', abs(c%dt_next - 0.0045_dp) < 1.0e-15_dp)
+        call c%accept(0.0045_dp, 1.0e-6_dp)
+        call check('a quiet step grows dt by the largest factor, 2', abs(c%dt_next - 0.009_dp) < 1.0e-15_dp)
+        call c%accept(0.009_dp, 0.5_dp)
+        call check('err = 0.5 (growth 1.13 < 1.25): dt is kept', abs(c%dt_next - 0.009_dp) < 1.0e-15_dp)
+        call c%accept(0.09_dp, 0.0_dp)
+        call check('growth stops at dt_max', abs(c%dt_next - 0.1_dp) < 1.0e-15_dp)
+        call c%reject(2.0e-6_dp, 1.0e6_dp)
+        call check('shrinking stops at dt_min', abs(c%dt_next - 1.0e-6_dp) < 1.0e-18_dp)
+    end subroutine controller_checks
+
+    !> est / |X^n - X_true|_E for one step of `scheme` of size dt ending at T_STEP_END, the
+    !> past levels at T_STEP_END - dt - (0, h2, h2 + h3) with h2 = dt past(2), h3 = dt past(3)
+    !> taken from a fine midpoint run (past(1) = 1: the new step).
+    real(dp) function estimate_over_true(scheme, dt, past) result(ratio)
+        character(len=*), intent(in) :: scheme
+        real(dp), intent(in) :: dt, past(3)
+        type(state_t) :: levels(3), coarse, fine_end
+        type(error_estimator_t) :: estimator
+        type(stepper_t) :: stepper
+        type(step_result_t) :: result
+        type(config_t) :: cfg
+        real(dp) :: t(3), est, truth
+        integer :: j
+
+        ! past levels, oldest first: t(1) = t_{n-3}, t(2) = t_{n-2}, t(3) = t_{n-1}
+        t(3) = T_STEP_END - dt
+        t(2) = t(3) - dt * past(2)
+        t(1) = t(2) - dt * past(3)
+        do j = 1, 3
+            call fine_solution(t(j), dt / FINE, levels(j))
+        end do
+        call fine_solution(T_STEP_END, dt / FINE, fine_end)
+        ! the step of the scheme from the last past level (and the one before, BDF2)
+        cfg = mms_config(scheme, dt)
+        call stepper%init(cfg, result, mms)
+        coarse = levels(3)
+        coarse%step = 10                    ! past the midpoint rule's damped start
+        coarse%t_anchor = t(3)
+        coarse%step_anchor = coarse%step
+        coarse%dt_last = t(3) - t(2)
+        if (scheme == 'bdf2') then
+            coarse%u_prev = levels(2)%u
+            coarse%w_prev = levels(2)%w
+        end if
+        call stepper%advance(coarse, result, dt)
+        if (.not. result%ok) error stop 'test_step_control: coarse step failed'
+        call estimator%init(scheme, S)
+        do j = 1, 3
+            call estimator%push(levels(j)%u, levels(j)%w, t(j) - t(max(j - 1, 1)))
+        end do
+        est = estimator%estimate(mms%model, coarse%u, coarse%w, dt)
+        truth = sqrt(2.0_dp * linear_energy(mms%model, coarse%u - fine_end%u, coarse%w - fine_end%w))
+        ratio = est / truth
+    end function estimate_over_true
+
+    !> The mesh solution at time t_want from the exact data at t = 0 with midpoint steps of
+    !> about delta (landing exactly on t_want).
+    subroutine fine_solution(t_want, delta, state)
+        real(dp), intent(in) :: t_want, delta
+        type(state_t), intent(out) :: state
+        type(stepper_t) :: stepper
+        type(step_result_t) :: result
+        type(config_t) :: cfg
+        integer :: n, n_steps, i, f
+        real(dp) :: dt
+
+        n_steps = max(1, ceiling(t_want / delta))
+        dt = t_want / n_steps
+        cfg = mms_config('midpoint', dt)
+        state%s = S
+        allocate (state%u(0:S), state%w(0:S, N_FIELDS))
+        do i = 0, S
+            state%u(i) = mms%exact(U_FIELD, 0.0_dp, real(i, dp) / S, 0)
+            do f = 1, N_FIELDS
+                state%w(i, f) = mms%exact(f, 0.0_dp, real(i, dp) / S, 0)
+                if (is_dirichlet(f, i, S)) state%w(i, f) = 0.0_dp
+            end do
+        end do
+        call stepper%init(cfg, result, mms)
+        do n = 1, n_steps
+            call stepper%advance(state, result)
+            if (.not. result%ok) error stop 'test_step_control: fine step failed'
+        end do
+    end subroutine fine_solution
+
+    function mms_config(scheme, dt) result(cfg)
+        character(len=*), intent(in) :: scheme
+        real(dp), intent(in) :: dt
+        type(config_t) :: cfg
+
+        cfg%model = mms%model
+        cfg%contact%eps = mms%eps
+        cfg%contact%g = mms%g
+        cfg%mesh%n_elements = S
+        cfg%time%dt = dt
+        cfg%time%t_end = 1.0_dp
+        cfg%time%scheme = scheme
+    end function mms_config
+
+end program test_step_control

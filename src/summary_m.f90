@@ -21,7 +21,7 @@ module summary_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use kinds_m, only: dp
     use strings_m, only: format_real, doubled_quotes
-    use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
+    use h5_read_m, only: read_real_1d, read_int_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
                          dataset_exists
     use fsys_m, only: file_exists
     implicit none
@@ -49,13 +49,18 @@ module summary_m
         real(dp) :: t_final = 0.0_dp                   !< t_K, the last stored time
         integer :: steps = -1                          !< root attribute 'steps'
         real(dp) :: wall_seconds = 0.0_dp              !< root attribute 'wall_seconds'
+        !> root attribute 'time_error_estimate_relative' (NaN if absent)
+        real(dp) :: time_error = 0.0_dp   ! set to NaN by summarise_file when absent
+        !> /events: the onset and the release times, ';'-separated ('' if none or absent)
+        character(len=:), allocatable :: onsets, releases
     end type summary_t
 
-    integer, parameter :: N_COLUMNS = 18
+    integer, parameter :: N_COLUMNS = 21
     character(len=*), parameter :: COLUMNS(N_COLUMNS) = [character(len=16) :: &
         'file', 'status', 'contact', 'first_contact_t', 'last_contact_t', 'contact_time', &
         'max_penetration', 'max_u_end', 't_max_u_end', 'max_u_end_over_g', 'energy_ratio', &
-        'decay_rate', 'decay_fit_from_t', 'decay_fit_to_t', 't_final', 'steps', 'wall_seconds', 'g']
+        'decay_rate', 'decay_fit_from_t', 'decay_fit_to_t', 't_final', 'steps', 'wall_seconds', 'g', &
+        'time_error_rel', 'onset_times', 'release_times']
 
 contains
 
@@ -154,7 +159,35 @@ contains
         if (attr_exists(file, 'steps')) call read_attr_int(file, 'steps', s%steps)
         s%wall_seconds = ieee_value(0.0_dp, ieee_quiet_nan)
         if (attr_exists(file, 'wall_seconds')) call read_attr_real(file, 'wall_seconds', s%wall_seconds)
+        s%time_error = ieee_value(0.0_dp, ieee_quiet_nan)
+        if (attr_exists(file, 'time_error_estimate_relative')) &
+            call read_attr_real(file, 'time_error_estimate_relative', s%time_error)
+        call read_events(file, s)
     end function summarise_file
+
+    !> The onset and release times of /events (absent in files of older versions).
+    subroutine read_events(file, s)
+        character(len=*), intent(in) :: file
+        type(summary_t), intent(inout) :: s
+        real(dp), allocatable :: t(:)
+        integer, allocatable :: kind(:)
+        integer :: k
+
+        s%onsets = ''
+        s%releases = ''
+        if (.not. (dataset_exists(file, '/events/t') .and. dataset_exists(file, '/events/kind'))) return
+        call read_real_1d(file, '/events/t', t)
+        call read_int_1d(file, '/events/kind', kind)
+        do k = 1, min(size(t), size(kind))
+            if (kind(k) > 0) then
+                s%onsets = s%onsets // merge(';', ' ', len(s%onsets) > 0) // format_real(t(k))
+            else
+                s%releases = s%releases // merge(';', ' ', len(s%releases) > 0) // format_real(t(k))
+            end if
+        end do
+        s%onsets = trim(adjustl(s%onsets))
+        s%releases = trim(adjustl(s%releases))
+    end subroutine read_events
 
     !> Why `file` cannot be summarised ('' when it can): it does not exist, is not a readable
     !> HDF5 file, or is not a rodcontact output file (no /series datasets the summary reads, or
@@ -214,8 +247,17 @@ contains
                ',' // num(s%max_penetration) // ',' // num(s%max_u_end) // ',' // num(s%t_max_u_end) // &
                ',' // num(ratio_to_g(s)) // ',' // num(s%energy_ratio) // ',' // num(s%decay_rate) // &
                ',' // num(s%decay_fit_from_t) // ',' // num(s%decay_fit_to_t) // ',' // num(s%t_final) // &
-               ',' // steps // ',' // num(s%wall_seconds) // ',' // num(s%g)
+               ',' // steps // ',' // num(s%wall_seconds) // ',' // num(s%g) // ',' // num(s%time_error) // &
+               ',' // csv_field(text_or_empty(s%onsets)) // ',' // csv_field(text_or_empty(s%releases))
     end function summary_row
+
+    pure function text_or_empty(text) result(out)
+        character(len=:), allocatable, intent(in) :: text
+        character(len=:), allocatable :: out
+
+        out = ''
+        if (allocated(text)) out = text
+    end function text_or_empty
 
     !> max u(1,t)/g; NaN when g is unknown (NaN) or 0 (a summary_t not filled in).
     pure function ratio_to_g(s) result(ratio)

@@ -163,7 +163,8 @@ contains
             '                             restart_from), no file written: exit 0, or 2 with the message', &
             '  rodcontact --summary f.h5 [g.h5 ...]', &
             '                             one CSV row per run: status, contact times, max penetration,', &
-            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds;', &
+            '                             max u(1,t), energy ratio and decay rate, steps, wall seconds,', &
+            '                             time error estimate, contact onset and release times;', &
             '                             a missing, unreadable or non-rodcontact file exits 2', &
             '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &
             '  rodcontact --help          this text', &

@@ -4,8 +4,11 @@
 !>   rodcontact_work_precision mms <t_end> <point> [<point> ...]
 !>   rodcontact_work_precision exp2 <input.nml> <t_end> <reference point> <point> [<point> ...]
 !>   rodcontact_work_precision exp2dt <input.nml> <t_end> <reference point> <point> [<point> ...]
+!>   rodcontact_work_precision uend <input.nml> <t_end> <reference point> <point> [<point> ...]
+!>   rodcontact_work_precision impact <input.nml> <t_end> <law> <point> [<point> ...]
 !>
-!> A point is scheme:s:dt, e.g. euler:400:2.5e-3 or bdf2:400:2.5e-3 (method 'monolithic').
+!> A point is scheme:s:dt, e.g. euler:400:2.5e-3, bdf2:400:2.5e-3 or midpoint:400:2.5e-3
+!> (method 'monolithic').
 !>
 !> mms : the manufactured solution mms_no_contact (tests/lib/mms_m) with the O(1) model of
 !>       tests/test_convergence.f90, source terms through sources_m, started from the nodal
@@ -19,15 +22,29 @@
 !>       against a run with s/2 and 2 dt ('reference_check' line).
 !> exp2dt: as exp2, for the time error alone: points with the reference's s, and the check
 !>       run has the same s and 2 dt.
+!> uend: the time error of u(1,t) alone (exp1; scripts/work_precision_schemes.sh): points with
+!>       the reference's s and dt a multiple of the reference's dt; e_uend_max = max over the
+!>       steps t_n <= t_end of |u(1,t_n) - u_ref(1,t_n)|, e_uend_pre the same over the steps
+!>       before the reference's first contact (t_contact on the 'reference' line), both
+!>       absolute; and the errors at t_end of exp2dt. The check run: same s, 2 dt.
+!> impact: input/impact.nml (rho = alpha = 1, u0 = 0, u1 = x: u(1,t) = t - t^2/2 exactly
+!>       until the end reaches g at t_onset = 1 - sqrt(1 - 2 g)) with the contact law <law>
+!>       ('penalty' or 'signorini'): e_uend_pre = max over t_n < t_onset of
+!>       |u(1,t_n) - (t_n - t_n^2/2)| (space and time error), the energy E^n of Corollary 6.2:
+!>       drift = E(t_end)/E(0) - 1 and max_rise = max_n (E^n - E^{n-1}) / E(0).
 !>
 !> Only the time loop (stepper_t%advance, N = t_end / dt steps, sources included for mms) is
 !> timed; set-up (assembly, factorisations) is reported apart, and the error is evaluated
 !> once, after the clock has stopped. Runs shorter than 0.2 s are repeated (5 times below
-!> 0.05 s, else 3) and the median is reported.
+!> 0.05 s, else 3) and the median is reported. uend and impact record u(1,t_n) (and E^n)
+!> after every step: there each step is timed alone (the clock stops before the recording),
+!> and the points are run round robin, 5 rounds, the median reported (the reference and its
+!> check once).
 program work_precision
     use kinds_m, only: dp
     use config_m, only: config_t, model_t
     use config_reader_m, only: read_config
+    use energy_m, only: discrete_energy
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use fields_m, only: N_FIELDS, F_THETA, F_V, F_P, is_dirichlet
@@ -46,14 +63,23 @@ program work_precision
     real(dp) :: t_end, dt, seconds, init_seconds, errors(N_ERR)
     integer :: s, s_check, k, i_err, first_point, repeats
     logical :: is_mms
+    real(dp), allocatable :: u_end(:), u_end_ref(:), energy(:)
+    character(len=1024), allocatable :: stashed(:)   !< series_mode: a line per point, until its time is known
+    real(dp) :: t_contact, dt_ref      !< uend: the reference's first contact and its step
+    integer :: s_ref
 
     call get_command_argument(1, mode)
     is_mms = mode == 'mms'
+    if (mode == 'uend' .or. mode == 'impact') then
+        call series_mode()
+        stop
+    end if
     if (.not. (is_mms .or. mode == 'exp2' .or. mode == 'exp2dt') .or. &
         command_argument_count() < merge(3, 5, is_mms)) then
         write (*, '(a)') 'usage: rodcontact_work_precision mms <t_end> <scheme:s:dt> ...'
-        write (*, '(a)') '       rodcontact_work_precision exp2|exp2dt <input.nml> <t_end> <reference scheme:s:dt> '// &
+        write (*, '(a)') '       rodcontact_work_precision exp2|exp2dt|uend <input.nml> <t_end> <reference scheme:s:dt> '// &
             '<scheme:s:dt> ...'
+        write (*, '(a)') '       rodcontact_work_precision impact <input.nml> <t_end> penalty|signorini <scheme:s:dt> ...'
         stop 2
     end if
     if (is_mms) then
@@ -103,6 +129,183 @@ program work_precision
 
 contains
 
+    !> The modes uend and impact (see the header): u(1,t_n) (and E^n) recorded every step. The
+    !> points are timed round robin, SERIES_ROUNDS times (a burst of load on the shared machine
+    !> then hits one run of several points, not all runs of one), and the median is reported;
+    !> the errors are evaluated on the first round.
+    subroutine series_mode()
+        integer, parameter :: SERIES_ROUNDS = 5
+        character(len=16) :: law
+        character(len=16), allocatable :: schemes(:)
+        integer, allocatable :: sizes(:)
+        real(dp), allocatable :: dts(:), times(:, :), metrics(:, :)
+        real(dp) :: t_onset, t_n, e_pre
+        integer :: n, m, n_steps, n_points, r
+
+        if (command_argument_count() < 5) then
+            write (*, '(a)') 'usage: rodcontact_work_precision uend <input.nml> <t_end> <reference scheme:s:dt> '// &
+                '<scheme:s:dt> ...'
+            write (*, '(a)') '       rodcontact_work_precision impact <input.nml> <t_end> penalty|signorini <scheme:s:dt> ...'
+            stop 2
+        end if
+        call get_command_argument(2, path)
+        call get_command_argument(3, arg)
+        read (arg, *) t_end
+        call read_config(trim(path), cfg)
+        cfg%output%quiet = .true.
+        if (mode == 'uend') then
+            call get_command_argument(4, arg)
+            call parse_point(arg, scheme, s_ref, dt_ref)
+            call run_series(scheme, s_ref, dt_ref, reference, u_end_ref, seconds, .false.)
+            t_contact = t_end          ! the reference's first step in contact
+            do n = 0, ubound(u_end_ref, 1)
+                if (u_end_ref(n) > cfg%contact%g) then
+                    t_contact = n * dt_ref
+                    exit
+                end if
+            end do
+            write (*, '(*(g0))') 'reference scheme=', trim(scheme), ' s=', s_ref, ' dt=', num(dt_ref), &
+                ' steps=', nint(t_end / dt_ref), ' seconds=', num(seconds), ' t_contact=', num(t_contact)
+            call run_series(scheme, s_ref, 2.0_dp * dt_ref, check, u_end, seconds, .false.)
+            write (*, '(*(g0))') 'reference_check problem=uend scheme=', trim(scheme), ' s=', s_ref, ' dt=', &
+                num(2.0_dp * dt_ref), ' steps=', ubound(u_end, 1), ' seconds=', num(seconds), ' repeats=1', &
+                trim(uend_errors(2.0_dp * dt_ref, check))
+        else
+            call get_command_argument(4, law)
+            if (law /= 'penalty' .and. law /= 'signorini') then
+                write (*, '(a)') "work_precision: impact: law '"//trim(law)//"' (penalty|signorini)"
+                stop 2
+            end if
+            cfg%contact%law = law
+            ! u(1,t) = t - t^2/2 holds for rho = alpha = 1, u0 = 0, u1 = x (input/impact.nml)
+            if (cfg%model%rho /= 1.0_dp .or. cfg%model%alpha /= 1.0_dp) then
+                write (*, '(a)') 'work_precision: impact: the exact solution needs rho = alpha = 1 (input/impact.nml)'
+                stop 2
+            end if
+            t_onset = 1.0_dp - sqrt(1.0_dp - 2.0_dp * cfg%contact%g)
+        end if
+
+        n_points = command_argument_count() - 4
+        allocate (schemes(n_points), sizes(n_points), dts(n_points), times(SERIES_ROUNDS, n_points), &
+                  metrics(3, n_points), stashed(n_points))
+        do k = 1, n_points
+            call get_command_argument(k + 4, arg)
+            call parse_point(arg, schemes(k), sizes(k), dts(k))
+            if (mode /= 'uend') cycle
+            m = nint(dts(k) / dt_ref)
+            if (sizes(k) /= s_ref .or. abs(m * dt_ref - dts(k)) > 1.0e-9_dp * dts(k)) then
+                write (*, '(a)') 'work_precision: uend: a point needs the reference''s s and a multiple of its dt: '// &
+                    trim(arg)
+                stop 2
+            end if
+        end do
+        do r = 1, SERIES_ROUNDS
+            do k = 1, n_points
+                scheme = schemes(k)
+                call run_series(scheme, sizes(k), dts(k), state, u_end, times(r, k), &
+                                mode == 'impact' .and. r == 1, energy)
+                if (r > 1) cycle
+                if (mode == 'uend') then
+                    ! the line without its time, completed after the last round
+                    write (stashed(k), '(*(g0))') ' problem=uend scheme=', trim(scheme), ' s=', s_ref, ' dt=', &
+                        num(dts(k)), ' steps=', ubound(u_end, 1), trim(uend_errors(dts(k), state))
+                else
+                    n_steps = ubound(u_end, 1)
+                    e_pre = 0.0_dp
+                    do n = 0, n_steps
+                        t_n = n * dts(k)
+                        if (t_n >= t_onset) exit
+                        e_pre = max(e_pre, abs(u_end(n) - (t_n - 0.5_dp * t_n**2)))
+                    end do
+                    metrics(:, k) = [e_pre, energy(n_steps) / energy(0) - 1.0_dp, &
+                                     maxval(energy(1:) - energy(:n_steps - 1)) / energy(0)]
+                    write (stashed(k), '(*(g0))') ' problem=impact law=', trim(law), ' scheme=', trim(scheme), &
+                        ' s=', sizes(k), ' dt=', num(dts(k)), ' steps=', n_steps, ' t_onset=', num(t_onset), &
+                        ' e_uend_pre=', num(metrics(1, k)), ' drift=', num(metrics(2, k)), ' max_rise=', num(metrics(3, k))
+                end if
+            end do
+        end do
+        do k = 1, n_points
+            write (*, '(*(g0))') 'point', trim(stashed(k)), ' seconds=', num(median(times(:, k))), &
+                ' repeats=', SERIES_ROUNDS
+        end do
+    end subroutine series_mode
+
+    !> ' e_uend_max=... e_uend_pre=... e_theta_L2=...': the errors of u_end (step dt) and of the
+    !> state at t_end against the reference (mode uend).
+    function uend_errors(dt, final) result(text)
+        real(dp), intent(in) :: dt
+        type(state_t), intent(in) :: final
+        character(len=512) :: text
+        real(dp) :: e_max, e_pre
+        integer :: n, m
+
+        m = nint(dt / dt_ref)
+        e_max = 0.0_dp
+        e_pre = 0.0_dp
+        do n = 0, ubound(u_end, 1)
+            e_max = max(e_max, abs(u_end(n) - u_end_ref(n * m)))
+            if (n * dt < t_contact) e_pre = max(e_pre, abs(u_end(n) - u_end_ref(n * m)))
+        end do
+        errors = errors_against_reference(final, reference)
+        write (text, '(*(g0))') ' e_uend_max=', num(e_max), ' e_uend_pre=', num(e_pre), &
+            (' ', trim(ERR_NAMES(i_err)), '=', num(errors(i_err)), i_err = 1, N_ERR)
+    end function uend_errors
+
+    !> Run one point from t = 0 to t_end recording u(1,t_n) after every step (and E^n, if
+    !> with_energy); seconds: the summed wall time of the steps (the recording is not timed).
+    subroutine run_series(scheme, s, dt, state, u_end, seconds, with_energy, energy)
+        character(len=*), intent(in) :: scheme
+        integer, intent(in) :: s
+        real(dp), intent(in) :: dt
+        type(state_t), intent(out) :: state
+        real(dp), allocatable, intent(inout) :: u_end(:)
+        real(dp), intent(out) :: seconds
+        logical, intent(in) :: with_energy
+        real(dp), allocatable, intent(inout), optional :: energy(:)
+        type(stepper_t) :: stepper
+        type(step_result_t) :: result
+        real(dp) :: t0
+        integer :: n, n_steps
+
+        n_steps = nint(t_end / dt)
+        if (abs(n_steps * dt - t_end) > 1.0e-9_dp * t_end) then
+            write (*, '(a,es10.3,a,es10.3)') 'work_precision: t_end ', t_end, ' is not a multiple of dt ', dt
+            stop 2
+        end if
+        cfg%mesh%n_elements = s
+        cfg%time%dt = dt
+        cfg%time%t_end = t_end
+        cfg%time%scheme = scheme
+        cfg%solver%method = 'monolithic'
+        if (allocated(u_end)) deallocate (u_end)
+        allocate (u_end(0:n_steps))
+        if (with_energy) then
+            if (allocated(energy)) deallocate (energy)
+            allocate (energy(0:n_steps))
+        end if
+        call initial_state(cfg, state)
+        call stepper%init(cfg, result)
+        if (.not. result%ok) then
+            write (*, '(a)') 'work_precision: stepper init failed: '//trim(result%message)
+            stop 1
+        end if
+        u_end(0) = state%u(s)
+        if (with_energy) energy(0) = discrete_energy(cfg%model, stepper%law, state%u, state%w)
+        seconds = 0.0_dp
+        do n = 1, n_steps
+            t0 = wall_seconds()
+            call stepper%advance(state, result)
+            seconds = seconds + (wall_seconds() - t0)
+            if (.not. result%ok) then
+                write (*, '(a)') 'work_precision: step failed: '//trim(result%message)
+                stop 1
+            end if
+            u_end(n) = state%u(s)
+            if (with_energy) energy(n) = discrete_energy(cfg%model, stepper%law, state%u, state%w)
+        end do
+    end subroutine run_series
+
     !> 'scheme:s:dt' -> scheme, s, dt
     subroutine parse_point(text, scheme, s, dt)
         character(len=*), intent(in) :: text
@@ -120,8 +323,8 @@ contains
         scheme = text(:c1 - 1)
         read (text(c1 + 1:c2 - 1), *, iostat=ios) s
         if (ios == 0) read (text(c2 + 1:), *, iostat=ios) dt
-        if (ios /= 0 .or. (scheme /= 'euler' .and. scheme /= 'bdf2')) then
-            write (*, '(a)') "work_precision: bad point '"//trim(text)//"' (scheme euler|bdf2, s integer, dt real)"
+        if (ios /= 0 .or. (scheme /= 'euler' .and. scheme /= 'bdf2' .and. scheme /= 'midpoint')) then
+            write (*, '(a)') "work_precision: bad point '"//trim(text)//"' (scheme euler|bdf2|midpoint, s integer, dt real)"
             stop 2
         end if
     end subroutine parse_point

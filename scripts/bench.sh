@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Benchmark (NOT a test): the speed of rodcontact, written to docs/performance.md.
 #
-#   scripts/bench.sh            # everything, about 8-10 minutes on 2 (shared) cores
+#   scripts/bench.sh            # everything, about 10-12 minutes on 2 (shared) cores
 #   scripts/bench.sh --quick    # 1 run of small cases, no long run: checks the pipeline and
 #                               # writes out/bench-quick/performance-quick.md, not docs/
 #
@@ -21,7 +21,9 @@
 #  4. where a step's time goes (valgrind callgrind: instructions per step by function, the
 #     difference of a 1000- and a 2000-step run) and heap allocations per step and per
 #     snapshot (valgrind memcheck's heap summary, same difference);
-#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png);
+#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png), and
+#     the work-precision of Euler, BDF2 and the midpoint rule on exp1 and the impact case,
+#     scripts/work_precision_schemes.sh (figures/work_precision_schemes.png, ~2.5 minutes).
 #  6. output file size and wall time against &output compression (scripts/bench_output.sh).
 #
 # OpenBLAS: if libopenblas0-pthread is not installed, it is installed with apt-get (needs
@@ -37,6 +39,7 @@
 #
 # Environment: BUILD_DIR (as scripts/setup.sh; Release is forced), RUNS (5), SIZES,
 # BENCH_OUT (raw data, default out/bench; --quick: out/bench-quick), SKIP_WP=1 (reuse out/bench/work_precision.md),
+# SKIP_WPS=1 (reuse out/bench/work_precision_schemes.md),
 # NO_OPENBLAS=1 (reference BLAS only, no installation).
 # Exit status: 0 done (whether or not the targets are met: see the page); 1 build or run
 # failure, or a BLAS/LAPACK library that does not resolve as intended; 2 usage.
@@ -323,6 +326,13 @@ if [[ "${SKIP_WP:-0}" != 1 ]]; then
         WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision.sh" --quick
     else
         WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision.sh"
+    fi
+fi
+if [[ "${SKIP_WPS:-0}" != 1 ]]; then
+    if ((quick)); then
+        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_schemes.sh" --quick
+    else
+        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_schemes.sh"
     fi
 fi
 

@@ -4,7 +4,8 @@
 
 OUTDIR holds meta.txt (key=value), kernels.raw (rodcontact_bench_kernels lines prefixed
 with blas= run=), exp1.raw, alloc.raw, callgrind_<method>_<t_end>.txt (callgrind_annotate
---inclusive=yes), work_precision.md and work_precision_speedup.txt (scripts/work_precision.sh).
+--inclusive=yes), work_precision.md and work_precision_speedup.txt (scripts/work_precision.sh),
+work_precision_schemes.md (scripts/work_precision_schemes.sh).
 Every number on the page comes from these files; the prose around them is here.
 """
 
@@ -518,6 +519,12 @@ def main():
       "time). At the fronts (theta, P) both schemes converge at well below their order, because the fronts "
       "are discontinuities; BDF2 with the smaller error.")
     w("")
+
+    # ---------------------------------------------------------------- work-precision of the schemes
+    wps = os.path.join(outdir, "work_precision_schemes.md")
+    if os.path.exists(wps):      # scripts/work_precision_schemes.sh: the section, prose included
+        md.extend(open(wps).read().splitlines())
+        w("")
 
     # ---------------------------------------------------------------- targets
     t = []

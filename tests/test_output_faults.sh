@@ -32,7 +32,9 @@ for level in 0 4; do
     check "compression $level: the message names the file, the reason and the checkpoint" \
         grep -q "cannot write 'full$level.h5.part': .*(File too large).*checkpoint of step 250.*restart_from='full$level.h5.part'" full$level.err
     [[ -n "$err" ]] && echo "  stderr: $err"
-    check "compression $level: no HDF5 error stack on stderr" equals 1 "$(wc -l < full$level.err)"
+    # (a Debug build adds gfortran's -fcheck runtime warnings, two lines each: not counted)
+    check "compression $level: no HDF5 error stack on stderr" equals 1 \
+        "$(grep -v -e '^At line [0-9]* of file ' -e '^Fortran runtime warning: ' full$level.err | wc -l)"
     check "compression $level: no full$level.h5 under the final name" test ! -e full$level.h5
     check "compression $level: the .h5.part is left" test -f full$level.h5.part
     step=$("$py" -c "

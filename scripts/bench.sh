@@ -21,7 +21,9 @@
 #  4. where a step's time goes (valgrind callgrind: instructions per step by function, the
 #     difference of a 1000- and a 2000-step run) and heap allocations per step and per
 #     snapshot (valgrind memcheck's heap summary, same difference);
-#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png).
+#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png);
+#  5b. adaptive against fixed time steps on exp1 to t = 60 (issue 12),
+#     scripts/work_precision_adaptive.sh (figures/work_precision_adaptive.png, about 5 minutes).
 #
 # OpenBLAS: if libopenblas0-pthread is not installed, it is installed with apt-get (needs
 # root or sudo; without them the OpenBLAS runs are skipped and the page says so). Installing
@@ -36,6 +38,7 @@
 #
 # Environment: BUILD_DIR (as scripts/setup.sh; Release is forced), RUNS (5), SIZES,
 # BENCH_OUT (raw data, default out/bench; --quick: out/bench-quick), SKIP_WP=1 (reuse out/bench/work_precision.md),
+# SKIP_WPA=1 (reuse out/bench/work_precision_adaptive.md),
 # NO_OPENBLAS=1 (reference BLAS only, no installation).
 # Exit status: 0 done (whether or not the targets are met: see the page); 1 build or run
 # failure, or a BLAS/LAPACK library that does not resolve as intended; 2 usage.
@@ -323,6 +326,13 @@ if [[ "${SKIP_WP:-0}" != 1 ]]; then
     else
         WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision.sh"
     fi
+fi
+
+# --- 5b. adaptive time steps: work and precision on exp1 (issue 12) ---------------------------
+if [[ "${SKIP_WPA:-0}" != 1 ]]; then
+    wpa_args=()
+    ((quick)) && wpa_args=(--quick)
+    WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_adaptive.sh" "${wpa_args[@]}"
 fi
 
 # --- 6. what the numbers depend on, and the page ---------------------------------------------

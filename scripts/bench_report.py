@@ -4,7 +4,9 @@
 
 OUTDIR holds meta.txt (key=value), kernels.raw (rodcontact_bench_kernels lines prefixed
 with blas= run=), exp1.raw, alloc.raw, callgrind_<method>_<t_end>.txt (callgrind_annotate
---inclusive=yes), work_precision.md and work_precision_speedup.txt (scripts/work_precision.sh).
+--inclusive=yes), work_precision.md and work_precision_speedup.txt (scripts/work_precision.sh),
+work_precision_adaptive.md and work_precision_adaptive_targets.txt (scripts/work_precision_adaptive.sh,
+whose helper scripts/adaptive_accuracy.py writes that section's prose).
 Every number on the page comes from these files; the prose around them is here.
 """
 
@@ -518,6 +520,12 @@ def main():
       "are discontinuities; BDF2 with the smaller error.")
     w("")
 
+    # ---------------------------------------------------------------- adaptive time steps (issue 12)
+    wpa = os.path.join(outdir, "work_precision_adaptive.md")
+    if os.path.exists(wpa):
+        md.extend(open(wpa).read().splitlines())
+        w("")
+
     # ---------------------------------------------------------------- targets
     t = []
     t.append("## Targets")
@@ -570,6 +578,9 @@ def main():
             else:
                 t.append("| BDF2 >= %.0fx faster than Euler at error 1e-4 (manufactured solution, %s) | %sx | %s |"
                          % (TARGET_SPEEDUP, name, val, "yes" if float(val) >= TARGET_SPEEDUP else "**no**"))
+    wpa_targets = os.path.join(outdir, "work_precision_adaptive_targets.txt")
+    if os.path.exists(wpa_targets):
+        t.extend(line.rstrip("\n") for line in open(wpa_targets) if line.strip())
     t.append("")
     md[targets_at:targets_at] = t
 

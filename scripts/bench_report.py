@@ -6,6 +6,8 @@ OUTDIR holds meta.txt (key=value), kernels.raw (rodcontact_bench_kernels lines p
 with blas= run=), exp1.raw, alloc.raw, callgrind_<method>_<t_end>.txt (callgrind_annotate
 --inclusive=yes), work_precision.md and work_precision_speedup.txt (scripts/work_precision.sh),
 work_precision_schemes.md (scripts/work_precision_schemes.sh).
+work_precision_adaptive.md and work_precision_adaptive_targets.txt (scripts/work_precision_adaptive.sh,
+whose helper scripts/adaptive_accuracy.py writes that section's prose).
 Every number on the page comes from these files; the prose around them is here.
 """
 
@@ -524,6 +526,10 @@ def main():
     wps = os.path.join(outdir, "work_precision_schemes.md")
     if os.path.exists(wps):      # scripts/work_precision_schemes.sh: the section, prose included
         md.extend(open(wps).read().splitlines())
+    # ---------------------------------------------------------------- adaptive time steps (issue 12)
+    wpa = os.path.join(outdir, "work_precision_adaptive.md")
+    if os.path.exists(wpa):
+        md.extend(open(wpa).read().splitlines())
         w("")
 
     # ---------------------------------------------------------------- targets
@@ -578,6 +584,9 @@ def main():
             else:
                 t.append("| BDF2 >= %.0fx faster than Euler at error 1e-4 (manufactured solution, %s) | %sx | %s |"
                          % (TARGET_SPEEDUP, name, val, "yes" if float(val) >= TARGET_SPEEDUP else "**no**"))
+    wpa_targets = os.path.join(outdir, "work_precision_adaptive_targets.txt")
+    if os.path.exists(wpa_targets):
+        t.extend(line.rstrip("\n") for line in open(wpa_targets) if line.strip())
     t.append("")
     md[targets_at:targets_at] = t
 

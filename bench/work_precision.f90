@@ -47,9 +47,9 @@ program work_precision
     use energy_m, only: discrete_energy
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
-    use fields_m, only: N_FIELDS, F_THETA, F_V, F_P, is_dirichlet
+    use fields_m, only: F_THETA, F_V, F_P
     use mms_m, only: mms_t, mms_no_contact, U_FIELD, N_EXACT
-    use convergence_m, only: level_errors
+    use convergence_m, only: level_errors, mms_initial_state
     use bench_timing_m, only: wall_seconds, median, num
     implicit none
 
@@ -397,22 +397,12 @@ contains
     !> t = 0: nodal interpolants of the exact fields (mms) or of the input's data (exp2).
     subroutine start_state(state)
         type(state_t), intent(out) :: state
-        integer :: i, f, s
 
         if (.not. is_mms) then
             call initial_state(cfg, state)
             return
         end if
-        s = cfg%mesh%n_elements
-        state%s = s
-        allocate (state%u(0:s), state%w(0:s, N_FIELDS))
-        do i = 0, s
-            state%u(i) = mms%exact(U_FIELD, 0.0_dp, real(i, dp) / s, 0)
-            do f = 1, N_FIELDS
-                state%w(i, f) = mms%exact(f, 0.0_dp, real(i, dp) / s, 0)
-                if (is_dirichlet(f, i, s)) state%w(i, f) = 0.0_dp
-            end do
-        end do
+        call mms_initial_state(mms, cfg%mesh%n_elements, state)
     end subroutine start_state
 
     !> L2 of theta, v, P and H1 of u at state%t against the exact solution (convergence_m).

@@ -23,14 +23,7 @@
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-say() { echo "bench_output: $*" >&2; }
-quick=0
-case "${1:-}" in
-    --quick) quick=1 ;;
-    "") ;;
-    -h | --help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit 0 ;;
-    *) say "unknown option '$1' (--quick, --help)"; exit 2 ;;
-esac
+. "$repo_root/scripts/quick_option.sh" bench_output "$@"
 
 runs="${RUNS:-3}"
 levels=(0 1 4 9)

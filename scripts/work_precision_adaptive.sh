@@ -31,14 +31,7 @@
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-quick=0
-case "${1:-}" in
-    --quick) quick=1 ;;
-    "") ;;
-    -h | --help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit 0 ;;
-    *) echo "work_precision_adaptive: unknown option '$1' (--quick, --help)" >&2; exit 2 ;;
-esac
-say() { echo "work_precision_adaptive: $*" >&2; }
+. "$repo_root/scripts/quick_option.sh" work_precision_adaptive "$@"
 t_start="$(date +%s)"
 
 if [[ "${WP_SKIP_BUILD:-0}" != 1 ]]; then

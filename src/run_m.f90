@@ -15,7 +15,7 @@ module run_m
                         N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
     use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state
     use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, &
-                              pack_control, unpack_control
+                              pack_control, unpack_control, energy_norm
     use contact_law_m, only: contact_law_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
     use stepper_m, only: stepper_t, step_result_t
@@ -275,8 +275,7 @@ contains
             if (.not. adaptive .and. cfg%output%snapshot_dt <= 0.0_dp) then
                 finished = state%step >= n_steps
             else
-                finished = state%t >= t_stop() - 1.0e-9_dp * cfg%time%dt_min
-                if (.not. adaptive) finished = state%t >= t_stop() - 1.0e-9_dp * cfg%time%dt
+                finished = state%t >= t_stop() - 1.0e-9_dp * merge(cfg%time%dt_min, cfg%time%dt, adaptive)
             end if
         end function finished
 
@@ -368,13 +367,6 @@ contains
             in_contact = gap > 0.0_dp
         end if
     end subroutine contact_state
-
-    !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).
-    pure real(dp) function energy_norm(energy)
-        real(dp), intent(in) :: energy
-
-        energy_norm = sqrt(2.0_dp * max(energy, 0.0_dp))
-    end function energy_norm
 
     !> A rejected step: the state as before it, and the step's contact count taken back.
     subroutine undo_step(stepper, result, saved, state)

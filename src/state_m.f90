@@ -8,7 +8,7 @@ module state_m
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: state_t, initial_state, field_values, advance_time, accept_step, land_on, copy_state
+    public :: state_t, initial_state, field_values, advance_time, accept_step, land_on, copy_state, keep_copy
 
     type :: state_t
         integer :: s = 0                !< number of elements
@@ -125,8 +125,6 @@ contains
     subroutine copy_state(state, copy)
         type(state_t), intent(in) :: state
         type(state_t), intent(inout) :: copy
-        integer :: stat
-        character(len=256) :: message
 
         copy%s = state%s
         copy%step = state%step
@@ -134,26 +132,31 @@ contains
         copy%dt_last = state%dt_last
         copy%t_anchor = state%t_anchor
         copy%step_anchor = state%step_anchor
-        if (.not. allocated(copy%u)) then
-            allocate (copy%u, mold=state%u, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the saved state')
-            allocate (copy%w, mold=state%w, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the saved state')
-        end if
-        copy%u = state%u
-        copy%w = state%w
+        call keep_copy(state%u, state%w, copy%u, copy%w, 'the saved state')
         if (allocated(state%u_prev)) then
-            if (.not. allocated(copy%u_prev)) then
-                allocate (copy%u_prev, mold=state%u_prev, stat=stat, errmsg=message)
-                call check_allocation(stat, message, 'the saved state')
-                allocate (copy%w_prev, mold=state%w_prev, stat=stat, errmsg=message)
-                call check_allocation(stat, message, 'the saved state')
-            end if
-            copy%u_prev = state%u_prev
-            copy%w_prev = state%w_prev
+            call keep_copy(state%u_prev, state%w_prev, copy%u_prev, copy%w_prev, 'the saved state')
         else if (allocated(copy%u_prev)) then
             deallocate (copy%u_prev, copy%w_prev)
         end if
     end subroutine copy_state
+
+    !> (u_copy, w_copy) = (u, w), allocated with their bounds on the first call (what: for
+    !> the message if the allocation fails).
+    subroutine keep_copy(u, w, u_copy, w_copy, what)
+        real(dp), intent(in) :: u(0:), w(0:, :)
+        real(dp), allocatable, intent(inout) :: u_copy(:), w_copy(:, :)
+        character(len=*), intent(in) :: what
+        integer :: stat
+        character(len=256) :: message
+
+        if (.not. allocated(u_copy)) then
+            allocate (u_copy(0:ubound(u, 1)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, what)
+            allocate (w_copy(0:ubound(w, 1), size(w, 2)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, what)
+        end if
+        u_copy = u
+        w_copy = w
+    end subroutine keep_copy
 
 end module state_m

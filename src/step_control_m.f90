@@ -23,7 +23,8 @@ module step_control_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, pack_control, unpack_control
+    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX
+    public :: pack_control, unpack_control, energy_norm
 
     integer, parameter :: MAX_LEVELS = 3       !< past levels kept (p + 1 for p <= 2)
     real(dp), parameter :: SAFETY = 0.9_dp
@@ -148,8 +149,15 @@ contains
             self%w_diff = self%w_diff - weight(j) * self%levels(:, 1:, slot)
         end do
         est = local_error_factor(self%scheme, d(1:n), self%steps(level_slot(self%head, 1))) * &
-              sqrt(2.0_dp * max(linear_energy(model, self%u_diff, self%w_diff), 0.0_dp))
+              energy_norm(linear_energy(model, self%u_diff, self%w_diff))
     end function estimator_estimate
+
+    !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).
+    pure real(dp) function energy_norm(energy)
+        real(dp), intent(in) :: energy
+
+        energy_norm = sqrt(2.0_dp * max(energy, 0.0_dp))
+    end function energy_norm
 
     !> The slot of the j-th most recent level (j = 1: the newest, in slot head).
     pure integer function level_slot(head, j)

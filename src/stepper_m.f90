@@ -31,7 +31,7 @@ module stepper_m
                         assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
-    use state_m, only: state_t, advance_time, accept_step
+    use state_m, only: state_t, advance_time, accept_step, keep_copy
     use sources_m, only: source_t, add_source_terms
     implicit none
     private
@@ -452,17 +452,7 @@ contains
     subroutine keep_previous_level(state)
         type(state_t), intent(inout) :: state
 
-        integer :: stat
-        character(len=256) :: message
-
-        if (.not. allocated(state%u_prev)) then
-            allocate (state%u_prev, mold=state%u, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the previous level')
-            allocate (state%w_prev, mold=state%w, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the previous level')
-        end if
-        state%u_prev = state%u
-        state%w_prev = state%w
+        call keep_copy(state%u, state%w, state%u_prev, state%w_prev, 'the previous level')
     end subroutine keep_previous_level
 
     !> The block LU has no pivoting across nodes; use it only if it solves as well as the

@@ -15,8 +15,8 @@ program test_step_control
     use stepper_m, only: stepper_t, step_result_t
     use step_control_m, only: error_estimator_t, step_controller_t
     use energy_m, only: linear_energy
-    use fields_m, only: N_FIELDS, is_dirichlet
-    use mms_m, only: mms_t, mms_no_contact, U_FIELD
+    use mms_m, only: mms_t, mms_no_contact
+    use convergence_m, only: mms_initial_state
     use testing_m, only: check => check_true, test_summary
     implicit none
 
@@ -124,21 +124,13 @@ contains
         type(stepper_t) :: stepper
         type(step_result_t) :: result
         type(config_t) :: cfg
-        integer :: n, n_steps, i, f
+        integer :: n, n_steps
         real(dp) :: dt
 
         n_steps = max(1, ceiling(t_want / delta))
         dt = t_want / n_steps
         cfg = mms_config('midpoint', dt)
-        state%s = S
-        allocate (state%u(0:S), state%w(0:S, N_FIELDS))
-        do i = 0, S
-            state%u(i) = mms%exact(U_FIELD, 0.0_dp, real(i, dp) / S, 0)
-            do f = 1, N_FIELDS
-                state%w(i, f) = mms%exact(f, 0.0_dp, real(i, dp) / S, 0)
-                if (is_dirichlet(f, i, S)) state%w(i, f) = 0.0_dp
-            end do
-        end do
+        call mms_initial_state(mms, S, state)
         call stepper%init(cfg, result, mms)
         do n = 1, n_steps
             call stepper%advance(state, result)

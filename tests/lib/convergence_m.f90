@@ -10,7 +10,7 @@ module convergence_m
     use mms_m, only: mms_t, U_FIELD, N_EXACT
     implicit none
     private
-    public :: mms_errors, level_errors, observed_orders, ERROR_NAMES
+    public :: mms_errors, mms_initial_state, level_errors, observed_orders, ERROR_NAMES
 
     character(len=*), parameter :: ERROR_NAMES(N_EXACT) = [character(len=8) :: &
         'L2 q', 'L2 theta', 'L2 v', 'L2 P', 'L2 eta', 'H1 u']
@@ -30,7 +30,7 @@ contains
         type(state_t) :: state
         type(stepper_t) :: stepper
         type(step_result_t) :: result
-        integer :: n, i, f
+        integer :: n
 
         cfg%model = mms%model
         cfg%contact%eps = mms%eps
@@ -42,15 +42,7 @@ contains
         cfg%solver%tol = 1.0e-12_dp
         cfg%solver%max_iter = 200
         if (present(scheme)) cfg%time%scheme = scheme
-        state%s = s
-        allocate (state%u(0:s), state%w(0:s, N_FIELDS))
-        do i = 0, s
-            state%u(i) = mms%exact(U_FIELD, 0.0_dp, real(i, dp) / s, 0)
-            do f = 1, N_FIELDS
-                state%w(i, f) = mms%exact(f, 0.0_dp, real(i, dp) / s, 0)
-                if (is_dirichlet(f, i, s)) state%w(i, f) = 0.0_dp
-            end do
-        end do
+        call mms_initial_state(mms, s, state)
         call stepper%init(cfg, result, mms)
         if (.not. result%ok) error stop 'mms_errors: stepper init failed'
         errors = level_errors(mms, state)
@@ -63,6 +55,25 @@ contains
             errors = max(errors, level_errors(mms, state))
         end do
     end subroutine mms_errors
+
+    !> The state at t = 0 on s elements: nodal values of the exact solution, with the
+    !> boundary values of the spaces imposed.
+    subroutine mms_initial_state(mms, s, state)
+        type(mms_t), intent(in) :: mms
+        integer, intent(in) :: s
+        type(state_t), intent(out) :: state
+        integer :: i, f
+
+        state%s = s
+        allocate (state%u(0:s), state%w(0:s, N_FIELDS))
+        do i = 0, s
+            state%u(i) = mms%exact(U_FIELD, 0.0_dp, real(i, dp) / s, 0)
+            do f = 1, N_FIELDS
+                state%w(i, f) = mms%exact(f, 0.0_dp, real(i, dp) / s, 0)
+                if (is_dirichlet(f, i, s)) state%w(i, f) = 0.0_dp
+            end do
+        end do
+    end subroutine mms_initial_state
 
     !> Errors of one time level: L2 norms by 5-point Gauss quadrature per element.
     function level_errors(mms, state) result(e)

@@ -45,7 +45,7 @@ module config_m
         logical :: adaptive = .false.
         real(dp) :: error_tol = 1.0e-3_dp   !< relative L2 interpolation error per unit length
         integer :: max_level = 5
-        integer :: remesh_every = 2
+        integer :: remesh_every = 10
     end type mesh_t
 
     !> &time: step dt up to t_end; with adaptive = .true., dt is the first step and the

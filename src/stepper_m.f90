@@ -245,39 +245,43 @@ contains
         call sys%blocks%factor(sys%a, count(self%active), info)
         sys%use_blocks = info == 0
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
-        if (sys%use_blocks .and. self%blocks_trusted) then
-            sys%dt_eff = dt_eff
-            allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the contact response')
-            sys%z = 0.0_dp
-            sys%z(sys%contact_dof) = 1.0_dp
-            call sys%blocks%solve(sys%z)
-            if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
-                call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
-            return
+        if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
+            unfactored = sys%a
+            call sys%a%factor(info)
+            if (info /= 0) then
+                call fail(result, lapack_info_message('dgbtrf', info))
+                return
+            end if
+            call contact_response(sys, .false.)
+            if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
+            self%blocks_trusted = sys%use_blocks .and. allocated(self%h)
         end if
-        unfactored = sys%a
-        call sys%a%factor(info)
-        if (info /= 0) then
-            call fail(result, lapack_info_message('dgbtrf', info))
-            return
-        end if
+        ! once trusted, z from the block LU for every system (a restart, which checks the
+        ! block LU anew, then repeats the run bit for bit)
+        if (self%blocks_trusted) call contact_response(sys, .true.)
         sys%dt_eff = dt_eff
-        allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the contact response')
-        sys%z = 0.0_dp
-        sys%z(sys%contact_dof) = 1.0_dp
-        call sys%a%solve(sys%z)
-        if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
-        self%blocks_trusted = sys%use_blocks .and. allocated(self%h)
-        if (self%blocks_trusted) then
-            ! as the systems after it compute z (a restart then repeats the run bit for bit)
-            sys%z = 0.0_dp
-            sys%z(sys%contact_dof) = 1.0_dp
-            call sys%blocks%solve(sys%z)
-        end if
         if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
             call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+
+    contains
+
+        !> z = A^{-1} e_s, the response to a unit contact force (block LU or dgbtrf's factors).
+        subroutine contact_response(sys, with_blocks)
+            type(monolithic_system_t), intent(inout) :: sys
+            logical, intent(in) :: with_blocks
+
+            if (.not. allocated(sys%z)) then
+                allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
+                call check_allocation(stat, message, 'the contact response')
+            end if
+            sys%z = 0.0_dp
+            sys%z(sys%contact_dof) = 1.0_dp
+            if (with_blocks) then
+                call sys%blocks%solve(sys%z)
+            else
+                call sys%a%solve(sys%z)
+            end if
+        end subroutine contact_response
     end subroutine setup_monolithic
 
     !> Does the monolithic method solve with the block-tridiagonal LU (else dgbtrf's factors)?

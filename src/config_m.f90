@@ -37,9 +37,15 @@ module config_m
         character(len=LEN_NAME) :: law = 'penalty'
     end type contact_t
 
-    !> &mesh: uniform partition of [0,1] into n_elements elements (h = 1/s).
+    !> &mesh: uniform partition of [0,1] into n_elements elements (h = 1/s); with adaptive =
+    !> .true. the coarsest mesh, bisected up to max_level times where the error indicator
+    !> (adaptive_mesh_m) exceeds error_tol, checked every remesh_every steps.
     type :: mesh_t
         integer :: n_elements = 500
+        logical :: adaptive = .false.
+        real(dp) :: error_tol = 1.0e-3_dp   !< relative L2 interpolation error per unit length
+        integer :: max_level = 5
+        integer :: remesh_every = 10
     end type mesh_t
 
     !> &time: step dt up to t_end; with adaptive = .true., dt is the first step and the
@@ -85,6 +91,9 @@ module config_m
         !> chosen by measurement (docs/performance.md, "Output: chunks and compression")
         integer :: compression = 0
         logical :: quiet = .false.
+        !> points of the fixed output grid /mesh/x of the snapshots (0: the coarsest mesh's
+        !> nodes, n_elements + 1)
+        integer :: n_points = 0
     end type output_t
 
     !> &material (optional): physical quantities of Table 1 in SI units, from which the

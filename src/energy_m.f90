@@ -24,34 +24,44 @@ module energy_m
         !> BDF2 only: the largest relative rise at steps whose size differs from the step
         !> before (w /= 1), where its law is not stated (not in max_rise)
         real(dp) :: max_rise_step_change = 0.0_dp
+        !> adaptive mesh: the largest relative rise of the law energy across a remesh
+        !> (transfer_m's projections cannot raise it: round-off only), and the remeshes
+        real(dp) :: max_rise_remesh = 0.0_dp
+        integer :: n_remeshes = 0
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
     contains
         procedure :: init => monitor_init
         procedure :: observe => monitor_observe
+        procedure :: resize => monitor_resize
+        procedure :: remeshed => monitor_remeshed
     end type energy_monitor_t
 
 contains
 
     !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini).
-    pure function discrete_energy(model, law, u, w) result(energy)
+    !> h: element sizes of a graded mesh (absent: uniform).
+    pure function discrete_energy(model, law, u, w, h) result(energy)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), optional :: h(:)
         real(dp) :: energy
 
-        energy = linear_energy(model, u, w) + law%energy(u(ubound(u, 1)))
+        energy = linear_energy(model, u, w, h) + law%energy(u(ubound(u, 1)))
     end function discrete_energy
 
     !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
     !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions.
-    pure function linear_energy(model, u, w) result(energy)
+    !> h(1:s): the element sizes of a graded mesh (absent: the uniform mesh, h = 1/s).
+    pure function linear_energy(model, u, w, h) result(energy)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), optional :: h(:)
         real(dp) :: energy
-        real(dp) :: mass_terms, strain_terms
+        real(dp) :: mass_terms, strain_terms, h_e
         integer :: e, s
 
         ! One pass over the elements (this runs every time step): on element e the mass
@@ -60,6 +70,15 @@ contains
         s = ubound(u, 1)
         mass_terms = 0.0_dp
         strain_terms = 0.0_dp
+        if (present(h)) then
+            do e = 1, s
+                h_e = h(e)
+                mass_terms = mass_terms + h_e * element_energy_density(model, w(e - 1, :), w(e, :))
+                strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
+            end do
+            energy = 0.5_dp * (mass_terms / 6.0_dp + model%alpha * strain_terms)
+            return
+        end if
         do e = 1, s
             mass_terms = mass_terms &
                 + model%rho * element_mass_product(w(e - 1, F_V), w(e, F_V), w(e - 1, F_V), w(e, F_V)) &
@@ -81,23 +100,24 @@ contains
     !> penalty BDF2 has no such law (the nonlinear term is not G-stable).
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
     !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
-    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, u_work, w_work, energy, lin_now)
+    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, u_work, w_work, energy, lin_now, h)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
         real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
         real(dp), intent(out) :: energy
         real(dp), intent(in), optional :: lin_now
+        real(dp), intent(in), optional :: h(:)     !< element sizes of a graded mesh
         real(dp) :: lin
 
         if (present(lin_now)) then
             lin = lin_now
         else
-            lin = linear_energy(model, u, w)
+            lin = linear_energy(model, u, w, h)
         end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
-        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work)) + law%energy(u(ubound(u, 1)))
+        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, h)) + law%energy(u(ubound(u, 1)))
     end subroutine bdf2_energy
 
     !> The energy of the first level and the law it must obey from then on.
@@ -117,9 +137,9 @@ contains
         self%own_law_model = present(law_model)
         self%law = law
         self%bdf2 = scheme%is_bdf2()
-        self%energy = discrete_energy(model, law, state%u, state%w)
+        self%energy = discrete_energy(model, law, state%u, state%w, state%h)
         self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w)
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%h)
         self%have_law = .not. self%bdf2
         self%max_rise = 0.0_dp
         if (self%bdf2) then
@@ -139,20 +159,12 @@ contains
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         logical, intent(in), optional :: step_changed
-        real(dp) :: law_old, energy_lin, rise
+        real(dp) :: law_old, rise
         logical :: had_law, changed
 
         law_old = self%law_energy
         had_law = self%have_law
-        energy_lin = linear_energy(self%model, state%u, state%w)
-        self%energy = energy_lin + self%law%energy(state%u(state%s))
-        self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w)
-        if (self%bdf2) then
-            self%have_law = allocated(state%u_prev)
-            if (self%have_law) call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &
-                                                self%u_work, self%w_work, self%law_energy, lin_now=energy_lin)
-        end if
+        call measure(self, state)
         if (.not. (had_law .and. self%have_law)) return
         rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
         changed = .false.
@@ -163,6 +175,70 @@ contains
             self%max_rise = max(self%max_rise, rise)
         end if
     end subroutine monitor_observe
+
+    !> E^n and the law energy of the level `state` (monitor_observe).
+    subroutine measure(self, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        real(dp) :: energy_lin
+
+        energy_lin = linear_energy(self%model, state%u, state%w, state%h)
+        self%energy = energy_lin + self%law%energy(state%u(state%s))
+        self%law_energy = self%energy
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%h)
+        if (self%bdf2) then
+            self%have_law = allocated(state%u_prev)
+            if (self%have_law) then
+                if (size(self%u_work) /= size(state%u)) call self%resize(state)
+                call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &
+                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin, h=state%h)
+            end if
+        end if
+    end subroutine measure
+
+    !> The level has moved to a new mesh (transfer_m): its energies on the new mesh, and
+    !> the relative rise of the law energy across the move in max_rise_remesh.
+    subroutine monitor_remeshed(self, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        real(dp) :: law_old
+        logical :: had_law
+
+        law_old = self%law_energy
+        had_law = self%have_law
+        call measure(self, state)
+        self%n_remeshes = self%n_remeshes + 1
+        if (had_law .and. self%have_law) self%max_rise_remesh = &
+            max(self%max_rise_remesh, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
+    end subroutine monitor_remeshed
+
+    !> The work arrays shaped as the state's level (after a remesh).
+    subroutine monitor_resize(self, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(self%u_work)) deallocate (self%u_work, self%w_work)
+        allocate (self%u_work, mold=state%u, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the energy monitor''s work arrays')
+        allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the energy monitor''s work arrays')
+    end subroutine monitor_resize
+
+    !> 6/h times the integrand of 2 E_lin without the strain term on one element whose
+    !> end nodes hold the fields w0, w1 (fields_m's F_*).
+    pure real(dp) function element_energy_density(model, w0, w1) result(density)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: w0(:), w1(:)
+
+        density = model%rho * element_mass_product(w0(F_V), w1(F_V), w0(F_V), w1(F_V)) &
+            + model%c * element_mass_product(w0(F_THETA), w1(F_THETA), w0(F_THETA), w1(F_THETA)) &
+            + model%r * element_mass_product(w0(F_P), w1(F_P), w0(F_P), w1(F_P)) &
+            + 2.0_dp * model%d * element_mass_product(w0(F_P), w1(F_P), w0(F_THETA), w1(F_THETA)) &
+            + model%tau0 * element_mass_product(w0(F_Q), w1(F_Q), w0(F_Q), w1(F_Q)) &
+            + model%tau * model%hbar * element_mass_product(w0(F_ETA), w1(F_ETA), w0(F_ETA), w1(F_ETA))
+    end function element_energy_density
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
     !> and b0, b1).

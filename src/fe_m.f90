@@ -1,12 +1,14 @@
-!> P1 finite elements on the uniform mesh of Section 6: 0 = x_0 < ... < x_s = 1, h = 1/s.
-!> Element kernels are exact integrals of products of the two local hat functions
-!> phi_1 = (x_b - x)/h, phi_2 = (x - x_a)/h on one element [x_a, x_b].
+!> P1 finite elements on the mesh of Section 6: 0 = x_0 < ... < x_s = 1, uniform (h = 1/s)
+!> or graded (element sizes h_e = x_e - x_{e-1}, &mesh adaptive: mesh_m). Element kernels
+!> are exact integrals of products of the two local hat functions phi_1 = (x_b - x)/h,
+!> phi_2 = (x - x_a)/h on one element [x_a, x_b]; a graded mesh uses the same kernels with
+!> each element's own h.
 module fe_m
     use kinds_m, only: dp
     implicit none
     private
     public :: mesh_nodes, element_mass, element_stiffness, element_gradient
-    public :: apply_assembled
+    public :: apply_assembled, apply_mass_graded, apply_stiffness_graded, evaluate_p1
 
 contains
 
@@ -61,5 +63,55 @@ contains
         y(1:s - 1) = elem(2, 1) * x(0:s - 2) + (elem(2, 2) + elem(1, 1)) * x(1:s - 1) + elem(1, 2) * x(2:s)
         y(s) = elem(2, 1) * x(s - 1) + elem(2, 2) * x(s)
     end subroutine apply_assembled
+
+    !> y = M x, M the mass matrix assembled from element_mass(h(e)) on the graded mesh with
+    !> element sizes h(1:s); x, y have bounds 0..s. No allocation (called every time step).
+    pure subroutine apply_mass_graded(h, x, y)
+        real(dp), intent(in) :: h(:)
+        real(dp), intent(in) :: x(0:)
+        real(dp), intent(out) :: y(0:)
+        integer :: s
+
+        s = ubound(x, 1)
+        y(0) = h(1) * (2.0_dp * x(0) + x(1)) / 6.0_dp
+        y(1:s - 1) = (h(1:s - 1) * (x(0:s - 2) + 2.0_dp * x(1:s - 1)) &
+                      + h(2:s) * (2.0_dp * x(1:s - 1) + x(2:s))) / 6.0_dp
+        y(s) = h(s) * (x(s - 1) + 2.0_dp * x(s)) / 6.0_dp
+    end subroutine apply_mass_graded
+
+    !> y = K x, K the stiffness matrix assembled from element_stiffness(h(e)) (see
+    !> apply_mass_graded).
+    pure subroutine apply_stiffness_graded(h, x, y)
+        real(dp), intent(in) :: h(:)
+        real(dp), intent(in) :: x(0:)
+        real(dp), intent(out) :: y(0:)
+        integer :: s
+
+        s = ubound(x, 1)
+        y(0) = (x(0) - x(1)) / h(1)
+        y(1:s - 1) = (x(1:s - 1) - x(0:s - 2)) / h(1:s - 1) + (x(1:s - 1) - x(2:s)) / h(2:s)
+        y(s) = (x(s) - x(s - 1)) / h(s)
+    end subroutine apply_stiffness_graded
+
+    !> The P1 function with nodal values f(0:s) on the nodes x(0:s) (increasing, x(0) = 0,
+    !> x(s) = 1) at the increasing points p(:) of [0, 1]: one merge-like pass.
+    pure function evaluate_p1(x, f, p) result(values)
+        real(dp), intent(in) :: x(0:), f(0:), p(:)
+        real(dp) :: values(size(p))
+        integer :: j, e, s
+        real(dp) :: weight
+
+        s = ubound(x, 1)
+        e = 1
+        do j = 1, size(p)
+            do while (e < s .and. p(j) > x(e))
+                e = e + 1
+            end do
+            weight = (p(j) - x(e - 1)) / (x(e) - x(e - 1))
+            values(j) = (1.0_dp - weight) * f(e - 1) + weight * f(e)
+            if (p(j) == x(e - 1)) values(j) = f(e - 1)
+            if (p(j) == x(e)) values(j) = f(e)
+        end do
+    end function evaluate_p1
 
 end module fe_m

@@ -12,7 +12,8 @@ module fields_m
     private
     public :: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA
     public :: field_t, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, is_dirichlet
-    public :: series_t, SERIES, N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT
+    public :: series_t, SERIES, N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
+              S_N_ELEMENTS
 
     integer, parameter :: N_FIELDS = 5
     integer, parameter :: F_U = 0, F_Q = 1, F_THETA = 2, F_V = 3, F_P = 4, F_ETA = 5
@@ -50,9 +51,9 @@ module fields_m
         character(len=24) :: scale       !< as field_t's scale; '' when there is no physical scale
     end type series_t
 
-    integer, parameter :: N_SERIES = 7
+    integer, parameter :: N_SERIES = 8
     integer, parameter :: S_T = 1, S_ENERGY = 2, S_U_END = 3, S_PENETRATION = 4, S_CONTACT_STRESS = 5, &
-                          S_ITERATIONS = 6, S_DT = 7
+                          S_ITERATIONS = 6, S_DT = 7, S_N_ELEMENTS = 8
     type(series_t), parameter :: SERIES(N_SERIES) = [ &
         series_t('t', 'time t_n', .false., '1', 'time'), &
         series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1', ''), &
@@ -60,7 +61,8 @@ module fields_m
         series_t('penetration', 'penetration [u(1,t) - g]_+', .false., '1', 'displacement'), &
         series_t('contact_stress', 'contact stress sigma(1,t)', .false., '1', 'stress'), &
         series_t('iterations', 'linear solves of the step', .true., '1', ''), &
-        series_t('dt', 'step t_n - t_{n-1} (0 at t = 0)', .false., '1', 'time')]
+        series_t('dt', 'step t_n - t_{n-1} (0 at t = 0)', .false., '1', 'time'), &
+        series_t('n_elements', 'elements of the mesh of t_n', .true., '1', '')]
 
 contains
 

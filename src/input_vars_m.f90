@@ -60,6 +60,10 @@ module input_vars_m
         input_var_t('contact', 'eps', KIND_REAL, .false., ''), &
         input_var_t('contact', 'law', KIND_STRING, .true., ''), &
         input_var_t('mesh', 'n_elements', KIND_INTEGER, .false., ''), &
+        input_var_t('mesh', 'adaptive', KIND_LOGICAL, .false., ''), &
+        input_var_t('mesh', 'error_tol', KIND_REAL, .false., ''), &
+        input_var_t('mesh', 'max_level', KIND_INTEGER, .false., ''), &
+        input_var_t('mesh', 'remesh_every', KIND_INTEGER, .false., ''), &
         input_var_t('time', 'dt', KIND_REAL, .false., ''), &
         input_var_t('time', 't_end', KIND_REAL, .false., ''), &
         input_var_t('time', 'scheme', KIND_STRING, .true., ''), &
@@ -86,6 +90,7 @@ module input_vars_m
         input_var_t('output', 'checkpoint_every', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'compression', KIND_INTEGER, .false., ''), &
         input_var_t('output', 'quiet', KIND_LOGICAL, .false., ''), &
+        input_var_t('output', 'n_points', KIND_INTEGER, .false., ''), &
         input_var_t('material', 'T0', KIND_REAL, .false., 'K'), &
         input_var_t('material', 'rho0', KIND_REAL, .false., 'kg/m^3'), &
         input_var_t('material', 'cE', KIND_REAL, .false., 'J/(kg K)'), &
@@ -149,7 +154,8 @@ contains
             changes_history = var%name /= 't_end' .and. var%name /= 'restart_from'
         case ('output')
             ! the steps land on the snapshot times (run_m)
-            changes_history = var%name == 'snapshot_dt'
+            ! n_points: the width of the /snapshots rows a restart copies
+            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points'
         case default
             changes_history = .false.
         end select
@@ -239,17 +245,19 @@ contains
         real(dp), dimension(0:MAX_POLY_DEGREE) :: u0_poly, u1_poly, theta0_poly, p0_poly, q0_poly, eta0_poly
         real(dp) :: theta0_step(2), p0_step(2)
         real(dp) :: T0, rho0, cE, kappa, lambda, mu, alpha_t, alpha_c, nu, varrho, ell, lambda_v, mu_v
-        integer :: n_elements, max_iter, snapshot_every, series_every, checkpoint_every, compression
+        integer :: n_elements, max_iter, snapshot_every, series_every, checkpoint_every, compression, max_level, &
+                   remesh_every, n_points
         character(len=LEN_NAME) :: law, scheme, method
         character(len=LEN_PATH) :: restart_from, prefix
         logical :: quiet, adaptive
         namelist /model/ rho, alpha, varpi, gamma1, gamma2, c, d, r, hbar, tau0, tau
         namelist /contact/ g, eps, law
-        namelist /mesh/ n_elements
+        namelist /mesh/ n_elements, adaptive, error_tol, max_level, remesh_every
         namelist /time/ dt, t_end, scheme, restart_from, adaptive, error_tol, dt_min, dt_max
         namelist /initial/ u0_poly, u1_poly, theta0_poly, p0_poly, q0_poly, eta0_poly, theta0_step, p0_step
         namelist /solver/ method, tol, max_iter
-        namelist /output/ prefix, snapshot_every, snapshot_dt, series_every, checkpoint_every, compression, quiet
+        namelist /output/ prefix, snapshot_every, snapshot_dt, series_every, checkpoint_every, compression, quiet, &
+                          n_points
         namelist /material/ T0, rho0, cE, kappa, lambda, mu, alpha_t, alpha_c, D, nu, varrho, ell, tau0, tau, &
                             lambda_v, mu_v
         type(input_item_t) :: work
@@ -305,6 +313,10 @@ contains
             case ('contact.eps'); call link(it, act, r=cfg%contact%eps, r_local=eps)
             case ('contact.law'); call link(it, act, s=cfg%contact%law, s_local=law)
             case ('mesh.n_elements'); call link(it, act, i=cfg%mesh%n_elements, i_local=n_elements)
+            case ('mesh.adaptive'); call link(it, act, l=cfg%mesh%adaptive, l_local=adaptive)
+            case ('mesh.error_tol'); call link(it, act, r=cfg%mesh%error_tol, r_local=error_tol)
+            case ('mesh.max_level'); call link(it, act, i=cfg%mesh%max_level, i_local=max_level)
+            case ('mesh.remesh_every'); call link(it, act, i=cfg%mesh%remesh_every, i_local=remesh_every)
             case ('time.dt'); call link(it, act, r=cfg%time%dt, r_local=dt)
             case ('time.t_end'); call link(it, act, r=cfg%time%t_end, r_local=t_end)
             case ('time.scheme'); call link(it, act, s=cfg%time%scheme, s_local=scheme)
@@ -330,6 +342,7 @@ contains
             case ('output.series_every'); call link(it, act, i=cfg%output%series_every, i_local=series_every)
             case ('output.checkpoint_every'); call link(it, act, i=cfg%output%checkpoint_every, i_local=checkpoint_every)
             case ('output.compression'); call link(it, act, i=cfg%output%compression, i_local=compression)
+            case ('output.n_points'); call link(it, act, i=cfg%output%n_points, i_local=n_points)
             case ('output.quiet'); call link(it, act, l=cfg%output%quiet, l_local=quiet)
             case ('material.T0'); call link(it, act, r=cfg%material%T0, r_local=T0)
             case ('material.rho0'); call link(it, act, r=cfg%material%rho0, r_local=rho0)

@@ -14,7 +14,7 @@ contains
     !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
     !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
     !> flushed). A run killed at any moment leaves the last complete checkpoint readable.
-    module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events)
+    module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: state(:, :)
         real(dp), intent(in) :: counters(:)
@@ -23,6 +23,8 @@ contains
         real(dp), intent(in), optional :: control(:)      !< step control's scalars (step_control_m)
         real(dp), intent(in), optional :: history(:, :)   !< the error estimator's past levels
         real(dp), intent(in), optional :: events(:, :)    !< (n_events, 2): t and kind of each event
+        !> adaptive mesh: the node keys of adaptive_mesh_m, then its field scales (restart_m)
+        real(dp), intent(in), optional :: mesh(:)
 
         integer(hid_t) :: group_id
         logical :: exists
@@ -44,11 +46,19 @@ contains
         w%checkpoint_slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
         slot = '/checkpoint/slot0'
         if (w%checkpoint_slot == 1) slot = '/checkpoint/slot1'
+        if (present(mesh)) then
+            ! the mesh changes size between checkpoints: the arrays on it are written afresh
+            call w%drop(slot//'/state')
+            call w%drop(slot//'/previous')
+            call w%drop(slot//'/history')
+            call w%drop(slot//'/mesh')
+        end if
         call w%put_real(slot//'/state', state, [size(state, 1), size(state, 2)])
         call w%put_real(slot//'/counters', counters, [size(counters), 1])
         if (present(previous)) call w%put_real(slot//'/previous', previous, [size(previous, 1), size(previous, 2)])
         if (present(control)) call w%put_real(slot//'/control', control, [size(control), 1])
         if (present(history)) call w%put_real(slot//'/history', history, [size(history, 1), size(history, 2)])
+        if (present(mesh)) call w%put_real(slot//'/mesh', mesh, [size(mesh), 1])
         call w%drop(slot//'/events')
         if (present(events)) then
             if (size(events, 1) > 0) call w%put_real(slot//'/events', events, [size(events, 1), size(events, 2)])

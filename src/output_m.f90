@@ -77,10 +77,13 @@ module output_m
         real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
         character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
         integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
+        integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
+        integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
         procedure :: append_snapshot => writer_append_snapshot
+        procedure :: append_native => writer_append_native
         procedure :: attr_real => writer_attr_real
         procedure :: attr_int => writer_attr_int
         procedure :: attr_str => writer_attr_str
@@ -113,7 +116,13 @@ module output_m
             integer, intent(in) :: kind(:)
         end subroutine writer_write_events
 
-        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events)
+        module subroutine writer_append_native(w, x, values)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: x(:)
+            real(dp), intent(in) :: values(:, :)
+        end subroutine writer_append_native
+
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
@@ -122,6 +131,7 @@ module output_m
             real(dp), intent(in), optional :: control(:)
             real(dp), intent(in), optional :: history(:, :)
             real(dp), intent(in), optional :: events(:, :)
+            real(dp), intent(in), optional :: mesh(:)
         end subroutine writer_write_checkpoint
 
         module subroutine writer_drop(w, name)
@@ -186,6 +196,8 @@ contains
             call w%fail('internal error: compression level outside 0 .. 9')
         w%n_series_written = 0
         w%n_snap = 0
+        w%n_native_snap = 0
+        w%n_native_values = 0
         w%n_buf = 0
         w%logical_names = ''
         w%checkpoint_note = ''

@@ -49,7 +49,7 @@ contains
     !> may continue it: `file` is not the file this run writes, every input that changes the
     !> computed history equals the one recorded in `file`, and t_end is not before the
     !> checkpoint. Any of these failing is an input error (exit 2) that leaves no output.
-    subroutine read_checkpoint(file, cfg, state, counters, control, history, events)
+    subroutine read_checkpoint(file, cfg, state, counters, control, history, events, mesh)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
         type(state_t), intent(inout) :: state
@@ -57,6 +57,8 @@ contains
         !> step control's scalars and past levels (absent in the checkpoint: not allocated)
         real(dp), allocatable, intent(out) :: control(:), history(:, :)
         real(dp), allocatable, intent(out) :: events(:, :)   !< (n_events, 2); (0, 2) if none
+        !> the adaptive mesh (run_m's pack_mesh; not allocated without &mesh adaptive)
+        real(dp), allocatable, intent(out) :: mesh(:)
         real(dp), allocatable :: packed(:, :), values(:)
         character(len=:), allocatable :: slot
         integer :: s, stat
@@ -72,9 +74,22 @@ contains
         call read_real_1d(file, '/checkpoint/current', values)
         slot = '/checkpoint/slot0'
         if (nint(values(1)) == 1) slot = '/checkpoint/slot1'
+        if (cfg%mesh%adaptive) then
+            ! the mesh of the checkpoint: its node keys follow 1 + N_FIELDS scales and 2 counters
+            if (.not. dataset_exists(file, slot//'/mesh')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+                "': its checkpoint has no adaptive mesh")
+            call read_real_1d(file, slot//'/mesh', mesh)
+            s = size(mesh) - (N_FIELDS + 4)
+        end if
         call read_real_2d(file, slot//'/state', packed)
         if (any(shape(packed) /= [s + 1, 1 + N_FIELDS])) &
             call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/state has the wrong shape")
+        if (size(state%u) /= s + 1) then
+            deallocate (state%u, state%w)
+            allocate (state%u(0:s), state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the state')
+            state%s = s
+        end if
         state%u = packed(:, 1)
         state%w = packed(:, 2:)
         if (dataset_exists(file, slot//'/previous')) then
@@ -248,7 +263,36 @@ contains
         do k = 1, n
             call writer%append_snapshot(snap_t(k), snaps(:, :, k))
         end do
+        if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
     end subroutine copy_history
+
+    !> The first n snapshots of /snapshots/native (adaptive mesh) of `file` into writer.
+    subroutine copy_native(writer, file, n)
+        type(h5_writer_t), intent(inout) :: writer
+        character(len=*), intent(in) :: file
+        integer, intent(in) :: n
+        integer, allocatable :: offset(:), count(:)
+        real(dp), allocatable :: x(:), column(:), values(:, :)
+        integer :: j, k, stat
+        character(len=256) :: message
+
+        call read_int_1d(file, '/snapshots/native/offset', offset)
+        call read_int_1d(file, '/snapshots/native/count', count)
+        call require_rows(file, '/snapshots/native/offset', size(offset), n)
+        call require_rows(file, '/snapshots/native/count', size(count), n)
+        call read_real_1d(file, '/snapshots/native/x', x)
+        allocate (values(size(x), N_OUTPUT_FIELDS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the copied native snapshots')
+        do k = 1, N_OUTPUT_FIELDS
+            call read_real_1d(file, '/snapshots/native/'//trim(FIELDS(OUTPUT_ORDER(k))%name), column)
+            call require_rows(file, '/snapshots/native/'//trim(FIELDS(OUTPUT_ORDER(k))%name), size(column), size(x))
+            values(:, k) = column(1:size(x))
+        end do
+        do j = 1, n
+            call require_rows(file, '/snapshots/native/x', size(x), offset(j) + count(j))
+            call writer%append_native(x(offset(j) + 1:offset(j) + count(j)), values(offset(j) + 1:offset(j) + count(j), :))
+        end do
+    end subroutine copy_native
 
     !> A dataset of the copied history has fewer rows than its time column: not a file this
     !> version of rodcontact wrote.

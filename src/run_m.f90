@@ -10,10 +10,13 @@ module run_m
     use iso_fortran_env, only: error_unit
     use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
-    use fe_m, only: mesh_nodes
+    use fe_m, only: mesh_nodes, evaluate_p1
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
-                        N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
-    use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state
+                        S_N_ELEMENTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
+    use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state, set_mesh, &
+                       state_nodes
+    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
+    use remesh_m, only: initial_mesh, remesh
     use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, &
                               pack_control, unpack_control, energy_norm
     use contact_law_m, only: contact_law_t
@@ -58,20 +61,28 @@ contains
         type(error_estimator_t) :: estimator
         type(step_controller_t) :: control
         type(event_log_t) :: events
-        integer :: n_steps, last_written, n_snapshot_next
+        type(adaptive_mesh_t) :: mesh
+        integer :: n_steps, last_written, n_snapshot_next, n_elements_max
         integer(int64) :: clock_start, clock_rate
+        real(dp) :: v_front
         real(dp) :: counters(N_COUNTERS), dt_try, target, t_before, gap_start, gap_end, est, err, proposal, event_tol, &
                     saved_dt_last
-        logical :: adaptive, lands, at_snapshot, in_contact, contact_now, flipped, last, warned_forced
-        real(dp), allocatable :: control_values(:), history(:, :), event_table(:, :)
+        logical :: adaptive, lands, at_snapshot, in_contact, contact_now, flipped, last, warned_forced, remeshed
+        real(dp), allocatable :: control_values(:), history(:, :), event_table(:, :), mesh_data(:), x_out(:)
         character(len=320) :: failure
         character(len=:), allocatable :: interrupted
 
         call system_clock(clock_start, clock_rate)
         adaptive = cfg%time%adaptive
         n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
-        call initial_state(cfg, state)
+        v_front = front_speed(cfg%model)
+        if (cfg%mesh%adaptive) then
+            call initial_mesh(cfg, mesh, state)
+        else
+            call initial_state(cfg, state)
+        end if
         call stepper%init(cfg, result)
+        if (cfg%mesh%adaptive) call stepper%remesh(state)
         if (stepper%scheme%is_midpoint()) then
             call monitor%init(cfg%model, stepper%law, stepper%scheme, state, law_model=stepper%step_model)
         else
@@ -86,7 +97,14 @@ contains
         if (cfg%time%restart_from /= '') then
             ! everything the restart needs is read and checked before the new file exists
             call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters, control_values, history, &
-                                 event_table)
+                                 event_table, mesh_data)
+            if (cfg%mesh%adaptive) then
+                call restore_mesh(mesh, mesh_data, monitor)
+                call set_mesh(state, mesh%nodes())
+                call stepper%remesh(state)
+                call estimator%resize(state%s)
+                call monitor%resize(state)
+            end if
             monitor%energy = counters(COUNTER_ENERGY)
             monitor%law_energy = counters(COUNTER_LAW_ENERGY)
             monitor%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
@@ -107,7 +125,8 @@ contains
         if (cfg%output%snapshot_dt > 0.0_dp) n_snapshot_next = floor(state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
         ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
         call ignore_file_size_signal()
-        call writer%create(trim(cfg%output%prefix), mesh_nodes(cfg%mesh%n_elements), cfg%output%compression)
+        x_out = output_grid(cfg)
+        call writer%create(trim(cfg%output%prefix), x_out, cfg%output%compression)
         call record_inputs(writer, cfg)
         call writer%attr_str('version', PROGRAM_VERSION)
         call record_provenance(writer)
@@ -119,8 +138,9 @@ contains
         else
             result%contact_force = stepper%law%force(state%u(state%s))
             call write_series(writer, stepper, state, monitor%energy, result)
-            call write_snapshot(writer, state)
+            call write_snapshot(writer, state, x_out)
         end if
+        n_elements_max = state%s
 
         ! from here on the .part is a valid file (inputs, provenance, the initial state), also
         ! if the run is killed or the disk fills up before its first checkpoint
@@ -154,7 +174,7 @@ contains
             est = 0.0_dp
             err = -1.0_dp
             if (estimator%ready() .and. .not. flipped) then
-                est = estimator%estimate(cfg%model, state%u, state%w, dt_try)
+                est = estimator%estimate(cfg%model, state%u, state%w, dt_try, state%h)
                 err = control%ratio(est)
             end if
             if (adaptive) then
@@ -206,11 +226,15 @@ contains
             last = finished(state)
             if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
                 call write_series(writer, stepper, state, monitor%energy, result)
-            if (snapshot_due(state%step, at_snapshot) .or. last) call write_snapshot(writer, state)
+            if (snapshot_due(state%step, at_snapshot) .or. last) call write_snapshot(writer, state, x_out)
             last_written = state%step
+            if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
+                call remesh(mesh, state, stepper, estimator, monitor, remeshed)
+                n_elements_max = max(n_elements_max, state%s)
+            end if
             if (cfg%output%checkpoint_every > 0) then
-                if (mod(state%step, cfg%output%checkpoint_every) == 0) &
-                    call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
+                if (mod(state%step, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, &
+                    monitor, control, estimator, events, in_contact, mesh)
             end if
             if (adaptive) then
                 call progress%update(progress_position(state%t), state%t, result%in_contact)
@@ -225,9 +249,9 @@ contains
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
             ! checkpoint, so the file must hold exactly those an uninterrupted run has
             if (cfg%output%checkpoint_every == 0) then
-                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
+                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact, mesh)
             else if (mod(state%step, cfg%output%checkpoint_every) /= 0) then
-                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
+                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact, mesh)
             end if
         end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
@@ -236,7 +260,7 @@ contains
             call write_series(writer, stepper, state, monitor%energy, result)
         end if
         if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
-            .not. snapshot_due(last_written, .false.)) call write_snapshot(writer, state)
+            .not. snapshot_due(last_written, .false.)) call write_snapshot(writer, state, x_out)
 
         call writer%write_events(events%times(), events%kinds())
         call writer%attr_int('steps', state%step)
@@ -250,6 +274,11 @@ contains
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
         call record_time_error(writer, control, adaptive)
+        if (cfg%mesh%adaptive) then
+            call writer%attr_int('mesh.remeshes', monitor%n_remeshes)
+            call writer%attr_int('mesh.n_elements_max', n_elements_max)
+            call writer%attr_real('energy_max_relative_rise_remesh', monitor%max_rise_remesh)
+        end if
         if (interrupted /= '') then
             call writer%finish('interrupted: '//interrupted, keep_part=.true.)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
@@ -302,6 +331,8 @@ contains
                 dt_try = control%dt_next
                 if (state%dt_last > 0.0_dp) dt_try = min(dt_try, GROWTH_MAX * state%dt_last)
                 dt_try = min(max(dt_try, cfg%time%dt_min), cfg%time%dt_max)
+                if (cfg%mesh%adaptive .and. v_front > 0.0_dp) &
+                    dt_try = max(min(dt_try, FRONT_CFL * minval(state%h) / v_front), cfg%time%dt_min)
                 slack = 1.0e-9_dp * dt_try
             else
                 dt_try = cfg%time%dt
@@ -436,7 +467,7 @@ contains
     !> /checkpoint: the state, the level before (BDF2), the counters, the step control
     !> (step_control_m, with the contact state in_contact appended) and the events, so that
     !> the run continues exactly.
-    subroutine write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact)
+    subroutine write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact, mesh)
         type(h5_writer_t), intent(inout) :: writer
         type(state_t), intent(in) :: state
         type(stepper_t), intent(in) :: stepper
@@ -445,6 +476,7 @@ contains
         type(error_estimator_t), intent(in) :: estimator
         type(event_log_t), intent(in) :: events
         logical, intent(in) :: in_contact
+        type(adaptive_mesh_t), intent(in) :: mesh    !< (used when allocated: &mesh adaptive)
         real(dp) :: counters(N_COUNTERS), values(N_CONTROL_VALUES + 2)
         real(dp) :: history(0:state%s, (1 + N_FIELDS) * MAX_LEVELS)
         character(len=:), allocatable :: note
@@ -465,7 +497,16 @@ contains
         values(N_CONTROL_VALUES + 2) = monitor%max_rise_step_change
         note = step_failure(state%step, state%t, '')
         note = note(1:len(note) - 2)   ! 'step n (t = ...)'
-        if (allocated(state%u_prev)) then
+        if (allocated(mesh%k)) then
+            if (allocated(state%u_prev)) then
+                call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, &
+                                             pack_state(state%u_prev, state%w_prev), control=values, history=history, &
+                                             events=events%packed(), mesh=pack_mesh(mesh, monitor))
+            else
+                call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, control=values, &
+                                             history=history, events=events%packed(), mesh=pack_mesh(mesh, monitor))
+            end if
+        else if (allocated(state%u_prev)) then
             call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, pack_state(state%u_prev, state%w_prev), &
                                          control=values, history=history, events=events%packed())
         else
@@ -473,6 +514,43 @@ contains
                                          events=events%packed())
         end if
     end subroutine write_checkpoint
+
+    !> The adaptive mesh in a checkpoint: the field scales (1 + N_FIELDS), the remesh
+    !> counters of the monitor (2), then the node keys (restore_mesh is the inverse).
+    function pack_mesh(mesh, monitor) result(values)
+        type(adaptive_mesh_t), intent(in) :: mesh
+        type(energy_monitor_t), intent(in) :: monitor
+        real(dp), allocatable :: values(:)
+
+        values = [mesh%scale, monitor%max_rise_remesh, real(monitor%n_remeshes, dp), real(mesh%k, dp)]
+    end function pack_mesh
+
+    !> The adaptive mesh of a checkpoint (pack_mesh), on mesh initialised for this run.
+    subroutine restore_mesh(mesh, values, monitor)
+        type(adaptive_mesh_t), intent(inout) :: mesh
+        real(dp), intent(in) :: values(:)
+        type(energy_monitor_t), intent(inout) :: monitor
+        integer :: n
+
+        n = 1 + N_FIELDS
+        mesh%scale = values(1:n)
+        monitor%max_rise_remesh = values(n + 1)
+        monitor%n_remeshes = nint(values(n + 2))
+        call mesh%set_keys(nint(values(n + 3:), int64))
+    end subroutine restore_mesh
+
+    !> The fixed grid of the snapshots (/mesh/x): &output n_points uniform points, by
+    !> default the nodes of the coarsest mesh.
+    function output_grid(cfg) result(x)
+        type(config_t), intent(in) :: cfg
+        real(dp), allocatable :: x(:)
+
+        if (cfg%output%n_points > 0) then
+            x = mesh_nodes(cfg%output%n_points - 1)
+        else
+            x = mesh_nodes(cfg%mesh%n_elements)
+        end if
+    end function output_grid
 
     !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
     !> (normal compliance (3.4), or the Signorini multiplier).
@@ -491,20 +569,33 @@ contains
         values(S_CONTACT_STRESS) = -result%contact_force
         values(S_ITERATIONS) = real(result%iterations, dp)
         values(S_DT) = state%dt_last
+        values(S_N_ELEMENTS) = real(state%s, dp)
         call writer%append_series(values)
     end subroutine write_series
 
-    !> One snapshot: every field of fields_m's OUTPUT_ORDER.
-    subroutine write_snapshot(writer, state)
+    !> One snapshot: every field of fields_m's OUTPUT_ORDER on the output grid x_out (the
+    !> P1 solution evaluated there, unless x_out are the nodes), and on a graded mesh its
+    !> nodal values in /snapshots/native.
+    subroutine write_snapshot(writer, state, x_out)
         type(h5_writer_t), intent(inout) :: writer
         type(state_t), intent(in) :: state
-        real(dp) :: values(0:state%s, N_OUTPUT_FIELDS)
+        real(dp), intent(in) :: x_out(:)
+        real(dp) :: values(0:state%s, N_OUTPUT_FIELDS), on_grid(size(x_out), N_OUTPUT_FIELDS), x(0:state%s)
         integer :: k
 
         do k = 1, N_OUTPUT_FIELDS
             values(:, k) = field_values(state, OUTPUT_ORDER(k))
         end do
-        call writer%append_snapshot(state%t, values)
+        if (size(x_out) == state%s + 1 .and. .not. allocated(state%x)) then
+            call writer%append_snapshot(state%t, values)
+            return
+        end if
+        x = state_nodes(state)
+        do k = 1, N_OUTPUT_FIELDS
+            on_grid(:, k) = evaluate_p1(x, values(:, k), x_out)
+        end do
+        call writer%append_snapshot(state%t, on_grid)
+        if (allocated(state%x)) call writer%append_native(x, values)
     end subroutine write_snapshot
 
     !> Every input value as a root attribute named group.variable (SPEC section 4).

@@ -1,4 +1,6 @@
-!> The discrete state at one time level: (u, v, theta, P, q, eta) at the nodes 0..s.
+!> The discrete state at one time level: (u, v, theta, P, q, eta) at the nodes 0..s, and
+!> the mesh they live on when it is graded (&mesh adaptive: x and h allocated; absent, the
+!> uniform mesh x_i = i/s of fe_m's mesh_nodes).
 module state_m
     use kinds_m, only: dp
     use config_m, only: config_t
@@ -8,7 +10,8 @@ module state_m
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: state_t, initial_state, field_values, advance_time, accept_step, land_on, copy_state, keep_copy
+    public :: state_t, initial_state, set_mesh, state_nodes, field_values, advance_time, accept_step, land_on, &
+              copy_state, keep_copy
 
     type :: state_t
         integer :: s = 0                !< number of elements
@@ -23,25 +26,35 @@ module state_m
         real(dp), allocatable :: w(:, :)    !< w(i, f): field f (fields_m's F_*) at node i
         real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
                                                           !< only; allocated by the stepper)
+        real(dp), allocatable :: x(:)   !< graded mesh only: the nodes x_i, i = 0..s
+        real(dp), allocatable :: h(:)   !< graded mesh only: element sizes h_e = x_e - x_{e-1}, e = 1..s
     end type state_t
 
 contains
 
     !> The state at t = 0: nodal interpolants of the initial data (2.12), with the boundary
     !> values of the spaces S_h, V_h imposed (validation has checked that the data satisfy
-    !> them, so this only removes round-off).
-    subroutine initial_state(cfg, state)
+    !> them, so this only removes round-off). nodes: a graded mesh (absent: the uniform mesh
+    !> of &mesh n_elements).
+    subroutine initial_state(cfg, state, nodes)
         type(config_t), intent(in) :: cfg
         type(state_t), intent(out) :: state
+        real(dp), intent(in), optional :: nodes(0:)
         real(dp), allocatable :: x(:)
         integer :: s, i, f, stat
         character(len=256) :: message
 
         s = cfg%mesh%n_elements
+        if (present(nodes)) s = ubound(nodes, 1)
         state%s = s
         allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the state')
-        x = mesh_nodes(s)            ! x is allocated first so that it keeps the bounds 0:s
+        if (present(nodes)) then
+            x = nodes
+            call set_mesh(state, nodes)
+        else
+            x = mesh_nodes(s)        ! x is allocated first so that it keeps the bounds 0:s
+        end if
         do i = 0, s
             state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
             state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
@@ -56,6 +69,34 @@ contains
             if (is_dirichlet(f, s, s)) state%w(s, f) = 0.0_dp
         end do
     end subroutine initial_state
+
+    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched).
+    subroutine set_mesh(state, x)
+        type(state_t), intent(inout) :: state
+        real(dp), intent(in) :: x(0:)
+        integer :: s, stat
+        character(len=256) :: message
+
+        s = ubound(x, 1)
+        if (allocated(state%x)) deallocate (state%x, state%h)
+        allocate (state%x(0:s), state%h(s), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the mesh')
+        state%x = x
+        state%h = x(1:s) - x(0:s - 1)
+        state%s = s
+    end subroutine set_mesh
+
+    !> The nodes of the state's mesh.
+    pure function state_nodes(state) result(x)
+        type(state_t), intent(in) :: state
+        real(dp) :: x(0:state%s)
+
+        if (allocated(state%x)) then
+            x = state%x
+        else
+            x = mesh_nodes(state%s)
+        end if
+    end function state_nodes
 
     !> The nodal values of field f (fields_m's F_*, F_U the displacement).
     pure function field_values(state, f) result(values)
@@ -132,6 +173,16 @@ contains
         copy%dt_last = state%dt_last
         copy%t_anchor = state%t_anchor
         copy%step_anchor = state%step_anchor
+        if (allocated(state%x)) then
+            if (.not. allocated(copy%x)) then
+                call set_mesh(copy, state%x)
+            else if (any(shape(copy%x) /= shape(state%x))) then
+                call set_mesh(copy, state%x)
+            else
+                copy%x = state%x
+                copy%h = state%h
+            end if
+        end if
         call keep_copy(state%u, state%w, copy%u, copy%w, 'the saved state')
         if (allocated(state%u_prev)) then
             call keep_copy(state%u_prev, state%w_prev, copy%u_prev, copy%w_prev, 'the saved state')
@@ -149,6 +200,9 @@ contains
         integer :: stat
         character(len=256) :: message
 
+        if (allocated(u_copy)) then
+            if (size(u_copy) /= size(u)) deallocate (u_copy, w_copy)   ! the mesh has changed
+        end if
         if (.not. allocated(u_copy)) then
             allocate (u_copy(0:ubound(u, 1)), stat=stat, errmsg=message)
             call check_allocation(stat, message, what)

@@ -43,6 +43,7 @@ module step_control_m
         real(dp), allocatable :: u_diff(:), w_diff(:, :)   !< work: X^n - P^n
     contains
         procedure :: init => estimator_init
+        procedure :: resize => estimator_resize
         procedure :: reset => estimator_reset
         procedure :: push => estimator_push
         procedure :: ready => estimator_ready
@@ -79,16 +80,27 @@ contains
         class(error_estimator_t), intent(out) :: self
         character(len=*), intent(in) :: scheme
         integer, intent(in) :: s
-        integer :: stat
-        character(len=256) :: message
 
         self%scheme = scheme
         self%order = 2
         if (scheme == 'euler') self%order = 1
+        call self%resize(s)
+    end subroutine estimator_init
+
+    !> Arrays for a mesh of s elements (the levels held are lost: a remesh moves them
+    !> first, run_m).
+    subroutine estimator_resize(self, s)
+        class(error_estimator_t), intent(inout) :: self
+        integer, intent(in) :: s
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(self%levels)) deallocate (self%levels, self%u_diff, self%w_diff)
         allocate (self%levels(0:s, 0:N_FIELDS, MAX_LEVELS), self%u_diff(0:s), self%w_diff(0:s, N_FIELDS), &
                   stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the error estimator''s levels')
-    end subroutine estimator_init
+        self%levels = 0.0_dp
+    end subroutine estimator_resize
 
     !> Forget the levels (after a contact event: the solution is not smooth across it).
     subroutine estimator_reset(self)
@@ -119,11 +131,12 @@ contains
 
     !> est_n = factor |X^n - P^n|_E for the new level (u, w) reached by a step of size dt
     !> (the module's header); needs ready().
-    function estimator_estimate(self, model, u, w, dt) result(est)
+    function estimator_estimate(self, model, u, w, dt, h) result(est)
         class(error_estimator_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp), intent(in) :: dt
+        real(dp), intent(in), optional :: h(:)   !< element sizes of a graded mesh
         real(dp) :: est
         real(dp) :: d(MAX_LEVELS), weight(MAX_LEVELS)
         integer :: j, k, n, slot
@@ -149,7 +162,7 @@ contains
             self%w_diff = self%w_diff - weight(j) * self%levels(:, 1:, slot)
         end do
         est = local_error_factor(self%scheme, d(1:n), self%steps(level_slot(self%head, 1))) * &
-              energy_norm(linear_energy(model, self%u_diff, self%w_diff))
+              energy_norm(linear_energy(model, self%u_diff, self%w_diff, h))
     end function estimator_estimate
 
     !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).

@@ -73,6 +73,10 @@ module stepper_m
         real(dp) :: dt = 0.0_dp        !< the step size when advance() is given none (&time dt)
         real(dp) :: tol = 0.0_dp
         integer :: s = 0, method = METHOD_MONOLITHIC, max_iter = 0
+        !> graded mesh only (&mesh adaptive; see remesh): element sizes and nodes
+        real(dp), allocatable :: h(:), nodes(:)
+        !> adaptive mesh: the block LU has passed blocks_agree on a system of this run
+        logical :: blocks_trusted = .false.
         logical :: active(N_FIELDS) = .true.   !< fields in the system (others stay zero)
         integer :: slots(N_FIELDS) = MONOLITHIC_SLOTS
         class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
@@ -91,6 +95,7 @@ module stepper_m
         procedure :: advance => stepper_advance
         procedure :: uses_block_solver => stepper_uses_block_solver
         procedure :: n_unknowns_per_node => stepper_n_unknowns_per_node
+        procedure :: remesh => stepper_remesh
     end type stepper_t
 
 contains
@@ -103,37 +108,71 @@ contains
         type(config_t), intent(in) :: cfg
         type(step_result_t), intent(out) :: result
         class(source_t), intent(in), optional :: source   !< source terms of sources_m
-        integer :: s, stat, k
-        character(len=256) :: message
+        integer :: k, s_finest
 
         self%model = cfg%model
         self%dt = cfg%time%dt
         self%law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
         self%scheme = time_scheme(cfg%time%scheme)
-        call self%scheme%stiff_limit(self%model, self%dt, cfg%mesh%n_elements, self%step_model, self%algebraic)
+        ! an adaptive mesh: the stiff limit of its finest possible elements, for the whole run
+        s_finest = cfg%mesh%n_elements
+        if (cfg%mesh%adaptive) s_finest = cfg%mesh%n_elements * 2**cfg%mesh%max_level
+        call self%scheme%stiff_limit(self%model, self%dt, s_finest, self%step_model, self%algebraic)
         self%tol = cfg%solver%tol
         self%max_iter = cfg%solver%max_iter
         self%s = cfg%mesh%n_elements
         if (present(source)) allocate (self%source, source=source)
-        s = self%s
-        allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
-                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%u_star(0:s), &
-                  self%w_star(0:s, N_FIELDS), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the work arrays')
-        self%w_new = 0.0_dp
         select case (trim(cfg%solver%method))
         case ('paper')
             self%method = METHOD_PAPER
+            call allocate_work(self)
             call setup_paper(self, self%dt, result)
         case default
             self%method = METHOD_MONOLITHIC
             self%active = active_fields(self%step_model, initial_data_present(cfg) .or. present(source))
             self%slots = slots_of(self%active)
-            allocate (self%x(count(self%active) * (s + 1)), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the system')
+            call allocate_work(self)
             call find_system(self, self%dt, k, result)
         end select
     end subroutine stepper_init
+
+    !> The work arrays for self%s elements (and the monolithic system vector).
+    subroutine allocate_work(self)
+        type(stepper_t), intent(inout) :: self
+        integer :: s, stat
+        character(len=256) :: message
+
+        s = self%s
+        if (allocated(self%b)) deallocate (self%b, self%b_old, self%w_lag, self%w_new, self%u_lag, self%work, &
+                                           self%u_star, self%w_star)
+        allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
+                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%u_star(0:s), &
+                  self%w_star(0:s, N_FIELDS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the work arrays')
+        self%w_new = 0.0_dp
+        if (self%method /= METHOD_MONOLITHIC) return
+        if (allocated(self%x)) deallocate (self%x)
+        allocate (self%x(count(self%active) * (s + 1)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the system')
+    end subroutine allocate_work
+
+    !> The state has moved to another mesh (graded: state%x, state%h; adaptive_mesh_m): the
+    !> work arrays take its size and every factored system is dropped (the next step
+    !> assembles and factors the matrix of (6.1) on the new mesh). Monolithic method only.
+    subroutine stepper_remesh(self, state)
+        class(stepper_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        integer :: k
+
+        self%s = state%s
+        self%h = state%h
+        self%nodes = state%x
+        call allocate_work(self)
+        do k = 1, N_SYSTEMS
+            self%systems(k)%dt_eff = 0.0_dp
+            self%systems(k)%last_used = 0
+        end do
+    end subroutine stepper_remesh
 
     !> Which fields have nonzero initial data (a field with none may be left out: active_fields).
     pure function initial_data_present(cfg) result(has_data)
@@ -189,7 +228,10 @@ contains
     end subroutine find_system
 
     !> Assemble (6.1) with step dt_eff, factor it (dgbtrf and block LU) and compute the
-    !> contact response z.
+    !> contact response z. On an adaptive mesh, once the block LU has passed blocks_agree
+    !> on one system of the run, later systems (other meshes and steps, same coefficients
+    !> and structure) are factored by the block LU alone: a remesh every few steps would
+    !> otherwise pay dgbtrf and the check each time (docs/performance.md).
     subroutine setup_monolithic(self, dt_eff, sys, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
@@ -199,9 +241,21 @@ contains
         integer :: info, stat
         character(len=256) :: message
 
-        call assemble_matrix(self%step_model, self%s, dt_eff, self%slots, sys%a)
+        call assemble_matrix(self%step_model, self%s, dt_eff, self%slots, sys%a, self%h)
         call sys%blocks%factor(sys%a, count(self%active), info)
         sys%use_blocks = info == 0
+        sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
+        if (sys%use_blocks .and. self%blocks_trusted) then
+            sys%dt_eff = dt_eff
+            allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the contact response')
+            sys%z = 0.0_dp
+            sys%z(sys%contact_dof) = 1.0_dp
+            call sys%blocks%solve(sys%z)
+            if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
+                call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+            return
+        end if
         unfactored = sys%a
         call sys%a%factor(info)
         if (info /= 0) then
@@ -209,13 +263,19 @@ contains
             return
         end if
         sys%dt_eff = dt_eff
-        sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
         allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the contact response')
         sys%z = 0.0_dp
         sys%z(sys%contact_dof) = 1.0_dp
         call sys%a%solve(sys%z)
         if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
+        self%blocks_trusted = sys%use_blocks .and. allocated(self%h)
+        if (self%blocks_trusted) then
+            ! as the systems after it compute z (a restart then repeats the run bit for bit)
+            sys%z = 0.0_dp
+            sys%z(sys%contact_dof) = 1.0_dp
+            call sys%blocks%solve(sys%z)
+        end if
         if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
             call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
     end subroutine setup_monolithic
@@ -293,8 +353,8 @@ contains
         real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(model, dt_eff, u_from, w_from, self%b_old, self%work, self%active)
-        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%b_old)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%b_old, self%work, self%active, self%h)
+        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%b_old, self%nodes)
     end subroutine start_rhs
 
     !> One monolithic step from the state itself (from_star = .false.) or from the level

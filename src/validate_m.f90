@@ -22,6 +22,8 @@ module validate_m
     !> with kl = ku = N_FIELDS + 2 (scheme_m's field order).
     real(dp), parameter :: REALS_PER_NODE = 60.0_dp + real((3 * (N_FIELDS + 2) + 1) * N_FIELDS, dp)
     real(dp), parameter :: MEMORY_LIMIT = 8.0_dp * GIB        !< refuse meshes needing more
+    integer, parameter :: MAX_MESH_LEVEL = 30                  !< &mesh max_level
+    real(dp), parameter :: MAX_FINE_ELEMENTS = 2.0_dp**30      !< n_elements 2^max_level (round-off of x_i)
     real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
     real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
     !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
@@ -92,6 +94,16 @@ contains
         real(dp) :: bytes
 
         call require_at_least(mesh%n_elements, 2, 'mesh.n_elements')
+        call require_positive(mesh%error_tol, 'mesh.error_tol', '(relative L2 error per unit length, e.g. 1e-3)')
+        if (mesh%max_level < 0 .or. mesh%max_level > MAX_MESH_LEVEL) call fatal(EXIT_INPUT, 'mesh.max_level', &
+            'got ' // int_str(mesh%max_level) // '; must be an integer from 0 (no refinement) to ' // &
+            int_str(MAX_MESH_LEVEL) // ' (bisections of a coarse element)')
+        call require_at_least(mesh%remesh_every, 1, 'mesh.remesh_every')
+        if (mesh%adaptive .and. real(mesh%n_elements, dp) * 2.0_dp**mesh%max_level > MAX_FINE_ELEMENTS) &
+            call fatal(EXIT_INPUT, 'mesh.max_level', 'got ' // int_str(mesh%max_level) // ' with n_elements = ' // &
+            int_str(mesh%n_elements) // ': the finest elements would be 1/' // &
+            int_str(int(min(real(mesh%n_elements, dp) * 2.0_dp**mesh%max_level, 2.0e9_dp))) // &
+            ' long; n_elements * 2**max_level must be at most ' // int_str(int(MAX_FINE_ELEMENTS)))
         bytes = 8.0_dp * REALS_PER_NODE * (real(mesh%n_elements, dp) + 1.0_dp)
         if (bytes > MEMORY_LIMIT) call fatal(EXIT_INPUT, 'mesh.n_elements', 'got ' // int_str(mesh%n_elements) // &
             '; the arrays would need about ' // gib_str(bytes) // ' GiB, more than the ' // gib_str(MEMORY_LIMIT) // &
@@ -166,6 +178,9 @@ contains
         type(config_t), intent(in) :: cfg
 
         if (cfg%solver%method /= 'paper') return
+        if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with mesh.adaptive = " // &
+            ".true.: the paper's iteration runs on one fixed mesh; method must be 'monolithic' for an " // &
+            'adaptive mesh')
         if (cfg%time%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with time.adaptive = " // &
             ".true.: the paper's iteration runs with one fixed step; method must be 'monolithic' for " // &
             'adaptive steps')
@@ -200,12 +215,16 @@ contains
         call require_at_least(output%snapshot_every, 1, 'output.snapshot_every')
         call require_at_least(output%series_every, 1, 'output.series_every')
         call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
+        if (output%n_points < 0 .or. output%n_points == 1) call fatal(EXIT_INPUT, 'output.n_points', 'got ' // &
+            int_str(output%n_points) // '; must be 0 (the nodes of the coarsest mesh, n_elements + 1) or at ' // &
+            'least 2 (points of the snapshot grid /mesh/x)')
         call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', '(0: snapshots every snapshot_every steps)')
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
             'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
         ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
+        if (output%n_points > 0) nodes = real(output%n_points, dp)
         if (output%snapshot_dt > 0.0_dp) then
             snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
         else

@@ -18,12 +18,12 @@ x() { "$py" "$src/scripts/h5extract.py" "$@"; }
 x series run.h5 > series.txt 2> series.err
 check "series: exit 0" equals 0 "$?"
 check "series: header line names every dataset with its units" equals \
-    "# t [1] contact_stress [1] dt [1] energy [1] iterations [1] penetration [1] u_end [1]" "$(grep -v '^#  ' series.txt | sed -n 2p)"
+    "# t [1] contact_stress [1] dt [1] energy [1] iterations [1] n_elements [1] penetration [1] u_end [1]" "$(grep -v '^#  ' series.txt | sed -n 2p)"
 check "series: the columns are the file's datasets" "$py" -c "
 import h5py, numpy as np, sys
 f = h5py.File('run.h5', 'r'); d = np.loadtxt('series.txt')
-names = ['t', 'contact_stress', 'dt', 'energy', 'iterations', 'penetration', 'u_end']
-sys.exit(0 if d.shape == (f['series/t'].size, 7) and all(np.array_equal(d[:, k], f['series/' + n][:]) for k, n in enumerate(names)) else 1)"
+names = ['t', 'contact_stress', 'dt', 'energy', 'iterations', 'n_elements', 'penetration', 'u_end']
+sys.exit(0 if d.shape == (f['series/t'].size, 8) and all(np.array_equal(d[:, k], f['series/' + n][:]) for k, n in enumerate(names)) else 1)"
 x series run.h5 --datasets t,u_end --every 100 > some.txt
 check "series --datasets t,u_end --every 100: rows 0, 100, ..., last; two columns" "$py" -c "
 import h5py, numpy as np, sys

@@ -165,7 +165,7 @@ contains
             call series_entry(i, t, energy, u_end, penetration, contact_stress, iterations)
             expected_series(i, :) = [t, energy, u_end, penetration, contact_stress]
             expected_iter(i) = iterations
-            call w%append_series([t, energy, u_end, penetration, contact_stress, real(iterations, dp), 0.0_dp])
+            call w%append_series([t, energy, u_end, penetration, contact_stress, real(iterations, dp), 0.0_dp, 0.0_dp])
             if (i == 0 .or. i == FLUSH_AT .or. i == N_SERIES - 1) then
                 m = m + 1
                 call w%append_snapshot(snapshot_time(m), snapshot_fields(m))
@@ -249,7 +249,7 @@ contains
         call check_true('nested directory absent before create', .not. dir_exists(base))
 
         call w%create(prefix, mesh_nodes())
-        call w%append_series([0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(0, dp), 0.0_dp])
+        call w%append_series([0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(0, dp), 0.0_dp, 0.0_dp])
         call w%append_snapshot(0.0_dp, snapshot_fields(1))
         call w%finish('complete')
 
@@ -273,7 +273,7 @@ contains
         call remove_file(prefix//'.h5.part')
         call w%create(prefix, mesh_nodes())
         do i = 1, SERIES_BUFFER_SIZE + 10
-            call w%append_series([real(i, dp), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(i, dp), 0.0_dp])
+            call w%append_series([real(i, dp), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(i, dp), 0.0_dp, 0.0_dp])
         end do
         call w%attr_str('status', 'whatever')
         call w%abandon()
@@ -303,9 +303,9 @@ contains
 
         call w%create(prefix, mesh_nodes())
         call w%attr_int('run', 2)
-        call w%append_series([0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(1, dp), 0.0_dp])
-        call w%append_series([0.1_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(2, dp), 0.0_dp])
-        call w%append_series([0.2_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(3, dp), 0.0_dp])
+        call w%append_series([0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(1, dp), 0.0_dp, 0.0_dp])
+        call w%append_series([0.1_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(2, dp), 0.0_dp, 0.0_dp])
+        call w%append_series([0.2_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(3, dp), 0.0_dp, 0.0_dp])
         call w%finish('failed: non-finite value at step 12')
 
         call read_attr_int(file, 'run', ivalue)

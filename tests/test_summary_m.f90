@@ -62,7 +62,7 @@ contains
         call w%attr_real('contact.g', G)
         do k = 1, size(t)
             pen = max(u_end(k) - G, 0.0_dp)
-            call w%append_series([t(k), energy(k), u_end(k), pen, -pen / 0.01_dp, 1.0_dp, 0.0_dp])
+            call w%append_series([t(k), energy(k), u_end(k), pen, -pen / 0.01_dp, 1.0_dp, 0.0_dp, 0.0_dp])
         end do
         if (with_counters) then
             call w%attr_int('steps', 120)

@@ -4,7 +4,7 @@
 module convergence_m
     use kinds_m, only: dp
     use config_m, only: config_t
-    use state_m, only: state_t
+    use state_m, only: state_t, set_mesh, state_nodes
     use stepper_m, only: stepper_t, step_result_t
     use fields_m, only: N_FIELDS, is_dirichlet
     use mms_m, only: mms_t, U_FIELD, N_EXACT
@@ -18,14 +18,16 @@ module convergence_m
 contains
 
     !> errors(f) = max_n ||field_h^n - field(t_n)|| for the run of `mms` with s elements,
-    !> step dt up to t_end, `method` and (optional) `scheme`.
-    subroutine mms_errors(mms, s, dt, t_end, method, errors, scheme)
+    !> step dt up to t_end, `method` and (optional) `scheme`; nodes(0:s): a graded mesh (absent:
+    !> uniform).
+    subroutine mms_errors(mms, s, dt, t_end, method, errors, scheme, nodes)
         type(mms_t), intent(in) :: mms
         integer, intent(in) :: s
         real(dp), intent(in) :: dt, t_end
         character(len=*), intent(in) :: method
         real(dp), intent(out) :: errors(N_EXACT)
         character(len=*), intent(in), optional :: scheme
+        real(dp), intent(in), optional :: nodes(0:)
         type(config_t) :: cfg
         type(state_t) :: state
         type(stepper_t) :: stepper
@@ -42,9 +44,10 @@ contains
         cfg%solver%tol = 1.0e-12_dp
         cfg%solver%max_iter = 200
         if (present(scheme)) cfg%time%scheme = scheme
-        call mms_initial_state(mms, s, state)
+        call mms_initial_state(mms, s, state, nodes)
         call stepper%init(cfg, result, mms)
         if (.not. result%ok) error stop 'mms_errors: stepper init failed'
+        if (present(nodes)) call stepper%remesh(state)
         errors = level_errors(mms, state)
         do n = 1, nint(t_end / dt)
             call stepper%advance(state, result)
@@ -57,19 +60,23 @@ contains
     end subroutine mms_errors
 
     !> The state at t = 0 on s elements: nodal values of the exact solution, with the
-    !> boundary values of the spaces imposed.
-    subroutine mms_initial_state(mms, s, state)
+    !> boundary values of the spaces imposed; nodes(0:s): a graded mesh (absent: uniform).
+    subroutine mms_initial_state(mms, s, state, nodes)
         type(mms_t), intent(in) :: mms
         integer, intent(in) :: s
         type(state_t), intent(out) :: state
+        real(dp), intent(in), optional :: nodes(0:)
+        real(dp) :: x(0:s)
         integer :: i, f
 
         state%s = s
         allocate (state%u(0:s), state%w(0:s, N_FIELDS))
+        if (present(nodes)) call set_mesh(state, nodes)
+        x = state_nodes(state)
         do i = 0, s
-            state%u(i) = mms%exact(U_FIELD, 0.0_dp, real(i, dp) / s, 0)
+            state%u(i) = mms%exact(U_FIELD, 0.0_dp, x(i), 0)
             do f = 1, N_FIELDS
-                state%w(i, f) = mms%exact(f, 0.0_dp, real(i, dp) / s, 0)
+                state%w(i, f) = mms%exact(f, 0.0_dp, x(i), 0)
                 if (is_dirichlet(f, i, s)) state%w(i, f) = 0.0_dp
             end do
         end do
@@ -84,16 +91,17 @@ contains
                                         0.5384693101056831_dp, 0.9061798459386640_dp]
         real(dp), parameter :: gw(5) = [0.2369268850561891_dp, 0.4786286704993665_dp, 0.5688888888888889_dp, &
                                         0.4786286704993665_dp, 0.2369268850561891_dp]
-        real(dp) :: h, x, wq, left, uh, uh_x, sq(N_EXACT)
+        real(dp) :: h, x, wq, left, uh, uh_x, sq(N_EXACT), nodes(0:state%s)
         integer :: s, el, k, f
 
         s = state%s
-        h = 1.0_dp / s
+        nodes = state_nodes(state)
         sq = 0.0_dp
         do el = 1, s
+            h = nodes(el) - nodes(el - 1)
             do k = 1, 5
                 left = 0.5_dp * (1.0_dp - gx(k))
-                x = (el - 1 + 0.5_dp * (1.0_dp + gx(k))) * h
+                x = nodes(el - 1) + 0.5_dp * (1.0_dp + gx(k)) * h
                 wq = 0.5_dp * h * gw(k)
                 do f = 1, N_FIELDS
                     sq(f) = sq(f) + wq * (left * state%w(el - 1, f) + (1.0_dp - left) * state%w(el, f) &

@@ -1,0 +1,312 @@
+!> The adaptive mesh of &mesh adaptive = .true.: bisection of the n_elements coarse
+!> elements up to max_level times, refined where the error indicator is large and
+!> coarsened back where the solution is smooth (run_m remeshes every &mesh remesh_every
+!> steps; transfer_m moves the solution).
+!>
+!> Nodes are kept as integers k_i in units of the finest possible element,
+!> 1 / n_fine with n_fine = n_elements 2^max_level: x_i = k_i / n_fine is the same number
+!> whenever it is computed (a restart rebuilds the mesh bit for bit), an element's level is
+!> max_level - log2(k_e - k_{e-1}), and two elements are siblings when they halve an
+!> element of the level above. x = 0 and x = 1 (the contact node) are always nodes.
+!>
+!> Indicator (docs/scheme.md, "Adaptive mesh"): hierarchical. Removing the node m that
+!> bisects a parent element of length H changes a P1 function f by its detail
+!> d_m = f_m - (f_{m-1} + f_{m+1})/2 times the hat of m, whose L2 norm is sqrt(H/3). Bisecting
+!> an element e would add the detail d_e ~ h_e^2 |f''| / 8, with f'' taken from the jumps of
+!> the slope at the element's end nodes. Each field f (u, v, theta, P, q, eta) is measured
+!> relative to the largest L2 norm it has had (scale_f), and per unit length, so that
+!> sum_e indicator_e^2 h_e <= error_tol^2 bounds the relative L2 interpolation error by
+!> error_tol:
+!>   refine e      if  max_f |d_e| sqrt(h_e/3) / (scale_f sqrt(h_e)) > error_tol,
+!>   coarsen m     if  max_f |d_m| sqrt(H/3) / (scale_f sqrt(H)) <= error_tol / COARSEN_MARGIN,
+!> and the elements within `buffer` elements of one above error_tol are refined and kept,
+!> so that a front moving between two remeshes stays on fine elements. Neighbouring
+!> elements differ by at most one level (2:1 grading).
+module adaptive_mesh_m
+    use kinds_m, only: dp
+    use iso_fortran_env, only: int64
+    use fields_m, only: N_FIELDS
+    use config_m, only: model_t
+    use errors_m, only: check_allocation
+    implicit none
+    private
+    public :: adaptive_mesh_t, COARSEN_MARGIN, FRONT_CFL, front_speed
+
+    !> Coarsen where the indicator is this many times below error_tol (hysteresis: a
+    !> bisection halves the detail only about 4-fold, so the new node is not removed again).
+    real(dp), parameter :: COARSEN_MARGIN = 4.0_dp
+    !> With adaptive time steps a step moves a front at most this many of the smallest
+    !> elements (run_m), so that it stays on the fine elements kept around it.
+    real(dp), parameter :: FRONT_CFL = 1.0_dp
+    !> Fields are measured relative to their present L2 norm, but at least this fraction
+    !> of the largest they have had.
+    real(dp), parameter :: NORM_FLOOR = 1.0e-3_dp
+
+    type :: adaptive_mesh_t
+        integer :: n_coarse = 0                 !< &mesh n_elements
+        integer :: max_level = 0                !< &mesh max_level
+        integer :: buffer = 1                   !< elements kept fine around a large indicator
+        real(dp) :: tol = 1.0e-3_dp             !< &mesh error_tol
+        integer(int64) :: n_fine = 0            !< n_coarse 2^max_level
+        integer(int64), allocatable :: k(:)     !< k(0:s): node i at x = k(i) / n_fine
+        real(dp) :: scale(0:N_FIELDS) = 0.0_dp  !< largest L2 norm of each field so far
+        real(dp) :: norm(0:N_FIELDS) = 0.0_dp   !< L2 norm of each field at the last adapt (not in checkpoints: adapt sets it)
+    contains
+        procedure :: init => mesh_init
+        procedure :: s => mesh_s
+        procedure :: nodes => mesh_nodes_of
+        procedure :: level => mesh_level
+        procedure :: observe_scales => mesh_observe_scales
+        procedure :: adapt => mesh_adapt
+        procedure :: set_keys => mesh_set_keys
+    end type adaptive_mesh_t
+
+contains
+
+    !> The coarsest mesh: n_coarse uniform elements at level 0.
+    subroutine mesh_init(self, n_coarse, max_level, tol, buffer)
+        class(adaptive_mesh_t), intent(out) :: self
+        integer, intent(in) :: n_coarse, max_level, buffer
+        real(dp), intent(in) :: tol
+        integer :: i
+
+        self%n_coarse = n_coarse
+        self%max_level = max_level
+        self%tol = tol
+        self%buffer = buffer
+        self%n_fine = int(n_coarse, int64) * 2_int64**max_level
+        call self%set_keys([(int(i, int64) * 2_int64**max_level, i = 0, n_coarse)])
+    end subroutine mesh_init
+
+    !> The mesh with node keys k(0:s) (a checkpoint's, or adapt's).
+    subroutine mesh_set_keys(self, k)
+        class(adaptive_mesh_t), intent(inout) :: self
+        integer(int64), intent(in) :: k(0:)
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(self%k)) deallocate (self%k)
+        allocate (self%k(0:ubound(k, 1)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the adaptive mesh')
+        self%k = k
+    end subroutine mesh_set_keys
+
+    !> Number of elements.
+    pure integer function mesh_s(self)
+        class(adaptive_mesh_t), intent(in) :: self
+
+        mesh_s = ubound(self%k, 1)
+    end function mesh_s
+
+    !> The nodes x_i = k_i / n_fine.
+    pure function mesh_nodes_of(self) result(x)
+        class(adaptive_mesh_t), intent(in) :: self
+        real(dp) :: x(0:ubound(self%k, 1))
+
+        x = real(self%k, dp) / real(self%n_fine, dp)
+        x(ubound(x, 1)) = 1.0_dp
+    end function mesh_nodes_of
+
+    !> Level of element e (0: a coarse element).
+    pure integer function mesh_level(self, e)
+        class(adaptive_mesh_t), intent(in) :: self
+        integer, intent(in) :: e
+
+        mesh_level = self%max_level - trailz(self%k(e) - self%k(e - 1))
+    end function mesh_level
+
+    !> scale_f = max(scale_f, |f|_L2) for the level (u, w) on nodes x.
+    subroutine mesh_observe_scales(self, x, u, w)
+        class(adaptive_mesh_t), intent(inout) :: self
+        real(dp), intent(in) :: x(0:), u(0:), w(0:, :)
+        integer :: f
+
+        self%norm(0) = l2_norm(x, u)
+        do f = 1, N_FIELDS
+            self%norm(f) = l2_norm(x, w(:, f))
+        end do
+        self%scale = max(self%scale, self%norm)
+    end subroutine mesh_observe_scales
+
+    !> The next mesh for the level (u, w) on the current nodes x (module header); changed:
+    !> it differs from the current one (then self%k holds it).
+    subroutine mesh_adapt(self, x, u, w, changed)
+        class(adaptive_mesh_t), intent(inout) :: self
+        real(dp), intent(in) :: x(0:), u(0:), w(0:, :)
+        logical, intent(out) :: changed
+        real(dp), allocatable :: refine_ind(:), coarsen_ind(:)
+        logical, allocatable :: hot(:), keep(:), bisect(:), remove(:)
+        integer(int64), allocatable :: k_new(:), k_graded(:)
+        integer :: s, e, m, n
+        integer(int64) :: length
+
+        s = self%s()
+        call self%observe_scales(x, u, w)
+        allocate (refine_ind(s), coarsen_ind(0:s), hot(s), keep(s), bisect(s), remove(0:s))
+        call indicators(self, x, u, w, refine_ind, coarsen_ind)
+        hot = refine_ind > self%tol
+        ! keep: within `buffer` elements of a hot one (refined up to max_level, never coarsened)
+        keep = hot
+        do e = 1, s
+            if (hot(e)) keep(max(1, e - self%buffer):min(s, e + self%buffer)) = .true.
+        end do
+        do e = 1, s
+            bisect(e) = keep(e) .and. self%level(e) < self%max_level
+        end do
+        remove = .false.
+        do m = 1, s - 1
+            if (keep(m) .or. keep(m + 1)) cycle
+            length = self%k(m) - self%k(m - 1)
+            if (length /= self%k(m + 1) - self%k(m) .or. self%level(m) == 0) cycle
+            if (modulo(self%k(m - 1), 2_int64 * length) /= 0) cycle     ! not siblings
+            remove(m) = coarsen_ind(m) <= self%tol / COARSEN_MARGIN
+        end do
+        ! the new nodes: the old ones not removed, and the midpoints of bisected elements
+        allocate (k_new(0:2 * s))
+        n = 0
+        k_new(0) = self%k(0)
+        do e = 1, s
+            if (bisect(e)) then
+                n = n + 1
+                k_new(n) = (self%k(e - 1) + self%k(e)) / 2
+            end if
+            if (e < s) then
+                if (remove(e)) cycle
+            end if
+            n = n + 1
+            k_new(n) = self%k(e)
+        end do
+        call balance(k_new(0:n), k_graded)
+        changed = size(self%k) /= size(k_graded)
+        if (.not. changed) changed = any(self%k /= k_graded)
+        if (changed) call self%set_keys(k_graded)
+    end subroutine mesh_adapt
+
+    !> The mesh k_in refined until neighbouring elements differ by at most one level (2:1
+    !> grading).
+    subroutine balance(k_in, k)
+        integer(int64), intent(in) :: k_in(0:)
+        integer(int64), allocatable, intent(out) :: k(:)
+        integer(int64), allocatable :: k_next(:)
+        integer :: e, n, s
+        logical :: split
+
+        allocate (k(0:ubound(k_in, 1)))
+        k = k_in
+        do
+            s = ubound(k, 1)
+            allocate (k_next(0:2 * s))
+            n = 0
+            k_next(0) = k(0)
+            split = .false.
+            do e = 1, s
+                if (too_coarse(k, e)) then
+                    n = n + 1
+                    k_next(n) = (k(e - 1) + k(e)) / 2
+                    split = .true.
+                end if
+                n = n + 1
+                k_next(n) = k(e)
+            end do
+            deallocate (k)
+            allocate (k(0:n))
+            k = k_next(0:n)
+            deallocate (k_next)
+            if (.not. split) exit
+        end do
+
+    contains
+
+        !> Is element e more than twice as long as a neighbour?
+        pure logical function too_coarse(k, e)
+            integer(int64), intent(in) :: k(0:)
+            integer, intent(in) :: e
+            integer(int64) :: length
+
+            length = k(e) - k(e - 1)
+            too_coarse = .false.
+            if (e > 1) too_coarse = length > 2 * (k(e - 1) - k(e - 2))
+            if (e < ubound(k, 1)) too_coarse = too_coarse .or. length > 2 * (k(e + 1) - k(e))
+        end function too_coarse
+    end subroutine balance
+
+    !> The indicators of the module header: refine_ind(e) for bisecting element e,
+    !> coarsen_ind(m) for removing node m (both relative, per unit length).
+    subroutine indicators(self, x, u, w, refine_ind, coarsen_ind)
+        type(adaptive_mesh_t), intent(in) :: self
+        real(dp), intent(in) :: x(0:), u(0:), w(0:, :)
+        real(dp), intent(out) :: refine_ind(:), coarsen_ind(0:)
+        integer :: f
+        real(dp) :: reference(0:N_FIELDS)
+
+        refine_ind = 0.0_dp
+        coarsen_ind = 0.0_dp
+        ! relative to the field's present norm, but not below NORM_FLOOR of its largest
+        ! (a field decaying to zero is not resolved down to round-off)
+        reference = max(self%norm, NORM_FLOOR * self%scale)
+        if (reference(0) > 0.0_dp) call add_field(x, u, reference(0), refine_ind, coarsen_ind)
+        do f = 1, N_FIELDS
+            if (reference(f) > 0.0_dp) call add_field(x, w(:, f), reference(f), refine_ind, coarsen_ind)
+        end do
+    end subroutine indicators
+
+    !> refine_ind = max(refine_ind, this field's), likewise coarsen_ind (see indicators).
+    pure subroutine add_field(x, f, scale, refine_ind, coarsen_ind)
+        real(dp), intent(in) :: x(0:), f(0:), scale
+        real(dp), intent(inout) :: refine_ind(:), coarsen_ind(0:)
+        real(dp) :: curvature(0:ubound(x, 1)), slope_left, slope_right, h
+        integer :: s, i, e
+
+        s = ubound(x, 1)
+        ! |f''| at the interior nodes from the jump of the slope; 0 at the ends
+        curvature = 0.0_dp
+        do i = 1, s - 1
+            slope_left = (f(i) - f(i - 1)) / (x(i) - x(i - 1))
+            slope_right = (f(i + 1) - f(i)) / (x(i + 1) - x(i))
+            curvature(i) = abs(slope_right - slope_left) / (0.5_dp * (x(i + 1) - x(i - 1)))
+            ! the detail of node i if it bisects its parent, per unit length
+            coarsen_ind(i) = max(coarsen_ind(i), abs(f(i) - 0.5_dp * (f(i - 1) + f(i + 1))) &
+                                 / (sqrt(3.0_dp) * scale))
+        end do
+        do e = 1, s
+            h = x(e) - x(e - 1)
+            ! predicted detail h^2 |f''| / 8 times sqrt(h/3), per sqrt(h)
+            refine_ind(e) = max(refine_ind(e), h**2 * max(curvature(e - 1), curvature(e)) &
+                                / (8.0_dp * sqrt(3.0_dp) * scale))
+        end do
+    end subroutine add_field
+
+    !> The fastest front of (2.11): the second-sound speeds of the Cattaneo laws for q and
+    !> eta. Their principal part [c d; d r] (theta, P)_tt = diag(1/tau0, hbar/tau) (theta, P)_xx
+    !> gives speeds^2 = the eigenvalues of [c d; d r]^{-1} diag(1/tau0, hbar/tau) (with d = 0:
+    !> v_theta = 1/sqrt(tau0 c), v_P = sqrt(hbar/(r tau)), (7.4)); a law without relaxation
+    !> time (Fourier, Fick: parabolic) has no front. 0: no front.
+    pure real(dp) function front_speed(model) result(v)
+        type(model_t), intent(in) :: model
+        real(dp) :: a, b, det, tr, disc
+
+        a = 0.0_dp
+        b = 0.0_dp
+        if (model%tau0 > 0.0_dp) a = 1.0_dp / model%tau0
+        if (model%tau > 0.0_dp) b = model%hbar / model%tau
+        det = model%c * model%r - model%d**2
+        ! [c d; d r]^{-1} diag(a, b) = [r a, -d b; -d a, c b] / det
+        tr = (model%r * a + model%c * b) / det
+        disc = max(tr**2 - 4.0_dp * a * b / det, 0.0_dp)
+        v = sqrt(max(0.5_dp * (tr + sqrt(disc)), 0.0_dp))
+    end function front_speed
+
+    !> |f|_L2 of the P1 function with nodal values f on nodes x.
+    pure real(dp) function l2_norm(x, f)
+        real(dp), intent(in) :: x(0:), f(0:)
+        integer :: e
+        real(dp) :: total
+
+        total = 0.0_dp
+        do e = 1, ubound(x, 1)
+            total = total + (x(e) - x(e - 1)) * (f(e - 1)**2 + f(e - 1) * f(e) + f(e)**2) / 3.0_dp
+        end do
+        l2_norm = sqrt(total)
+    end function l2_norm
+
+end module adaptive_mesh_m

@@ -1,0 +1,86 @@
+!> Remeshing a run (&mesh adaptive = .true.): the first mesh, fitted to the initial data,
+!> and the remesh between two steps, which moves every time level the run holds (the
+!> state, the level before of a multistep scheme, the error estimator's levels) with
+!> transfer_m, hands the new mesh to the stepper and lets the energy monitor check that
+!> the law energy did not rise.
+module remesh_m
+    use kinds_m, only: dp
+    use iso_fortran_env, only: int64
+    use config_m, only: config_t
+    use fields_m, only: N_FIELDS
+    use state_m, only: state_t, initial_state, set_mesh
+    use adaptive_mesh_m, only: adaptive_mesh_t
+    use transfer_m, only: transfer_level
+    use stepper_m, only: stepper_t
+    use step_control_m, only: error_estimator_t, MAX_LEVELS
+    use energy_m, only: energy_monitor_t
+    implicit none
+    private
+    public :: initial_mesh, remesh
+
+contains
+
+    !> The first mesh: the coarsest one adapted to the initial data (2.12), interpolated
+    !> afresh on every mesh, until it no longer changes (at most max_level + 2 passes); the
+    !> state holds the initial data on it.
+    subroutine initial_mesh(cfg, mesh, state)
+        type(config_t), intent(in) :: cfg
+        type(adaptive_mesh_t), intent(out) :: mesh
+        type(state_t), intent(out) :: state
+        integer :: pass
+        logical :: changed
+
+        call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, cfg%mesh%remesh_every)
+        do pass = 1, cfg%mesh%max_level + 2
+            call initial_state(cfg, state, mesh%nodes())
+            call mesh%adapt(state%x, state%u, state%w, changed)
+            if (.not. changed) exit
+        end do
+        if (changed) call initial_state(cfg, state, mesh%nodes())
+    end subroutine initial_mesh
+
+    !> Adapt the mesh to the level in state and, if it changed, move everything onto it.
+    subroutine remesh(mesh, state, stepper, estimator, monitor, changed)
+        type(adaptive_mesh_t), intent(inout) :: mesh
+        type(state_t), intent(inout) :: state
+        type(stepper_t), intent(inout) :: stepper
+        type(error_estimator_t), intent(inout) :: estimator
+        type(energy_monitor_t), intent(inout) :: monitor
+        logical, intent(out) :: changed
+        integer(int64), allocatable :: k_old(:)
+        real(dp), allocatable :: levels_old(:, :, :)
+        integer :: s, j
+
+        k_old = mesh%k
+        call mesh%adapt(state%x, state%u, state%w, changed)
+        if (.not. changed) return
+        s = mesh%s()
+        call move(state%u, state%w)
+        if (allocated(state%u_prev)) call move(state%u_prev, state%w_prev)
+        call set_mesh(state, mesh%nodes())
+        levels_old = estimator%levels
+        call estimator%resize(s)
+        do j = 1, MAX_LEVELS
+            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j))
+        end do
+        call stepper%remesh(state)
+        call monitor%remeshed(state)
+
+    contains
+
+        !> One level (u, w) onto the new mesh (reallocated with its size).
+        subroutine move(u, w)
+            real(dp), allocatable, intent(inout) :: u(:), w(:, :)
+            real(dp) :: old(0:ubound(u, 1), 0:N_FIELDS), new(0:s, 0:N_FIELDS)
+
+            old(:, 0) = u
+            old(:, 1:) = w
+            call transfer_level(k_old, mesh%k, mesh%n_fine, old, new)
+            deallocate (u, w)
+            allocate (u(0:s), w(0:s, N_FIELDS))
+            u = new(:, 0)
+            w = new(:, 1:)
+        end subroutine move
+    end subroutine remesh
+
+end module remesh_m

@@ -1,0 +1,154 @@
+!> Moving a time level from one mesh to the next (remeshing, adaptive_mesh_m) so that the
+!> discrete energy of Corollary 6.2 cannot rise (docs/scheme.md, "Adaptive mesh"):
+!>
+!>   u (energy alpha |u_x|^2): nodal interpolation. In 1D the P1 interpolant is the
+!>       H1-seminorm (Ritz) projection, so |(I u)_x| <= |u_x|; u(1) (the contact term)
+!>       is kept, x = 1 being a node of every mesh.
+!>   v, theta, P, q, eta (energies rho v^2, c theta^2 + 2 d P theta + r P^2, tau0 q^2,
+!>       tau hbar eta^2): the L2 projection onto the new space (S_h or V_h, with its zero
+!>       at x = 0 or x = 1). An orthogonal projection does not raise an L2 norm, and the
+!>       same projection of theta and P does not raise the constant positive definite form
+!>       c theta^2 + 2 d P theta + r P^2.
+!>   Where the new mesh only adds nodes (refinement), the old function lies in the new
+!>       space and both are exact: the values are interpolated, and the energy is unchanged.
+!>
+!> Both meshes are given by the integer keys of adaptive_mesh_m (node i at k_i / n_fine).
+!> A level is packed as (0:s, 0:N_FIELDS): column 0 u, columns F_* the fields.
+module transfer_m
+    use kinds_m, only: dp
+    use iso_fortran_env, only: int64
+    use fields_m, only: N_FIELDS, is_dirichlet
+    use fe_m, only: evaluate_p1
+    implicit none
+    private
+    public :: transfer_level, nodes_of_keys
+
+contains
+
+    !> The nodes k / n_fine (x = 1 exactly at the end).
+    pure function nodes_of_keys(k, n_fine) result(x)
+        integer(int64), intent(in) :: k(0:)
+        integer(int64), intent(in) :: n_fine
+        real(dp) :: x(0:ubound(k, 1))
+
+        x = real(k, dp) / real(n_fine, dp)
+        x(ubound(x, 1)) = 1.0_dp
+    end function nodes_of_keys
+
+    !> level_new = the level level_old (on keys k_old) moved to keys k_new (module header).
+    subroutine transfer_level(k_old, k_new, n_fine, level_old, level_new)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        real(dp), intent(in) :: level_old(0:, 0:)
+        real(dp), intent(out) :: level_new(0:, 0:)
+        real(dp) :: x_old(0:ubound(k_old, 1)), x_new(0:ubound(k_new, 1))
+        integer :: f
+        logical :: refinement_only
+
+        x_old = nodes_of_keys(k_old, n_fine)
+        x_new = nodes_of_keys(k_new, n_fine)
+        refinement_only = all_found(k_old, k_new)
+        level_new(:, 0) = evaluate_p1(x_old, level_old(:, 0), x_new)
+        do f = 1, N_FIELDS
+            if (refinement_only) then
+                level_new(:, f) = evaluate_p1(x_old, level_old(:, f), x_new)
+            else
+                call l2_projection(k_old, k_new, n_fine, level_old(:, f), f, level_new(:, f))
+            end if
+        end do
+    end subroutine transfer_level
+
+    !> Is every key of `needles` (increasing) in `haystack` (increasing)?
+    pure logical function all_found(needles, haystack)
+        integer(int64), intent(in) :: needles(0:), haystack(0:)
+        integer :: i, j
+
+        all_found = .false.
+        j = 0
+        do i = 0, ubound(needles, 1)
+            do while (j < ubound(haystack, 1) .and. haystack(j) < needles(i))
+                j = j + 1
+            end do
+            if (haystack(j) /= needles(i)) return
+        end do
+        all_found = .true.
+    end function all_found
+
+    !> g = the L2 projection of the P1 function f (keys k_old) onto the P1 space of field
+    !> `field` on keys k_new: M g = b with b_i = int f phi_i, integrated exactly on the
+    !> elements of the union of both meshes (on each, f and phi_i are linear), and g = 0 at
+    !> the field's Dirichlet node.
+    subroutine l2_projection(k_old, k_new, n_fine, f, field, g)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        real(dp), intent(in) :: f(0:)
+        integer, intent(in) :: field
+        real(dp), intent(out) :: g(0:)
+        real(dp) :: b(0:ubound(k_new, 1)), diag(0:ubound(k_new, 1)), off(ubound(k_new, 1))
+        real(dp) :: x_old(0:ubound(k_old, 1)), a, c, fa, fc, xl, xr, pa, pc, len
+        integer(int64) :: ka, kc
+        integer :: i, j, e, s
+
+        s = ubound(k_new, 1)
+        x_old = nodes_of_keys(k_old, n_fine)
+        b = 0.0_dp
+        ! walk the union of both meshes: [ka, kc] lies in old element i and new element e
+        i = 1
+        e = 1
+        ka = 0
+        do while (ka < n_fine)
+            kc = min(k_old(i), k_new(e))
+            a = real(ka, dp) / real(n_fine, dp)
+            c = real(kc, dp) / real(n_fine, dp)
+            fa = f(i - 1) + (f(i) - f(i - 1)) * real(ka - k_old(i - 1), dp) / real(k_old(i) - k_old(i - 1), dp)
+            fc = f(i - 1) + (f(i) - f(i - 1)) * real(kc - k_old(i - 1), dp) / real(k_old(i) - k_old(i - 1), dp)
+            ! the hat of the new element's left node at a and c (the right node's is 1 - it)
+            xl = real(k_new(e - 1), dp)
+            xr = real(k_new(e), dp)
+            pa = (xr - real(ka, dp)) / (xr - xl)
+            pc = (xr - real(kc, dp)) / (xr - xl)
+            len = c - a
+            b(e - 1) = b(e - 1) + len / 6.0_dp * (2.0_dp * fa * pa + fa * pc + fc * pa + 2.0_dp * fc * pc)
+            b(e) = b(e) + len / 6.0_dp * (2.0_dp * fa * (1.0_dp - pa) + fa * (1.0_dp - pc) + fc * (1.0_dp - pa) &
+                                          + 2.0_dp * fc * (1.0_dp - pc))
+            ka = kc
+            if (kc == k_old(i) .and. i < ubound(k_old, 1)) i = i + 1
+            if (kc == k_new(e) .and. e < s) e = e + 1
+        end do
+        ! the mass matrix of the new mesh (tridiagonal, symmetric positive definite)
+        diag = 0.0_dp
+        do j = 1, s
+            len = real(k_new(j) - k_new(j - 1), dp) / real(n_fine, dp)
+            diag(j - 1) = diag(j - 1) + len / 3.0_dp
+            diag(j) = diag(j) + len / 3.0_dp
+            off(j) = len / 6.0_dp
+        end do
+        if (is_dirichlet(field, 0, s)) then
+            call solve_tridiagonal(diag(1:), off(2:), b(1:), g(1:))
+            g(0) = 0.0_dp
+        else
+            call solve_tridiagonal(diag(:s - 1), off(:s - 1), b(:s - 1), g(:s - 1))
+            g(s) = 0.0_dp
+        end if
+    end subroutine l2_projection
+
+    !> x = A^{-1} b for the symmetric tridiagonal A with diagonal d(1:n), off-diagonal o(1:n-1)
+    !> (positive definite: elimination without pivoting is stable).
+    pure subroutine solve_tridiagonal(d, o, b, x)
+        real(dp), intent(in) :: d(:), o(:), b(:)
+        real(dp), intent(out) :: x(:)
+        real(dp) :: pivot(size(d)), y(size(d))
+        integer :: j, n
+
+        n = size(d)
+        pivot(1) = d(1)
+        y(1) = b(1)
+        do j = 2, n
+            pivot(j) = d(j) - o(j - 1)**2 / pivot(j - 1)
+            y(j) = b(j) - o(j - 1) / pivot(j - 1) * y(j - 1)
+        end do
+        x(n) = y(n) / pivot(n)
+        do j = n - 1, 1, -1
+            x(j) = (y(j) - o(j) * x(j + 1)) / pivot(j)
+        end do
+    end subroutine solve_tridiagonal
+
+end module transfer_m

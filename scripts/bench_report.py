@@ -8,6 +8,8 @@ with blas= run=), exp1.raw, alloc.raw, callgrind_<method>_<t_end>.txt (callgrind
 work_precision_schemes.md (scripts/work_precision_schemes.sh).
 work_precision_adaptive.md and work_precision_adaptive_targets.txt (scripts/work_precision_adaptive.sh,
 whose helper scripts/adaptive_accuracy.py writes that section's prose).
+work_precision_mesh.md and work_precision_mesh_targets.txt (scripts/work_precision_mesh.sh, whose helper
+scripts/mesh_accuracy.py writes that section's prose).
 Every number on the page comes from these files; the prose around them is here.
 """
 
@@ -531,6 +533,11 @@ def main():
     if os.path.exists(wpa):
         md.extend(open(wpa).read().splitlines())
         w("")
+    # ---------------------------------------------------------------- adaptive mesh (issue 13)
+    wpm = os.path.join(outdir, "work_precision_mesh.md")
+    if os.path.exists(wpm):
+        md.extend(open(wpm).read().splitlines())
+        w("")
 
     # ---------------------------------------------------------------- targets
     t = []
@@ -587,6 +594,9 @@ def main():
     wpa_targets = os.path.join(outdir, "work_precision_adaptive_targets.txt")
     if os.path.exists(wpa_targets):
         t.extend(line.rstrip("\n") for line in open(wpa_targets) if line.strip())
+    wpm_targets = os.path.join(outdir, "work_precision_mesh_targets.txt")
+    if os.path.exists(wpm_targets):
+        t.extend(line.rstrip("\n") for line in open(wpm_targets) if line.strip())
     t.append("")
     md[targets_at:targets_at] = t
 

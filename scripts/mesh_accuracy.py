@@ -40,6 +40,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import exact_linear  # noqa: E402
+from adaptive_accuracy import attr  # noqa: E402  (a root attribute as a Python value)
 
 FIELDS = exact_linear.FIELDS
 SHOWN = ["u", "theta", "P", "eta"]
@@ -48,17 +49,6 @@ N_MODES = 2**18
 T1_ERROR, T1_RATIO = 1e-2, 5.0          # issue 13: P, eta within 1 % at >= 5x less than BDF2 s = 8000
 T2_ERROR, T2_RATIO = 5e-3, 10.0         # P, eta within 0.5 % at <= 1/10 of BDF2 s = 32000
 TARGET_PREFIX = "| exp2 adaptive mesh"
-
-
-def attr(f, name, default=None):
-    if name not in f.attrs:
-        return default
-    v = f.attrs[name]
-    if isinstance(v, bytes):
-        return v.decode()
-    if isinstance(v, np.ndarray) and v.size == 1:
-        v = v.reshape(-1)[0]
-    return v.item() if hasattr(v, "item") else v
 
 
 def read_final(path):

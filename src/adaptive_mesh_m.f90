@@ -30,7 +30,7 @@ module adaptive_mesh_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: adaptive_mesh_t, COARSEN_MARGIN, FRONT_CFL, front_speed
+    public :: adaptive_mesh_t, COARSEN_MARGIN, FRONT_CFL, front_speed, nodes_of_keys
 
     !> Coarsen where the indicator is this many times below error_tol (hysteresis: a
     !> bisection halves the detail only about 4-fold, so the new node is not removed again).
@@ -103,9 +103,18 @@ contains
         class(adaptive_mesh_t), intent(in) :: self
         real(dp) :: x(0:ubound(self%k, 1))
 
-        x = real(self%k, dp) / real(self%n_fine, dp)
-        x(ubound(x, 1)) = 1.0_dp
+        x = nodes_of_keys(self%k, self%n_fine)
     end function mesh_nodes_of
+
+    !> The nodes k / n_fine of keys k (x = 1 exactly at the end).
+    pure function nodes_of_keys(k, n_fine) result(x)
+        integer(int64), intent(in) :: k(0:)
+        integer(int64), intent(in) :: n_fine
+        real(dp) :: x(0:ubound(k, 1))
+
+        x = real(k, dp) / real(n_fine, dp)
+        x(ubound(x, 1)) = 1.0_dp
+    end function nodes_of_keys
 
     !> Level of element e (0: a coarse element).
     pure integer function mesh_level(self, e)

@@ -25,13 +25,16 @@ module restart_m
     private
     public :: N_COUNTERS, COUNTER_STEP, COUNTER_T, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, &
               COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_DT_LAST, COUNTER_T_ANCHOR, &
-              COUNTER_STEP_ANCHOR
+              COUNTER_STEP_ANCHOR, MESH_HEADER
     public :: pack_state, read_checkpoint, copy_history
 
     integer, parameter :: COUNTER_STEP = 1, COUNTER_T = 2, COUNTER_SOLVES = 3, COUNTER_CONTACT_STEPS = 4, &
                           COUNTER_ENERGY = 5, COUNTER_LAW_ENERGY = 6, COUNTER_HAVE_LAW = 7, COUNTER_MAX_RISE = 8, &
                           COUNTER_DT_LAST = 9, COUNTER_T_ANCHOR = 10, COUNTER_STEP_ANCHOR = 11
     integer, parameter :: N_COUNTERS = 11
+    !> /checkpoint/slotN/mesh (&mesh adaptive): the indicator's field scales (1 + N_FIELDS)
+    !> and the remesh counters (2) come before the node keys (run_m's pack_mesh)
+    integer, parameter :: MESH_HEADER = N_FIELDS + 3
     character(len=*), parameter :: WHERE = 'time.restart_from'
 
 contains
@@ -75,11 +78,11 @@ contains
         slot = '/checkpoint/slot0'
         if (nint(values(1)) == 1) slot = '/checkpoint/slot1'
         if (cfg%mesh%adaptive) then
-            ! the mesh of the checkpoint: its node keys follow 1 + N_FIELDS scales and 2 counters
+            ! the mesh of the checkpoint: s + 1 node keys after MESH_HEADER values
             if (.not. dataset_exists(file, slot//'/mesh')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
                 "': its checkpoint has no adaptive mesh")
             call read_real_1d(file, slot//'/mesh', mesh)
-            s = size(mesh) - (N_FIELDS + 4)
+            s = size(mesh) - MESH_HEADER - 1
         end if
         call read_real_2d(file, slot//'/state', packed)
         if (any(shape(packed) /= [s + 1, 1 + N_FIELDS])) &

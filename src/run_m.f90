@@ -25,7 +25,7 @@ module run_m
     use energy_m, only: energy_monitor_t
     use restart_m, only: N_COUNTERS, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, COUNTER_LAW_ENERGY, &
                          COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, &
-                         COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR, pack_state, read_checkpoint, copy_history
+                         COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR, MESH_HEADER, pack_state, read_checkpoint, copy_history
     use output_m, only: h5_writer_t
     use progress_m, only: progress_t
     use version_m, only: PROGRAM_VERSION, SOURCE_VERSION
@@ -479,6 +479,7 @@ contains
         type(adaptive_mesh_t), intent(in) :: mesh    !< (used when allocated: &mesh adaptive)
         real(dp) :: counters(N_COUNTERS), values(N_CONTROL_VALUES + 2)
         real(dp) :: history(0:state%s, (1 + N_FIELDS) * MAX_LEVELS)
+        real(dp), allocatable :: previous(:, :), mesh_values(:)   !< left unallocated (absent) when not held
         character(len=:), allocatable :: note
 
         counters(COUNTER_STEP) = real(state%step, dp)
@@ -497,22 +498,12 @@ contains
         values(N_CONTROL_VALUES + 2) = monitor%max_rise_step_change
         note = step_failure(state%step, state%t, '')
         note = note(1:len(note) - 2)   ! 'step n (t = ...)'
-        if (allocated(mesh%k)) then
-            if (allocated(state%u_prev)) then
-                call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, &
-                                             pack_state(state%u_prev, state%w_prev), control=values, history=history, &
-                                             events=events%packed(), mesh=pack_mesh(mesh, monitor))
-            else
-                call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, control=values, &
-                                             history=history, events=events%packed(), mesh=pack_mesh(mesh, monitor))
-            end if
-        else if (allocated(state%u_prev)) then
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, pack_state(state%u_prev, state%w_prev), &
-                                         control=values, history=history, events=events%packed())
-        else
-            call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, control=values, history=history, &
-                                         events=events%packed())
-        end if
+        ! an unallocated actual argument is an absent optional one (the level before: multistep
+        ! schemes; the mesh: &mesh adaptive)
+        if (allocated(state%u_prev)) previous = pack_state(state%u_prev, state%w_prev)
+        if (allocated(mesh%k)) mesh_values = pack_mesh(mesh, monitor)
+        call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, previous, control=values, &
+                                     history=history, events=events%packed(), mesh=mesh_values)
     end subroutine write_checkpoint
 
     !> The adaptive mesh in a checkpoint: the field scales (1 + N_FIELDS), the remesh
@@ -536,7 +527,7 @@ contains
         mesh%scale = values(1:n)
         monitor%max_rise_remesh = values(n + 1)
         monitor%n_remeshes = nint(values(n + 2))
-        call mesh%set_keys(nint(values(n + 3:), int64))
+        call mesh%set_keys(nint(values(MESH_HEADER + 1:), int64))
     end subroutine restore_mesh
 
     !> The fixed grid of the snapshots (/mesh/x): &output n_points uniform points, by

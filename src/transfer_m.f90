@@ -19,21 +19,12 @@ module transfer_m
     use iso_fortran_env, only: int64
     use fields_m, only: N_FIELDS, is_dirichlet
     use fe_m, only: evaluate_p1
+    use adaptive_mesh_m, only: nodes_of_keys
     implicit none
     private
-    public :: transfer_level, nodes_of_keys
+    public :: transfer_level
 
 contains
-
-    !> The nodes k / n_fine (x = 1 exactly at the end).
-    pure function nodes_of_keys(k, n_fine) result(x)
-        integer(int64), intent(in) :: k(0:)
-        integer(int64), intent(in) :: n_fine
-        real(dp) :: x(0:ubound(k, 1))
-
-        x = real(k, dp) / real(n_fine, dp)
-        x(ubound(x, 1)) = 1.0_dp
-    end function nodes_of_keys
 
     !> level_new = the level level_old (on keys k_old) moved to keys k_new (module header).
     subroutine transfer_level(k_old, k_new, n_fine, level_old, level_new)
@@ -83,12 +74,11 @@ contains
         integer, intent(in) :: field
         real(dp), intent(out) :: g(0:)
         real(dp) :: b(0:ubound(k_new, 1)), diag(0:ubound(k_new, 1)), off(ubound(k_new, 1))
-        real(dp) :: x_old(0:ubound(k_old, 1)), a, c, fa, fc, xl, xr, pa, pc, len
+        real(dp) :: a, c, fa, fc, xl, xr, pa, pc, len
         integer(int64) :: ka, kc
         integer :: i, j, e, s
 
         s = ubound(k_new, 1)
-        x_old = nodes_of_keys(k_old, n_fine)
         b = 0.0_dp
         ! walk the union of both meshes: [ka, kc] lies in old element i and new element e
         i = 1

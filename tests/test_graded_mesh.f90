@@ -13,8 +13,8 @@ program test_graded_mesh
     use config_m, only: model_t
     use fields_m, only: N_FIELDS, is_dirichlet
     use energy_m, only: linear_energy
-    use transfer_m, only: transfer_level, nodes_of_keys
-    use adaptive_mesh_m, only: adaptive_mesh_t
+    use transfer_m, only: transfer_level
+    use adaptive_mesh_m, only: adaptive_mesh_t, nodes_of_keys
     use mms_m, only: mms_t, mms_linear_in_t, N_EXACT, U_FIELD
     use convergence_m, only: mms_errors, observed_orders, ERROR_NAMES
     use testing_m, only: check_true, test_summary

@@ -9,7 +9,10 @@
 !> chain one link per node instead of one per unknown, with independent work inside a node.
 !>
 !> Factorisation (once): S_0 = D_0, S_i = D_i - F_{i-1} S_{i-1}^{-1} E_{i-1}; we keep
-!> G_i = S_i^{-1} (5 x 5 LU with partial pivoting, dgetrf/dgetri), L_i = F_{i-1} G_{i-1} and
+!> G_i = S_i^{-1} (5 x 5 LU with partial pivoting, dgetrf/dgetri; or, with inline_inverse,
+!> Gauss-Jordan elimination with partial pivoting written out here: an adaptive mesh
+!> factors a new matrix at every remesh, where the ~8000 instructions per node of the two
+!> LAPACK calls on a 5 x 5 block were half of the run time), L_i = F_{i-1} G_{i-1} and
 !> H_i = G_i E_i.
 !> Solve: y_0 = b_0, y_i = b_i - L_i y_{i-1}, c_i = G_i y_i; x_last = c_last,
 !> x_i = c_i - H_i x_{i+1}. Only y_{i-1} -> y_i and x_{i+1} -> x_i are on the dependency
@@ -57,14 +60,20 @@ contains
     !> Factor the block-tridiagonal matrix held (unfactored) in band a, with nb unknowns per
     !> node. info = 0 on success; -1 if a is not block tridiagonal with nb x nb blocks; else
     !> the node (1-based) whose pivot block is singular.
-    subroutine block_factor(self, a, nb, info)
+    !> inline_inverse: invert the pivot blocks with invert_small instead of dgetrf/dgetri
+    !> (default .false.: uniform meshes keep LAPACK, and their results bit for bit).
+    subroutine block_factor(self, a, nb, info, inline_inverse)
         class(block_tridiagonal_t), intent(inout) :: self
         type(band_t), intent(in) :: a
         integer, intent(in) :: nb
         integer, intent(out) :: info
+        logical, intent(in), optional :: inline_inverse
         real(dp) :: f(nb, nb), work(nb * nb)
         integer :: i, ipiv(nb), lapack_info
+        logical :: inline
 
+        inline = .false.
+        if (present(inline_inverse)) inline = inline_inverse
         info = -1
         if (nb < 1 .or. nb > NB_MAX) return
         if (mod(a%n, nb) /= 0 .or. a%kl > 2 * nb - 1 .or. a%ku > 2 * nb - 1) return
@@ -79,33 +88,92 @@ contains
             self%g(:, :, i) = block(a, i, i)
             if (i > 0) then
                 f = block(a, i, i - 1)
-                self%l(:, :, i) = matmul(f, self%g(:, :, i - 1))
-                self%g(:, :, i) = self%g(:, :, i) - matmul(self%l(:, :, i), self%e(:, :, i - 1))
+                self%l(:, :, i) = product(f, self%g(:, :, i - 1), nb)
+                self%g(:, :, i) = self%g(:, :, i) - product(self%l(:, :, i), self%e(:, :, i - 1), nb)
             end if
             if (i < self%last) self%e(:, :, i) = block(a, i, i + 1)
-            call dgetrf(nb, nb, self%g(:, :, i), nb, ipiv, lapack_info)
-            if (lapack_info == 0) call dgetri(nb, self%g(:, :, i), nb, ipiv, work, size(work), lapack_info)
+            if (inline) then
+                call invert_small(self%g(:, :, i), nb, lapack_info)
+            else
+                call dgetrf(nb, nb, self%g(:, :, i), nb, ipiv, lapack_info)
+                if (lapack_info == 0) call dgetri(nb, self%g(:, :, i), nb, ipiv, work, size(work), lapack_info)
+            end if
             if (lapack_info /= 0) then
                 info = i + 1
                 return
             end if
         end do
         do i = 0, self%last - 1
-            self%h(:, :, i) = matmul(self%g(:, :, i), self%e(:, :, i))
+            self%h(:, :, i) = product(self%g(:, :, i), self%e(:, :, i), nb)
         end do
     contains
+        !> The nb x nb block (row_node, col_node) of a, read from its band storage (entries
+        !> outside the band are zero).
         pure function block(a, row_node, col_node) result(blk)
             type(band_t), intent(in) :: a
             integer, intent(in) :: row_node, col_node
             real(dp) :: blk(nb, nb)
-            integer :: p, q
+            integer :: p, q, i, j, diagonal_row
+
+            diagonal_row = a%kl + a%ku + 1
             do q = 1, nb
+                j = nb * col_node + q
                 do p = 1, nb
-                    blk(p, q) = a%get(nb * row_node + p, nb * col_node + q)
+                    i = nb * row_node + p
+                    if (j - i <= a%ku .and. i - j <= a%kl) then
+                        blk(p, q) = a%ab(diagonal_row + i - j, j)
+                    else
+                        blk(p, q) = 0.0_dp
+                    end if
                 end do
             end do
         end function block
     end subroutine block_factor
+    !> a = a^{-1} for an n x n block by Gauss-Jordan elimination with partial pivoting, in
+    !> place (Numerical Recipes' gaussj with row interchanges only): column k is eliminated
+    !> above and below the largest pivot of rows k..n, the column of the inverse built in its
+    !> place, and the row interchanges undone on the columns at the end, in reverse order.
+    !> info = 0, or the column (1-based) without a nonzero pivot (a singular block).
+    pure subroutine invert_small(a, n, info)
+        integer, intent(in) :: n
+        real(dp), intent(inout) :: a(n, n)
+        integer, intent(out) :: info
+        integer :: pivot_row(n), k, p, r
+        real(dp) :: inv_pivot, factor, swap(n)
+
+        info = 0
+        do k = 1, n
+            p = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
+            if (a(p, k) == 0.0_dp) then
+                info = k
+                return
+            end if
+            pivot_row(k) = p
+            if (p /= k) then
+                swap = a(k, :)
+                a(k, :) = a(p, :)
+                a(p, :) = swap
+            end if
+            inv_pivot = 1.0_dp / a(k, k)
+            a(k, k) = 1.0_dp
+            a(k, :) = a(k, :) * inv_pivot
+            do r = 1, n
+                if (r == k) cycle
+                factor = a(r, k)
+                a(r, k) = 0.0_dp
+                a(r, :) = a(r, :) - factor * a(k, :)
+            end do
+        end do
+        do k = n, 1, -1
+            p = pivot_row(k)
+            if (p /= k) then
+                swap = a(:, k)
+                a(:, k) = a(:, p)
+                a(:, p) = swap
+            end if
+        end do
+    end subroutine invert_small
+
     !> Solve A x = b in place with the block factors. No allocation: called every step.
     !> Every field in the system (nb = 5): products written out for the fixed block size,
     !> so that they are fully unrolled. Fewer fields (scheme_m's active_fields): a loop.
@@ -181,6 +249,34 @@ contains
             end do
         end do
     end subroutine solve_reduced
+
+    !> a b for nb x nb blocks: matmul, with the loops of constant length for nb = 5 (every
+    !> field in the system), which the compiler unrolls (matmul with a run-time size was a
+    !> quarter of an adaptive-mesh run). The same sums in the same order as matmul's.
+    pure function product(a, b, nb) result(c)
+        integer, intent(in) :: nb
+        real(dp), intent(in) :: a(nb, nb), b(nb, nb)
+        real(dp) :: c(nb, nb)
+
+        if (nb == NB_MAX) then
+            c = product5(a, b)
+        else
+            c = matmul(a, b)
+        end if
+    end function product
+
+    pure function product5(a, b) result(c)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
+        real(dp) :: c(NB_MAX, NB_MAX)
+        integer :: j, k
+
+        c = 0.0_dp
+        do j = 1, NB_MAX
+            do k = 1, NB_MAX
+                c(:, j) = c(:, j) + a(:, k) * b(k, j)
+            end do
+        end do
+    end function product5
 
     !> a x for a 5 x 5 block, summed as a tree (depth 3) to shorten the dependency chain.
     pure function matvec5(a, x) result(y)

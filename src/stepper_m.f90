@@ -242,7 +242,7 @@ contains
         character(len=256) :: message
 
         call assemble_matrix(self%step_model, self%s, dt_eff, self%slots, sys%a, self%h)
-        call sys%blocks%factor(sys%a, count(self%active), info)
+        call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=allocated(self%h))
         sys%use_blocks = info == 0
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
         if (.not. (sys%use_blocks .and. self%blocks_trusted)) then

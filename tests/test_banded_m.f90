@@ -1,9 +1,12 @@
 !> band_t: storage, factor/solve with dgbtrf/dgbtrs against a dense solve (dgesv) of the
-!> same matrix, identity rows, and a singular matrix reported through info.
+!> same matrix, identity rows, and a singular matrix reported through info; the block
+!> LU of block_tridiagonal_m with LAPACK's and with its own (inline) 5 x 5 inversion against
+!> the dense solve, on blocks that need pivoting, and a singular pivot block reported.
 program test_banded_m
     use kinds_m, only: dp
     use banded_m, only: band_t, lapack_info_message
     use band_reference_m, only: band_to_dense, solve_with_dgbtrs
+    use block_tridiagonal_m, only: block_tridiagonal_t
     use testing_m, only: check_close, check_true, test_summary
     implicit none
     interface
@@ -70,5 +73,58 @@ program test_banded_m
     call a%factor(info)
     call check_true('singular matrix: info > 0', info > 0)
     call check_true('singular matrix message', index(lapack_info_message('dgbtrf', info), 'singular') > 0)
+
+    call check_block_lu(5)
+    call check_block_lu(3)
     call test_summary('test_banded_m')
+contains
+
+    !> Block LU (nb unknowns per node, 6 nodes) with both inversions of the pivot blocks
+    !> against dgesv; the diagonal blocks have zero diagonals (pivoting needed). Then a
+    !> zero pivot block must give info = its node.
+    subroutine check_block_lu(nb)
+        integer, intent(in) :: nb
+        integer, parameter :: nodes = 6
+        type(band_t) :: m
+        type(block_tridiagonal_t) :: blocks
+        real(dp), allocatable :: full(:, :), rhs(:), exact(:), got(:)
+        integer :: n, i, j, k, piv(nb * nodes), stat
+        logical :: inline
+        character(len=80) :: label
+
+        n = nb * nodes
+        call m%init(n, 2 * nb - 1, 2 * nb - 1)
+        do j = 1, n
+            do i = max(1, j - 2 * nb + 1), min(n, j + 2 * nb - 1)
+                if (abs((i - 1) / nb - (j - 1) / nb) > 1) cycle   ! block tridiagonal
+                call random_number(r)
+                if (i /= j) call m%add(i, j, r + 0.5_dp)          ! zero diagonal: rows must be swapped
+            end do
+        end do
+        full = band_to_dense(m)
+        rhs = [(cos(real(i, dp)), i = 1, n)]
+        exact = rhs
+        call dgesv(n, 1, full, n, piv, exact, n, stat)
+        call check_true('block test matrix: dgesv', stat == 0)
+        do k = 1, 2
+            inline = k == 2
+            write (label, '(a,i0,a,l1)') 'block LU, nb = ', nb, ', inline inverse = ', inline
+            call blocks%factor(m, nb, stat, inline_inverse=inline)
+            call check_true(trim(label)//': factors', stat == 0)
+            got = rhs
+            call blocks%solve(got)
+            call check_true(trim(label)//': = dense solve', maxval(abs(got - exact)) <= 1e-10_dp * maxval(abs(exact)))
+        end do
+        ! node 3's diagonal block zero: its Schur complement is singular only if the
+        ! coupling is zero too, so clear both
+        do j = 2 * nb + 1, 3 * nb
+            do i = max(1, j - 2 * nb + 1), min(n, j + 2 * nb - 1)
+                call m%add(i, j, -m%get(i, j))
+            end do
+        end do
+        call blocks%factor(m, nb, stat, inline_inverse=.true.)
+        write (label, '(a,i0,a)') 'block LU, nb = ', nb, ', inline inverse: zero column reported'
+        call check_true(trim(label), stat == 3, 'info /= 3')
+    end subroutine check_block_lu
+
 end program test_banded_m

@@ -12,7 +12,8 @@ them; scripts/claims.sh does all of it. The figures are linked relative to the d
 --level: the same runs at another resolution (scripts/accuracy.sh makes them): every claim
 is measured again there and a table says which claims hold at every resolution. The
 verdicts that decide the exit status are those of OUT_DIR. --accuracy: a markdown fragment
-(scripts/accuracy.py) put into the document as its accuracy section.
+(scripts/accuracy.py) put into the document as its accuracy section. --adaptive: the section
+"Experiment 2 on adaptive meshes" (scripts/claims_adaptive.py), put before it.
 
 Exit status: 0 every claim holds; 1 a claim does not hold (0 with --report-only, for
 shortened runs whose verdicts mean nothing); 2 usage error, a file is missing or
@@ -637,6 +638,8 @@ def write_doc(path, figdir, R, results, args):
              "(7.2)–(7.3), the characteristic speeds of the hyperbolic part are the roots of "
              "(cr − d²)s⁴ − (r/τ₀ + cħ/τ)s² + ħ/(τ₀τ) = 0, which for (7.1) gives %s — within the tolerance of C7 "
              "and C8, so the measurements cannot tell the two apart.\n" % coupled_speeds(R["exp2"]))
+    if args.adaptive_md:
+        L.append(args.adaptive_md)
     if args.accuracy_md:
         L.append(args.accuracy_md)
     L.append("## Figures\n")
@@ -740,6 +743,8 @@ def main(argv):
     p.add_argument("--out-label", default=None, help="how to name the HDF5 directory in the document")
     p.add_argument("--level", action="append", default=[], help="LABEL=DIR: the runs at another resolution")
     p.add_argument("--accuracy", default=None, help="markdown fragment: the accuracy section")
+    p.add_argument("--adaptive", default=None,
+                   help="markdown fragment: experiment 2 on adaptive meshes (scripts/claims_adaptive.sh)")
     args = p.parse_args(argv[1:])
     args.out_label = args.out_label or args.out
     try:
@@ -751,6 +756,10 @@ def main(argv):
                 return 2
             label, d = spec.rsplit("=", 1)
             levels.append((label, {name: Run(d, name) for name in RUNS}))
+        args.adaptive_md = None
+        if args.adaptive:
+            with open(args.adaptive, encoding="utf-8") as f:
+                args.adaptive_md = f.read()
         args.accuracy_md = None
         if args.accuracy:
             with open(args.accuracy, encoding="utf-8") as f:

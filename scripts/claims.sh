@@ -105,6 +105,8 @@ if ((accuracy)); then
         [[ -n "$level" ]] && opts+=(--level "$level")
     done <"$acc_out/accuracy.levels"
 fi
+# experiment 2 on adaptive meshes (scripts/claims_adaptive.sh), when its section has been made
+[[ -s "$out_dir/adaptive/adaptive_claims.md" ]] && opts+=(--adaptive "$out_dir/adaptive/adaptive_claims.md")
 status=0
 "$py" "$scripts/claims.py" "${opts[@]}" || status=$?
 exit "$status"

@@ -9,14 +9,14 @@ module remesh_m
     use config_m, only: config_t
     use fields_m, only: N_FIELDS
     use state_m, only: state_t, initial_state, set_mesh
-    use adaptive_mesh_m, only: adaptive_mesh_t
+    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
     use transfer_m, only: transfer_level
     use stepper_m, only: stepper_t
     use step_control_m, only: error_estimator_t, MAX_LEVELS
     use energy_m, only: energy_monitor_t
     implicit none
     private
-    public :: initial_mesh, remesh
+    public :: initial_mesh, remesh, front_buffer
 
 contains
 
@@ -30,7 +30,7 @@ contains
         integer :: pass
         logical :: changed
 
-        call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, cfg%mesh%remesh_every)
+        call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, front_buffer(cfg))
         do pass = 1, cfg%mesh%max_level + 2
             call initial_state(cfg, state, mesh%nodes())
             call mesh%adapt(state%x, state%u, state%w, changed)
@@ -38,6 +38,25 @@ contains
         end do
         if (changed) call initial_state(cfg, state, mesh%nodes())
     end subroutine initial_mesh
+
+    !> How many elements around a large indicator are kept fine (adaptive_mesh_t's buffer):
+    !> the finest elements the fastest front (front_speed) can cross in remesh_every steps,
+    !> plus one. A step moves it v dt, so v dt n_fine of the finest elements with fixed
+    !> steps (&time dt), and at most FRONT_CFL elements with adaptive steps (run_m limits
+    !> them so); 1 when there is no front (Fourier's and Fick's laws).
+    integer function front_buffer(cfg) result(buffer)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: v, cfl, n_fine
+
+        v = front_speed(cfg%model)
+        n_fine = real(cfg%mesh%n_elements, dp) * 2.0_dp**cfg%mesh%max_level
+        if (cfg%time%adaptive) then
+            cfl = FRONT_CFL
+        else
+            cfl = v * cfg%time%dt * n_fine
+        end if
+        buffer = 1 + ceiling(min(real(cfg%mesh%remesh_every, dp) * cfl, n_fine))
+    end function front_buffer
 
     !> Adapt the mesh to the level in state and, if it changed, move everything onto it.
     subroutine remesh(mesh, state, stepper, estimator, monitor, changed)

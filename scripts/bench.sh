@@ -27,7 +27,9 @@
 #  5b. adaptive against fixed time steps on exp1 to t = 60 (issue 12),
 #     scripts/work_precision_adaptive.sh (figures/work_precision_adaptive.png, about 5 minutes).
 #  5c. the adaptive mesh on exp2 against the exact solution (issue 13),
-#     scripts/work_precision_mesh.sh (figures/work_precision_mesh.png, 20-40 minutes).
+#     scripts/work_precision_mesh.sh (figures/work_precision_mesh.png, 20-40 minutes),
+#  5d. the error budget of exp2 (mesh size against time step, where the error sits),
+#     scripts/error_budget.sh (about 8 minutes).
 #  6. output file size and wall time against &output compression (scripts/bench_output.sh).
 #
 # OpenBLAS: if libopenblas0-pthread is not installed, it is installed with apt-get (needs
@@ -46,6 +48,7 @@
 # SKIP_WPS=1 (reuse out/bench/work_precision_schemes.md),
 # SKIP_WPA=1 (reuse out/bench/work_precision_adaptive.md),
 # SKIP_WPM=1 (reuse out/bench/work_precision_mesh.md),
+# SKIP_EB=1 (reuse out/bench/error_budget.md),
 # NO_OPENBLAS=1 (reference BLAS only, no installation).
 # Exit status: 0 done (whether or not the targets are met: see the page); 1 build or run
 # failure, or a BLAS/LAPACK library that does not resolve as intended; 2 usage.
@@ -347,6 +350,13 @@ if [[ "${SKIP_WPM:-0}" != 1 ]]; then
     wpm_args=()
     ((quick)) && wpm_args=(--quick)
     WP_SKIP_BUILD=1 WPM_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_mesh.sh" "${wpm_args[@]}"
+fi
+
+# --- 5d. the error budget of exp2: mesh size against time step (issue 13) ----------------------
+if [[ "${SKIP_EB:-0}" != 1 ]]; then
+    eb_args=()
+    ((quick)) && eb_args=(--quick)
+    WP_SKIP_BUILD=1 EB_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/error_budget.sh" "${eb_args[@]}"
 fi
 
 # --- 6. what the numbers depend on, and the page ---------------------------------------------

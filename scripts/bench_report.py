@@ -538,6 +538,10 @@ def main():
     if os.path.exists(wpm):
         md.extend(open(wpm).read().splitlines())
         w("")
+    eb = os.path.join(outdir, "error_budget.md")     # scripts/error_budget.sh
+    if os.path.exists(eb):
+        md.extend(open(eb).read().splitlines())
+        w("")
 
     # ---------------------------------------------------------------- targets
     t = []

@@ -127,13 +127,16 @@ def report(spec, out_md, machine):
         ok = [r for r in rows if r["group"] in ("uniform", "adaptive", "oracle") and r["label"] != T1_REF
               and max(r["err"]["P"], r["err"]["eta"]) <= 1e-2]
         L += ["", "### The 1 % target", "",
-              "Reference: uniform BDF2 s = 8000, dt = 6.25e-6: %.2f s, P %s, η %s. Runs with P and η within 1 %%, "
-              "cheapest first:" % (ref["wall"], pct(ref["err"]["P"]), pct(ref["err"]["eta"])), ""]
+              "Reference: uniform BDF2 s = 8000, dt = 6.25e-6: %.2f s, P %s, η %s. Runs with P and η within 1 %% "
+              "that took less time, cheapest first (the target asks for at least 5x less):" % (ref["wall"], pct(ref["err"]["P"]), pct(ref["err"]["eta"])), ""]
+        ok = [r for r in ok if r["wall"] <= ref["wall"]] or ok
         for r in sorted(ok, key=lambda r: r["wall"]):
             mesh = ("adaptive mesh %d:L%d, mean %.0f elements" % (r["s"], r["max_level"], r["mean_elements"])
                     if r["native"] else "uniform s = %d" % r["s"])
-            L.append("- %s, %s, dt = %.4g: %.2f s (%.1fx less), P %s, η %s" % (
-                r["scheme"], mesh, r["dt"], r["wall"], ref["wall"] / r["wall"], pct(r["err"]["P"]), pct(r["err"]["eta"])))
+            ratio = ref["wall"] / r["wall"]
+            cost = "%.1fx less" % ratio if ratio >= 1 else "%.1fx the time" % (1 / ratio)
+            L.append("- %s, %s, dt = %.4g: %.2f s (%s), P %s, η %s" % (
+                r["scheme"], mesh, r["dt"], r["wall"], cost, pct(r["err"]["P"]), pct(r["err"]["eta"])))
         if not ok:
             L.append("- none")
     open(out_md, "w").write("\n".join(L) + "\n")

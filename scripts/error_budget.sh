@@ -18,14 +18,7 @@ set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 . "$repo_root/scripts/quick_option.sh" error_budget "$@"
-if [[ "${WP_SKIP_BUILD:-0}" != 1 ]]; then
-    BUILD_TYPE=Release "$repo_root/scripts/setup.sh"
-fi
-build_dir="${BUILD_DIR:-build}"
-[[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
-exe="$build_dir/rodcontact"
-[[ -x "$exe" ]] || { say "$exe not built"; exit 1; }
-if ((quick)); then out="${WP_OUT:-$repo_root/out/bench-quick}"; else out="${WP_OUT:-$repo_root/out/bench}"; fi
+. "$repo_root/scripts/bench_build.sh" rodcontact
 raw_dir="$out/budget"
 mkdir -p "$raw_dir"
 rm -f "$raw_dir"/*.h5

@@ -40,14 +40,7 @@ repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 . "$repo_root/scripts/quick_option.sh" work_precision_mesh "$@"
 t_start="$(date +%s)"
 
-if [[ "${WP_SKIP_BUILD:-0}" != 1 ]]; then
-    BUILD_TYPE=Release "$repo_root/scripts/setup.sh"
-fi
-build_dir="${BUILD_DIR:-build}"
-[[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
-exe="$build_dir/rodcontact"
-[[ -x "$exe" ]] || { say "$exe not built"; exit 1; }
-if ((quick)); then out="${WP_OUT:-$repo_root/out/bench-quick}"; else out="${WP_OUT:-$repo_root/out/bench}"; fi
+. "$repo_root/scripts/bench_build.sh" rodcontact
 raw_dir="$out/mesh"
 mkdir -p "$out" "$raw_dir" "$repo_root/figures"
 rm -f "$raw_dir"/*.h5 "$raw_dir"/*.h5.part "$raw_dir"/*.err

@@ -31,14 +31,7 @@ set -euo pipefail
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 . "$repo_root/scripts/quick_option.sh" work_precision_schemes "$@"
 
-if [[ "${WP_SKIP_BUILD:-0}" != 1 ]]; then
-    BUILD_TYPE=Release "$repo_root/scripts/setup.sh" >&2
-fi
-build_dir="${BUILD_DIR:-build}"
-[[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
-exe="$build_dir/bench/rodcontact_work_precision"
-[[ -x "$exe" ]] || { say "$exe not built"; exit 1; }
-if ((quick)); then out="${WP_OUT:-$repo_root/out/bench-quick}"; else out="${WP_OUT:-$repo_root/out/bench}"; fi
+. "$repo_root/scripts/bench_build.sh" bench/rodcontact_work_precision
 mkdir -p "$out" "$repo_root/figures"
 python="$(command -v python3 || echo /usr/bin/python3)"
 schemes=(euler bdf2 midpoint)

@@ -1,0 +1,15 @@
+# Preamble shared by the work-precision scripts (work_precision_schemes.sh,
+# work_precision_adaptive.sh, work_precision_mesh.sh, error_budget.sh). Source it after
+# scripts/quick_option.sh with the program to run, relative to the build directory:
+#   . "$repo_root/scripts/bench_build.sh" rodcontact
+# It builds a Release build with scripts/setup.sh (its output on stderr) unless WP_SKIP_BUILD=1,
+# and sets build_dir (BUILD_DIR, default build/, relative to the repository), exe (exits 1 when
+# it is not built) and out (WP_OUT; default out/bench, with --quick out/bench-quick).
+if [[ "${WP_SKIP_BUILD:-0}" != 1 ]]; then
+    BUILD_TYPE=Release "$repo_root/scripts/setup.sh" >&2
+fi
+build_dir="${BUILD_DIR:-build}"
+[[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
+exe="$build_dir/$1"
+[[ -x "$exe" ]] || { say "$exe not built"; exit 1; }
+if ((quick)); then out="${WP_OUT:-$repo_root/out/bench-quick}"; else out="${WP_OUT:-$repo_root/out/bench}"; fi

@@ -4,7 +4,9 @@
 #   . "$repo_root/scripts/bench_build.sh" rodcontact
 # It builds a Release build with scripts/setup.sh (its output on stderr) unless WP_SKIP_BUILD=1,
 # and sets build_dir (BUILD_DIR, default build/, relative to the repository), exe (exits 1 when
-# it is not built) and out (WP_OUT; default out/bench, with --quick out/bench-quick).
+# it is not built), out (WP_OUT; default out/bench, with --quick out/bench-quick) and ref_libs
+# (the LD_LIBRARY_PATH of the reference BLAS/LAPACK that bench.sh measures with, if installed;
+# else empty).
 if [[ "${WP_SKIP_BUILD:-0}" != 1 ]]; then
     BUILD_TYPE=Release "$repo_root/scripts/setup.sh" >&2
 fi
@@ -13,3 +15,5 @@ build_dir="${BUILD_DIR:-build}"
 exe="$build_dir/$1"
 [[ -x "$exe" ]] || { say "$exe not built"; exit 1; }
 if ((quick)); then out="${WP_OUT:-$repo_root/out/bench-quick}"; else out="${WP_OUT:-$repo_root/out/bench}"; fi
+ref_libs="/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack"
+[[ -d /usr/lib/x86_64-linux-gnu/blas && -d /usr/lib/x86_64-linux-gnu/lapack ]] || ref_libs=""

@@ -719,17 +719,45 @@ def measure(R):
     return results
 
 
+def characteristic_speeds(c, d, r, hbar, tau0, tau):
+    """The two characteristic speeds of the hyperbolic part of (7.2)-(7.3), slow and fast: the
+    roots of (cr - d^2) s^4 - (r/tau0 + c hbar/tau) s^2 + hbar/(tau0 tau) = 0; None when there
+    are no real ones."""
+    A, B, C = c * r - d * d, r / tau0 + c * hbar / tau, hbar / (tau0 * tau)
+    disc = B * B - 4 * A * C
+    if disc < 0 or A <= 0:
+        return None
+    s2 = sorted([(B - math.sqrt(disc)) / (2 * A), (B + math.sqrt(disc)) / (2 * A)])
+    return math.sqrt(s2[0]), math.sqrt(s2[1])
+
+
 def coupled_speeds(r):
     c, d, rr, hb = r.a("model.c"), r.a("model.d"), r.a("model.r"), r.a("model.hbar")
     t0, t = r.a("model.tau0"), r.a("model.tau")
-    A, B, C = c * rr - d * d, rr / t0 + c * hb / t, hb / (t0 * t)
-    disc = B * B - 4 * A * C
-    if disc < 0 or A <= 0:
+    speeds = characteristic_speeds(c, d, rr, hb, t0, t)
+    if speeds is None:
         return "no real speeds"
-    s2 = sorted([(B - math.sqrt(disc)) / (2 * A), (B + math.sqrt(disc)) / (2 * A)])
     v_th = 1 / math.sqrt(t0 * c)
     v_p = math.sqrt(hb / (rr * t))
-    return "s = %.3f and %.2f against v_θ = %.3f and v_P = %.2f" % (math.sqrt(s2[0]), math.sqrt(s2[1]), v_th, v_p)
+    return "s = %.3f and %.2f against v_θ = %.3f and v_P = %.2f" % (speeds[0], speeds[1], v_th, v_p)
+
+
+def splice_section(doc, heading, section, before=None):
+    """Put section (markdown starting with the line `heading`) into the file doc: in place of
+    the section with that heading (up to the next '## '), else before the line `before`, else
+    at the end."""
+    part = section.rstrip("\n") + "\n"
+    text = open(doc, encoding="utf-8").read()
+    start = text.find(heading + "\n")
+    if start >= 0:
+        nxt = text.find("\n## ", start + len(heading))
+        text = text[:start] + part + ("\n" + text[nxt + 1:] if nxt >= 0 else "")
+    else:
+        at = text.find(before) if before else -1
+        text = text[:at] + part + "\n" + text[at:] if at >= 0 else text.rstrip("\n") + "\n\n" + part
+    with open(doc + ".tmp", "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(doc + ".tmp", doc)
 
 
 def main(argv):

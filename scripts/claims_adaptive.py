@@ -62,22 +62,10 @@ def section(out_dir, names):
     return "\n".join(L) + "\n", ok
 
 
-def splice(fragment, doc):
-    part = open(fragment, encoding="utf-8").read().rstrip("\n") + "\n"
-    text = open(doc, encoding="utf-8").read()
-    start = text.find(HEADING + "\n")
-    if start >= 0:
-        nxt = text.find("\n## ", start + len(HEADING))
-        text = text[:start] + part + ("\n" + text[nxt + 1:] if nxt >= 0 else "")
-    else:
-        at = text.find("## Accuracy of the fields")
-        text = text[:at] + part + "\n" + text[at:] if at >= 0 else text.rstrip("\n") + "\n\n" + part
-    open(doc, "w", encoding="utf-8").write(text)
-
-
 def main(argv):
     if len(argv) == 4 and argv[1] == "--splice":
-        splice(argv[2], argv[3])
+        claims.splice_section(argv[3], HEADING, open(argv[2], encoding="utf-8").read(),
+                              before="## Accuracy of the fields")
         return 0
     if len(argv) < 3:
         sys.stderr.write(__doc__)

@@ -27,8 +27,6 @@ py="$("$repo_root/scripts/find_python.sh")" || exit 1
     { say "$py cannot import scipy (Debian: apt-get install python3-scipy)"; exit 1; }
 exp2="$repo_root/input/exp2.nml"
 amp5="$repo_root/input/exp2_amp5.nml"
-ref_libs="/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack"
-[[ -d /usr/lib/x86_64-linux-gnu/blas && -d /usr/lib/x86_64-linux-gnu/lapack ]] || ref_libs=""
 
 spec="$raw_dir/spec"
 : >"$spec"

@@ -41,9 +41,6 @@ py="$("$repo_root/scripts/find_python.sh")" || exit 1
 helper="$repo_root/scripts/adaptive_accuracy.py"
 input="$repo_root/input/exp1.nml"
 
-# The reference BLAS/LAPACK as bench.sh measures with, if installed (a step calls neither).
-ref_libs="/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack"
-[[ -d /usr/lib/x86_64-linux-gnu/blas && -d /usr/lib/x86_64-linux-gnu/lapack ]] || ref_libs=""
 blas="$(env LD_LIBRARY_PATH="$ref_libs" ldd "$exe" | awk '$1 ~ /^lib(blas|lapack|openblas)/ { print $1 " -> " $3 }' |
         while read -r name _ path; do echo "$name -> $(readlink -f "$path")"; done | paste -sd ';' | sed 's/;/, /g')"
 

@@ -51,9 +51,6 @@ helper="$repo_root/scripts/mesh_accuracy.py"
 exp2="$repo_root/input/exp2.nml"
 amp5="$repo_root/input/exp2_amp5.nml"
 
-# The reference BLAS/LAPACK as bench.sh measures with, if installed (a step calls neither).
-ref_libs="/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack"
-[[ -d /usr/lib/x86_64-linux-gnu/blas && -d /usr/lib/x86_64-linux-gnu/lapack ]] || ref_libs=""
 blas="$(env LD_LIBRARY_PATH="$ref_libs" ldd "$exe" | awk '$1 ~ /^lib(blas|lapack|openblas)/ { print $1 " -> " $3 }' |
         while read -r name _ path; do echo "$name -> $(readlink -f "$path")"; done | paste -sd ';' | sed 's/;/, /g')"
 

@@ -107,24 +107,14 @@ contains
             self%h(:, :, i) = product(self%g(:, :, i), self%e(:, :, i), nb)
         end do
     contains
-        !> The nb x nb block (row_node, col_node) of a, read from its band storage (entries
-        !> outside the band are zero).
         pure function block(a, row_node, col_node) result(blk)
             type(band_t), intent(in) :: a
             integer, intent(in) :: row_node, col_node
             real(dp) :: blk(nb, nb)
-            integer :: p, q, i, j, diagonal_row
-
-            diagonal_row = a%kl + a%ku + 1
+            integer :: p, q
             do q = 1, nb
-                j = nb * col_node + q
                 do p = 1, nb
-                    i = nb * row_node + p
-                    if (j - i <= a%ku .and. i - j <= a%kl) then
-                        blk(p, q) = a%ab(diagonal_row + i - j, j)
-                    else
-                        blk(p, q) = 0.0_dp
-                    end if
+                    blk(p, q) = a%get(nb * row_node + p, nb * col_node + q)
                 end do
             end do
         end function block
@@ -265,6 +255,7 @@ contains
         end if
     end function product
 
+    !> a b for 5 x 5 blocks (product).
     pure function product5(a, b) result(c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
         real(dp) :: c(NB_MAX, NB_MAX)

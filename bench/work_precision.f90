@@ -1,5 +1,5 @@
 !> Benchmark (not a test): error at the final time against the wall time of the stepping,
-!> one run per (scheme, h, dt) point, for a work-precision diagram (scripts/work_precision.sh).
+!> one run per (scheme, h, dt) point, for a work-precision diagram (bench/work_precision.sh).
 !>
 !>   rodcontact_work_precision mms <t_end> <point> [<point> ...]
 !>   rodcontact_work_precision exp2 <input.nml> <t_end> <reference point> <point> [<point> ...]
@@ -22,7 +22,7 @@
 !>       against a run with s/2 and 2 dt ('reference_check' line).
 !> exp2dt: as exp2, for the time error alone: points with the reference's s, and the check
 !>       run has the same s and 2 dt.
-!> uend: the time error of u(1,t) alone (exp1; scripts/work_precision_schemes.sh): points with
+!> uend: the time error of u(1,t) alone (exp1; bench/work_precision_schemes.sh): points with
 !>       the reference's s and dt a multiple of the reference's dt; e_uend_max = max over the
 !>       steps t_n <= t_end of |u(1,t_n) - u_ref(1,t_n)|, e_uend_pre the same over the steps
 !>       before the reference's first contact (t_contact on the 'reference' line), both

@@ -21,16 +21,16 @@
 #  4. where a step's time goes (valgrind callgrind: instructions per step by function, the
 #     difference of a 1000- and a 2000-step run) and heap allocations per step and per
 #     snapshot (valgrind memcheck's heap summary, same difference);
-#  5. the work-precision diagram, scripts/work_precision.sh (figures/work_precision.png), and
+#  5. the work-precision diagram, bench/work_precision.sh (figures/work_precision.png), and
 #     the work-precision of Euler, BDF2 and the midpoint rule on exp1 and the impact case,
-#     scripts/work_precision_schemes.sh (figures/work_precision_schemes.png, ~2.5 minutes).
+#     bench/work_precision_schemes.sh (figures/work_precision_schemes.png, ~2.5 minutes).
 #  5b. adaptive against fixed time steps on exp1 to t = 60 (issue 12),
-#     scripts/work_precision_adaptive.sh (figures/work_precision_adaptive.png, about 5 minutes).
+#     bench/adaptive_steps.sh (figures/work_precision_adaptive.png, about 5 minutes).
 #  5c. the adaptive mesh on exp2 against the exact solution (issue 13),
-#     scripts/work_precision_mesh.sh (figures/work_precision_mesh.png, 20-40 minutes),
+#     bench/adaptive_mesh.sh (figures/work_precision_mesh.png, 20-40 minutes),
 #  5d. the error budget of exp2 (mesh size against time step, where the error sits),
-#     scripts/error_budget.sh (about 8 minutes).
-#  6. output file size and wall time against &output compression (scripts/bench_output.sh).
+#     bench/error_budget.sh (about 8 minutes).
+#  6. output file size and wall time against &output compression (bench/output_size.sh).
 #
 # OpenBLAS: if libopenblas0-pthread is not installed, it is installed with apt-get (needs
 # root or sudo; without them the OpenBLAS runs are skipped and the page says so). Installing
@@ -56,7 +56,7 @@
 set -euo pipefail
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-. "$repo_root/scripts/quick_option.sh" bench "$@"
+. "$repo_root/bench/quick_option.sh" bench "$@"
 t_start="$(date +%s)"
 
 runs="${RUNS:-5}"
@@ -245,9 +245,9 @@ if [[ -n "$long_tend" ]]; then
 fi
 record exp1_command "$(basename "$exe") input/exp1.nml --set time.t_end=T --set output.prefix=<tmp> --set output.quiet=.true."
 
-# --- 3b. the energy law with BDF2 during contact (src/energy_m.f90 points here) ------------
+# --- 3b. the energy law with BDF2 during contact (src/numerics/energy_m.f90 points here) ------------
 : >"$out/energy.raw"
-if h5python="$("$repo_root/scripts/find_python.sh" 2>/dev/null)"; then
+if h5python="$("$repo_root/scripts/lib/find_python.sh" 2>/dev/null)"; then
     say "exp1 to t_end = 3 with Euler and BDF2: energy law through the contact phase"
     for scheme in euler bdf2; do
         env LD_LIBRARY_PATH="$ref_path" "$exe" "$input" --set time.t_end=3 --set time.scheme="$scheme" \
@@ -325,16 +325,16 @@ fi
 # --- 5. work-precision diagram --------------------------------------------------------------
 if [[ "${SKIP_WP:-0}" != 1 ]]; then
     if ((quick)); then
-        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision.sh" --quick
+        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/work_precision.sh" --quick
     else
-        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision.sh"
+        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/work_precision.sh"
     fi
 fi
 if [[ "${SKIP_WPS:-0}" != 1 ]]; then
     if ((quick)); then
-        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_schemes.sh" --quick
+        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/work_precision_schemes.sh" --quick
     else
-        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_schemes.sh"
+        WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/work_precision_schemes.sh"
     fi
 fi
 
@@ -342,21 +342,21 @@ fi
 if [[ "${SKIP_WPA:-0}" != 1 ]]; then
     wpa_args=()
     ((quick)) && wpa_args=(--quick)
-    WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_adaptive.sh" "${wpa_args[@]}"
+    WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/adaptive_steps.sh" "${wpa_args[@]}"
 fi
 
 # --- 5c. the adaptive mesh: work and precision on exp2 against the exact solution (issue 13) ----
 if [[ "${SKIP_WPM:-0}" != 1 ]]; then
     wpm_args=()
     ((quick)) && wpm_args=(--quick)
-    WP_SKIP_BUILD=1 WPM_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/work_precision_mesh.sh" "${wpm_args[@]}"
+    WP_SKIP_BUILD=1 WPM_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/adaptive_mesh.sh" "${wpm_args[@]}"
 fi
 
 # --- 5d. the error budget of exp2: mesh size against time step (issue 13) ----------------------
 if [[ "${SKIP_EB:-0}" != 1 ]]; then
     eb_args=()
     ((quick)) && eb_args=(--quick)
-    WP_SKIP_BUILD=1 EB_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/scripts/error_budget.sh" "${eb_args[@]}"
+    WP_SKIP_BUILD=1 EB_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/error_budget.sh" "${eb_args[@]}"
 fi
 
 # --- 6. what the numbers depend on, and the page ---------------------------------------------
@@ -381,7 +381,7 @@ record quick "$quick"
 record exp1_tend "$exp1_tend"
 record long_tend "${long_tend:-none}"
 record bench_seconds "$(($(date +%s) - t_start))"
-"$python" "$repo_root/scripts/bench_report.py" "$out" "$doc"
+"$python" "$repo_root/bench/report.py" "$out" "$doc"
 # the section "Output: chunks and compression" (file size and wall time against &output compression)
-EXE="$exe" BENCH_OUT="$out" DOC="$doc" RUNS="$(( runs < 3 ? runs : 3 ))" "$repo_root/scripts/bench_output.sh" $( ((quick)) && echo --quick )
+EXE="$exe" BENCH_OUT="$out" DOC="$doc" RUNS="$(( runs < 3 ? runs : 3 ))" "$repo_root/bench/output_size.sh" $( ((quick)) && echo --quick )
 say "wrote $doc (raw data in $out); took $(($(date +%s) - t_start)) s"

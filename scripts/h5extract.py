@@ -29,7 +29,7 @@ file, its status, and one line naming every column with its units, e.g.
 ('1': nondimensional; the long_name of each dataset says its scale, see docs/output.md).
 
 figures   OUT_DIR holds exp1.h5, exp1_varpi05.h5, exp1_varpi1.h5, exp2.h5, exp3.h5 (as
-written by scripts/figures.sh). DATA_DIR receives
+written by scripts/paper/figures.sh). DATA_DIR receives
 
     <run>.<set>.<field>.dat   x and one column per marked time: the profiles field(x, t_k)
                               ('set' is 'all' for experiment 1, 'early' and 'late' for
@@ -44,7 +44,7 @@ Marked times that the run does not reach (shortened --quick runs) are left out; 
 fewer than three remain, evenly spaced snapshots are used instead.
 
 The script does not choose an interpreter (no shebang): run it with one that can import
-h5py (scripts/find_python.sh). Exit status: 0 written; 1 (figures) a file is missing,
+h5py (scripts/lib/find_python.sh). Exit status: 0 written; 1 (figures) a file is missing,
 incomplete or unreadable; 2 usage: unknown mode or option, a missing or unreadable file,
 a file that is not a rodcontact output file, an unknown dataset or field, a bad time
 (message on stderr).
@@ -58,9 +58,11 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib'))
+
 # curve colours, early to late: plotdata.py's hue ramp (nine times differ in hue, not only
 # in lightness; the viridis ramp used before made t >= 0.5 hard to tell apart)
-from plotdata import colours, check_rodcontact, decode
+from plotdata import colours, check_rodcontact, decode  # noqa: E402
 
 MODES = ("series", "snapshot", "matrix", "figures")
 
@@ -270,7 +272,7 @@ def main(argv):
             if len(args) != 2:
                 raise UsageError("figures needs OUT_DIR DATA_DIR")
         elif len(args) != 2 or not os.path.isdir(args[0]):
-            # the older form OUT_DIR DATA_DIR (scripts/figures.sh) starts with a directory
+            # the older form OUT_DIR DATA_DIR (scripts/paper/figures.sh) starts with a directory
             raise UsageError(f"unknown mode '{args[0]}'; must be one of {', '.join(MODES)} "
                              "(or OUT_DIR DATA_DIR, a directory first, for the figures)")
         if not os.path.isdir(args[0]):
@@ -310,7 +312,7 @@ def open_run(out_dir, run):
     try:
         f = h5py.File(path, "r")
     except OSError as exc:
-        raise RuntimeError(f"cannot open {path}: {exc} (run scripts/figures.sh to make it)")
+        raise RuntimeError(f"cannot open {path}: {exc} (run scripts/paper/figures.sh to make it)")
     status = f.attrs.get("status", b"")
     status = status.decode() if isinstance(status, bytes) else str(status)
     if status != "complete":

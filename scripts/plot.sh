@@ -13,7 +13,7 @@
 #   --t-max    last time drawn in surfaces and profiles (default: the run's last snapshot)
 #   --out DIR  where to write <run>_<style>.png and .pdf (default: the directory of RUN.h5)
 #
-# Needs a Python with h5py (scripts/find_python.sh) and gnuplot with pngcairo and pdfcairo.
+# Needs a Python with h5py (scripts/lib/find_python.sh) and gnuplot with pngcairo and pdfcairo.
 # Exit status: 0 drawn; 1 a tool is missing or gnuplot failed; 2 usage error, or RUN.h5 is
 # not a rodcontact output file.
 
@@ -55,7 +55,7 @@ for d in "$out_dir"; do
     [[ "$d" != *"'"* && "$d" != *'"'* ]] || { say "directory names with quotes are not supported: $d"; exit 2; }
 done
 
-py="$("$scripts/find_python.sh")" || { say "no Python with h5py (Debian: python3-h5py)"; exit 1; }
+py="$("$scripts/lib/find_python.sh")" || { say "no Python with h5py (Debian: python3-h5py)"; exit 1; }
 command -v gnuplot >/dev/null 2>&1 || { say "gnuplot not found (Debian: gnuplot-nox)"; exit 1; }
 mkdir -p "$out_dir"
 data="$(mktemp -d "${TMPDIR:-/tmp}/rodcontact-plot.XXXXXX")"
@@ -64,7 +64,7 @@ opts=()
 [[ -n "$fields" ]] && opts+=(--fields "$fields")
 [[ -n "$t_max" ]] && opts+=(--t-max "$t_max")
 status=0
-"$py" "$scripts/plotdata.py" "$run" "$data" "${opts[@]}" || status=$?
+"$py" "$scripts/lib/plotdata.py" "$run" "$data" "${opts[@]}" || status=$?
 if ((status != 0)); then
     ((status == 2)) && exit 2
     say "reading $run failed"; exit 1

@@ -17,7 +17,7 @@
 # Usage: bash test_adaptive.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
 . "$src/tests/lib/checks.sh"
 cd "$scratch" && rm -rf ./* || exit 1
 

@@ -18,7 +18,7 @@
 # Usage: bash test_adaptive_mesh.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
 . "$src/tests/lib/checks.sh"
 cd "$scratch" && rm -rf ./* || exit 1
 quiet=(--set output.quiet=.true. --set output.snapshot_every=1000000000)
@@ -54,7 +54,7 @@ for case in bdf2_adaptive euler_fixed; do
     "$exe" "${common[@]}" --set time.t_end=0.4 --set time.restart_from="'half_$case.h5'" \
         --set output.prefix="'rest_$case'" || check "$case: restarted run" false
     check "$case: split and restarted = uninterrupted, /snapshots/native included" \
-        "$py" "$src/scripts/regression.py" same "full_$case.h5" "rest_$case.h5"
+        "$py" "$src/tests/tools/regression.py" same "full_$case.h5" "rest_$case.h5"
     check "$case: the mesh changed during the run (remeshes > 0, several mesh sizes)" "$py" -c "
 import h5py, sys, numpy as np
 f = h5py.File('full_$case.h5', 'r')

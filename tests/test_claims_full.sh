@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every claim of Section 7 of the paper holds on the full runs: scripts/claims.sh runs every
+# Every claim of Section 7 of the paper holds on the full runs: scripts/paper/claims.sh runs every
 # input/exp*.nml (paper's h and dt, the inputs' final times) and exp1_long (experiment 1 up to
 # t = 60) with the rodcontact under test into the scratch directory (without the accuracy study
 # of other resolutions: --no-accuracy), and must exit 0. Runs
@@ -18,17 +18,17 @@ if [[ -z "$prog" || ! -x "$prog" || -z "$src" || -z "$scratch" ]]; then
     echo "usage: bash test_claims_full.sh <rodcontact> <source dir> <scratch dir>"
     exit 1
 fi
-if ! "$src/scripts/find_python.sh" >/dev/null 2>&1; then
+if ! "$src/scripts/lib/find_python.sh" >/dev/null 2>&1; then
     echo "SKIP: no Python that can import h5py and numpy (Debian: python3-h5py)"
     exit 77
 fi
 
 mkdir -p "$scratch/out"
 doc="$scratch/reproduction.md"
-"$src/scripts/claims.sh" --no-accuracy --exe "$prog" --out "$scratch/out" --doc "$doc" --figdir "$src/figures"
+"$src/scripts/paper/claims.sh" --no-accuracy --exe "$prog" --out "$scratch/out" --doc "$doc" --figdir "$src/figures"
 status=$?
 if ((status != 0)); then
-    echo "FAIL: scripts/claims.sh exited with status $status (1: a claim does not hold; see the lines above"
+    echo "FAIL: scripts/paper/claims.sh exited with status $status (1: a claim does not hold; see the lines above"
     echo "      and the table in $doc)"
     exit 1
 fi

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The exact solution of the linear (pre-contact) problem, scripts/exact_linear.py, as a test
+# The exact solution of the linear (pre-contact) problem, tests/tools/exact_linear.py, as a test
 # utility (issue 13, deliverable 6):
 #  1. its self-check (projection of polynomial data, modal ODE residuals, eigen-decomposition
 #     against expm, truncation of the exp2 pulses) passes;
@@ -16,12 +16,12 @@
 # Usage: bash test_exact_linear.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
 "$py" -c 'import scipy.fft, scipy.linalg' 2>/dev/null || { echo "SKIP: $py has no scipy"; exit 77; }
 . "$src/tests/lib/checks.sh"
 cd "$scratch" && rm -rf ./* || exit 1
 
-"$py" "$src/scripts/exact_linear.py" --self-check >selfcheck.txt 2>&1
+"$py" "$src/tests/tools/exact_linear.py" --self-check >selfcheck.txt 2>&1
 status=$?
 cat selfcheck.txt
 check "exact_linear.py --self-check exits 0" equals 0 "$status"
@@ -37,7 +37,7 @@ for level in "${levels[@]}"; do
 done
 
 check "u and theta converge to the exact solution at t = 0.25 (factor >= 1.6 per halving, < 0.7 % at s = 1000)" \
-    "$py" - "$src/scripts" "${files[@]}" <<'PY'
+    "$py" - "$src/tests/tools" "${files[@]}" <<'PY'
 import sys
 import h5py
 sys.path.insert(0, sys.argv[1])

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The reproduction pipeline cannot rot: scripts/figures.sh --quick (shortened runs of every
+# The reproduction pipeline cannot rot: scripts/paper/figures.sh --quick (shortened runs of every
 # input/exp*.nml, t_end = 0.3) must draw Figures 2-7 as PNG and PDF, a second call must find
-# every run up to date, and scripts/claims.sh --quick must write the claims document with a
+# every run up to date, and scripts/paper/claims.sh --quick must write the claims document with a
 # row per claim and links to figures that exist. The claims script must also be able to
 # fail: without --report-only, the shortened runs (no loss of contact by t = 0.3) must give
 # exit status 1.
@@ -28,7 +28,7 @@ for term in pngcairo pdfcairo; do
         exit 77
     fi
 done
-if ! py=$("$src/scripts/find_python.sh" 2>/dev/null); then
+if ! py=$("$src/scripts/lib/find_python.sh" 2>/dev/null); then
     echo "SKIP: no Python that can import h5py and numpy (Debian: python3-h5py)"
     exit 77
 fi
@@ -42,8 +42,8 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 # 1. figures from shortened runs
-if ! "$src/scripts/figures.sh" --quick --exe "$prog" --out "$out" --figdir "$figs" >"$scratch/figures.log" 2>&1; then
-    fail "scripts/figures.sh --quick exited non-zero; its output:"
+if ! "$src/scripts/paper/figures.sh" --quick --exe "$prog" --out "$out" --figdir "$figs" >"$scratch/figures.log" 2>&1; then
+    fail "scripts/paper/figures.sh --quick exited non-zero; its output:"
     cat "$scratch/figures.log"
 fi
 if grep -q 'gnuplot said' "$scratch/figures.log"; then
@@ -76,8 +76,8 @@ done
 ls "$figs"/*.tmp >/dev/null 2>&1 && fail "temporary files left in $figs: $(ls "$figs"/*.tmp)"
 
 # 2. a second call reuses every run
-if ! "$src/scripts/figures.sh" --quick --runs-only --exe "$prog" --out "$out" >"$scratch/again.log" 2>&1; then
-    fail "second call of scripts/figures.sh --quick --runs-only failed:"
+if ! "$src/scripts/paper/figures.sh" --quick --runs-only --exe "$prog" --out "$out" >"$scratch/again.log" 2>&1; then
+    fail "second call of scripts/paper/figures.sh --quick --runs-only failed:"
     cat "$scratch/again.log"
 fi
 inputs=("$src"/input/exp*.nml)
@@ -87,9 +87,9 @@ n_skipped=$(grep -c 'up to date' "$scratch/again.log")
     fail "second call: expected $n_inputs runs up to date, got $n_skipped; output: $(cat "$scratch/again.log")"
 
 # 3. claims document from the shortened runs (report only)
-if ! "$src/scripts/claims.sh" --quick --exe "$prog" --out "$out" --doc "$doc" --figdir "$figs" \
+if ! "$src/scripts/paper/claims.sh" --quick --exe "$prog" --out "$out" --doc "$doc" --figdir "$figs" \
         >"$scratch/claims.log" 2>&1; then
-    fail "scripts/claims.sh --quick exited non-zero; its output:"
+    fail "scripts/paper/claims.sh --quick exited non-zero; its output:"
     cat "$scratch/claims.log"
 fi
 if [[ ! -s "$doc" ]]; then
@@ -99,7 +99,7 @@ else
         grep -q "^| C$k | " "$doc" || fail "$doc: no table row for claim C$k"
     done
     grep -q '^Commit: ' "$doc" || fail "$doc: no 'Commit:' line"
-    grep -q '^## Accuracy of the fields' "$doc" || fail "$doc: no accuracy section (scripts/accuracy.sh --quick)"
+    grep -q '^## Accuracy of the fields' "$doc" || fail "$doc: no accuracy section (scripts/paper/accuracy.sh --quick)"
     grep -q '^## The claims at every resolution' "$doc" || fail "$doc: no table of the claims at every resolution"
     grep -Eq '^\| exp2 \| 0\.25 \| [0-9.e-]+ % ' "$doc" || fail "$doc: no exact-solution error row for exp2 at t = 0.25"
     grep -q 'could not be measured' "$doc" && fail "$doc: a claim could not be measured: $(grep 'could not be measured' "$doc")"
@@ -112,7 +112,7 @@ else
 fi
 
 # 4. the claims script fails when claims do not hold (the shortened runs never lose contact)
-"$py" "$src/scripts/claims.py" --out "$out" --doc "$scratch/doc/strict.md" --figdir "$figs" >"$scratch/strict.log" 2>&1
+"$py" "$src/scripts/paper/claims.py" --out "$out" --doc "$scratch/doc/strict.md" --figdir "$figs" >"$scratch/strict.log" 2>&1
 status=$?
 [[ $status -eq 1 ]] || fail "claims.py without --report-only on shortened runs: expected exit 1, got $status"
 grep -q 'DOES NOT HOLD' "$scratch/strict.log" || fail "claims.py did not name the failing claims: $(cat "$scratch/strict.log")"

@@ -6,7 +6,7 @@
 # Usage: bash test_h5extract.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
 cd "$scratch" && rm -rf ./* || exit 1
 . "$src/tests/lib/checks.sh"
 x() { "$py" "$src/scripts/h5extract.py" "$@"; }

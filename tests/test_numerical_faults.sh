@@ -28,7 +28,7 @@ if [[ -z "$prog" || ! -x "$prog" ]]; then
     echo "SKIP: rodcontact not found at '$prog'"
     exit 77
 fi
-if ! PY=$("$source_dir/scripts/find_python.sh"); then
+if ! PY=$("$source_dir/scripts/lib/find_python.sh"); then
     echo "SKIP: no Python with h5py"
     exit 77
 fi

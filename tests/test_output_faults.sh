@@ -5,7 +5,7 @@
 #  1. after a checkpoint: exit 4, a message on stderr naming the .h5.part, the system's
 #     reason and the checkpoint; no <prefix>.h5; the .h5.part readable, its last checkpoint
 #     restartable, and the continued run equal bit for bit to an uninterrupted one
-#     (scripts/regression.py same), with compression 0 (the default) and 4;
+#     (tests/tools/regression.py same), with compression 0 (the default) and 4;
 #  2. before any checkpoint: exit 4, the message says there is none, the .h5.part is a
 #     readable file (inputs, initial state) with status 'incomplete'.
 # Also: the short file of issue 14 (2 snapshots at s = 500) is under 100 kB, and compression
@@ -13,7 +13,7 @@
 # Usage: bash test_output_faults.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py to read the files"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py to read the files"; exit 77; }
 cd "$scratch" && rm -rf ./* || exit 1
 . "$src/tests/lib/checks.sh"
 
@@ -45,7 +45,7 @@ print(int(f['checkpoint/slot%d/counters' % int(f['checkpoint/current'][0])][0]))
     run --set output.prefix=cont$level --set time.restart_from=full$level.h5.part --set output.compression=$level
     check "compression $level: restart from the .h5.part (normal limit) exits 0" equals 0 "$?"
     check "compression $level: the restarted run equals the uninterrupted one bit for bit" \
-        "$py" "$src/scripts/regression.py" same ref.h5 cont$level.h5
+        "$py" "$src/tests/tools/regression.py" same ref.h5 cont$level.h5
 done
 
 # before the first checkpoint (400 kB): the file holds what its first flush wrote
@@ -68,7 +68,7 @@ for level in 1 9; do
         --set output.compression=$level
     small=$(stat -c %s short$level.h5)
     check "compression $level: $small bytes, smaller than $bytes" test "$small" -lt "$bytes"
-    check "compression $level: the same data as without" "$py" "$src/scripts/regression.py" same short.h5 short$level.h5
+    check "compression $level: the same data as without" "$py" "$src/tests/tools/regression.py" same short.h5 short$level.h5
     check "compression $level: recorded as output.compression" equals "$level" \
         "$("$py" -c "import h5py; print(h5py.File('short$level.h5', 'r').attrs['output.compression'])")"
 done

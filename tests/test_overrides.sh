@@ -210,7 +210,7 @@ fi
 head -c 100 /dev/urandom > bad/noise.h5
 cp base.nml bad/input.h5
 bad_summaries=("bad/noise.h5:not an HDF5 file" "bad/input.h5:not an HDF5 file" "bad/none.h5:no such file")
-py=$("${2:-.}/scripts/find_python.sh" 2>/dev/null) && "$py" -c "
+py=$("${2:-.}/scripts/lib/find_python.sh" 2>/dev/null) && "$py" -c "
 import h5py; h5py.File('bad/other.h5', 'w').create_dataset('x', data=[1.0])" \
     && bad_summaries+=("bad/other.h5:not a rodcontact output file")
 for entry in "${bad_summaries[@]}"; do

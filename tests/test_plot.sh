@@ -17,7 +17,7 @@ command -v gnuplot >/dev/null 2>&1 || { echo "SKIP: gnuplot not found"; exit 77;
 for term in pngcairo pdfcairo; do
     gnuplot -e "set terminal $term" </dev/null >/dev/null 2>&1 || { echo "SKIP: no $term terminal"; exit 77; }
 done
-py=$("$src/scripts/find_python.sh" 2>/dev/null) || { echo "SKIP: no Python with h5py"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh" 2>/dev/null) || { echo "SKIP: no Python with h5py"; exit 77; }
 dir="$scratch/plot"
 rm -rf "$dir"; mkdir -p "$dir"
 failures=0
@@ -26,7 +26,7 @@ is_png() { [[ -s "$1" && "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" == 8950
 is_pdf() { [[ -s "$1" && "$(head -c 5 "$1")" == "%PDF-" ]]; }
 
 # 1. a short complete run (experiment 2, coarse) in every style
-"$py" "$src/scripts/nml_copy.py" "$src/input/exp2.nml" "$dir/run.nml" "output.prefix='$dir/run'" \
+"$py" "$src/scripts/lib/nml_copy.py" "$src/input/exp2.nml" "$dir/run.nml" "output.prefix='$dir/run'" \
     output.quiet=.true. mesh.n_elements=50 time.dt=1e-3 time.t_end=0.1 output.snapshot_every=5
 "$prog" "$dir/run.nml" >/dev/null 2>&1 || fail "the short run failed"
 if ! "$src/scripts/plot.sh" "$dir/run.h5" --style all --out "$dir/figs" >"$dir/plot.log" 2>&1; then
@@ -41,7 +41,7 @@ done
     is_png "$dir/figs2/run_profiles.png" || fail "plot.sh --fields u,v: $(cat "$dir/p2.log")"
 
 # 2. a failed run: the paper iteration stopped after 3 iterations at the first contact
-"$py" "$src/scripts/nml_copy.py" "$src/input/exp1.nml" "$dir/failed.nml" "output.prefix='$dir/failed'" \
+"$py" "$src/scripts/lib/nml_copy.py" "$src/input/exp1.nml" "$dir/failed.nml" "output.prefix='$dir/failed'" \
     output.quiet=.true. mesh.n_elements=50 time.dt=1e-3 time.t_end=0.3 "solver.method='paper'" \
     solver.max_iter=3 output.snapshot_every=7
 "$prog" "$dir/failed.nml" >/dev/null 2>&1
@@ -64,7 +64,7 @@ with h5py.File(sys.argv[1], "r+") as f:
     f["series/energy_thermal"] = 0.6 * e
 PY
 data="$dir/extra-data"
-"$py" "$src/scripts/plotdata.py" "$dir/extra.h5" "$data" >"$dir/extra.log" 2>&1 || fail "plotdata.py on extra.h5: $(cat "$dir/extra.log")"
+"$py" "$src/scripts/lib/plotdata.py" "$dir/extra.h5" "$data" >"$dir/extra.log" 2>&1 || fail "plotdata.py on extra.h5: $(cat "$dir/extra.log")"
 grep -q '^fields = ".*sigma' "$data/params.gp" || fail "sigma not among the default fields: $(grep '^fields' "$data/params.gp")"
 grep -q '^n_parts = 2$' "$data/params.gp" || fail "energy parts not found: $(grep '^n_parts' "$data/params.gp")"
 "$src/scripts/plot.sh" "$dir/extra.h5" --style all --out "$dir/figs" >"$dir/extra2.log" 2>&1 ||

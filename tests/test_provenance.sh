@@ -7,7 +7,7 @@
 # Usage: bash test_provenance.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
 cd "$scratch" && rm -rf ./* || exit 1
 printf "&time t_end=0.002 /\n&mesh n_elements=20 /\n&output prefix='plain' quiet=.true. /\n" > plain.nml
 printf "&material T0=300 ell=0.5 tau0=1e-3 tau=2e-3 mu_v=10 /\n&time t_end=0.002 /\n&mesh n_elements=20 /\n&output prefix='mat' quiet=.true. /\n" > mat.nml

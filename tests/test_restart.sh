@@ -11,7 +11,7 @@
 # Usage: bash test_restart.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py to compare the files"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py to compare the files"; exit 77; }
 cd "$scratch" && rm -rf ./* || exit 1
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
@@ -22,7 +22,7 @@ make_input() {   # make_input <file> <prefix> <t_end> <scheme> [extra &time text
         -e "s|prefix='out/exp1'|prefix='$2' checkpoint_every=250 quiet=.true.|" "$src/input/exp1.nml" > "$1"
 }
 same() {   # same <a.h5> <b.h5>: /series and /snapshots bit for bit, the same run counters
-    "$py" "$src/scripts/regression.py" same "$1" "$2"
+    "$py" "$src/tests/tools/regression.py" same "$1" "$2"
 }
 
 for scheme in euler bdf2 midpoint; do

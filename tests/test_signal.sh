@@ -7,7 +7,7 @@
 # Usage: bash test_signal.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
-py=$("$src/scripts/find_python.sh") || { echo "SKIP: no Python with h5py to compare the files"; exit 77; }
+py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py to compare the files"; exit 77; }
 cd "$scratch" && rm -rf ./* || exit 1
 failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
@@ -40,7 +40,7 @@ print(f.attrs['status'].replace(' ', '_'), int(c[0]))") || { fail "SIG$sig: .h5.
     make_input ref_$sig.nml ref_$sig "$t_end"
     "$exe" rest_$sig.nml || { fail "SIG$sig: restart exit $?"; continue; }
     "$exe" ref_$sig.nml || { fail "SIG$sig: reference run exit $?"; continue; }
-    if out=$("$py" "$src/scripts/regression.py" same ref_$sig.h5 rest_$sig.h5); then echo "PASS SIG$sig: stopped, restarted = uninterrupted, bit for bit ($out)"
+    if out=$("$py" "$src/tests/tools/regression.py" same ref_$sig.h5 rest_$sig.h5); then echo "PASS SIG$sig: stopped, restarted = uninterrupted, bit for bit ($out)"
     else fail "SIG$sig: restarted run differs from the uninterrupted one:"; echo "$out"; fi
 done
 

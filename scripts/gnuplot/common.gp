@@ -1,4 +1,4 @@
-# Shared set-up of the figure scripts fig2.gp ... fig7.gp (called by scripts/figures.sh).
+# Shared set-up of the figure scripts fig2.gp ... fig7.gp (called by scripts/paper/figures.sh).
 # Expects: datadir (h5extract.py output), out (file to write), fmt ('png' or 'pdf'),
 # W, H (size in pixels of the PNG; the PDF has the same proportions, 100 px = 1 inch).
 set encoding utf8

@@ -1,6 +1,6 @@
 # Fields of one run as surfaces over (x, t), one panel per field, up to three per row, in the
 # order given (the paper's panel layout when figures.sh passes its fields). Called by
-# scripts/plot.sh and scripts/figures.sh with the data of scripts/plotdata.py.
+# scripts/plot.sh and scripts/paper/figures.sh with the data of scripts/lib/plotdata.py.
 # Expects: datadir, out, fmt, W, H (see common.gp), fig_title; optional: with_uend = 1 adds
 # a last panel with u(1, t), the obstacle and the contact interval (Figure 6).
 load 'common.gp'

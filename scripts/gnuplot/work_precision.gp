@@ -1,4 +1,4 @@
-# Work-precision diagram (scripts/work_precision.sh): error at the final time against the
+# Work-precision diagram (bench/work_precision.sh): error at the final time against the
 # wall time of the time stepping, one point per (h, dt), one line per pairing.
 # Expects: datadir (with work_precision_{mms,exp2}.dat and work_precision_params.gp), out.
 set encoding utf8

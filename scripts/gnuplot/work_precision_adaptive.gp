@@ -1,5 +1,5 @@
 # Work-precision of adaptive against fixed time steps on experiment 1
-# (scripts/work_precision_adaptive.sh): error against wall time, one line per scheme and mode.
+# (bench/adaptive_steps.sh): error against wall time, one line per scheme and mode.
 # Expects: datadir (with work_precision_adaptive.dat and work_precision_adaptive_params.gp), out.
 set encoding utf8
 set terminal pngcairo enhanced size 1950, 700 font 'DejaVu Sans,16' linewidth 1.5

@@ -1,4 +1,4 @@
-# Work-precision of the time schemes (scripts/work_precision_schemes.sh): error against the
+# Work-precision of the time schemes (bench/work_precision_schemes.sh): error against the
 # wall time of the time stepping, one point per dt, one line per scheme (and contact law).
 # Expects: datadir (with wps_exp1.dat, wps_impact.dat and wps_params.gp), out.
 set encoding utf8

@@ -41,7 +41,7 @@ if [[ -z ${RODCONTACT:-} ]]; then
     export RODCONTACT="$build_dir/rodcontact"
 fi
 command -v gnuplot > /dev/null || { echo "contact_map: gnuplot not found (apt-get install gnuplot-nox)" >&2; exit 1; }
-python=$(scripts/find_python.sh 2> /dev/null || command -v python3) ||
+python=$(scripts/lib/find_python.sh 2> /dev/null || command -v python3) ||
     { echo "contact_map: no python3 found" >&2; exit 1; }
 
 # The axes (do not change them without a new --out: the scan directory remembers them).

@@ -1,6 +1,6 @@
 !> Independent reference integrals for the tests: P1 hat functions evaluated from their
 !> definition and integrated element by element with 3-point Gauss quadrature (exact for
-!> the polynomials of degree <= 5 that occur). Shares no code with src/fe_m.f90.
+!> the polynomials of degree <= 5 that occur). Shares no code with src/numerics/fe_m.f90.
 module quadrature_m
     use kinds_m, only: dp
     implicit none

@@ -1,0 +1,313 @@
+!> Filesystem helpers (mkdir -p, rename, unlink, existence tests) through iso_c_binding to
+!> POSIX, so that no shell is started (no execute_command_line) and every failure comes
+!> back with the system's own reason (strerror).
+!>
+!> errno is read through glibc's `__errno_location` (also provided by musl); this ties the
+!> module to Linux, which is the platform rodcontact is built for.
+module fsys_m
+    use iso_c_binding, only: c_char, c_int, c_long_long, c_ptr, c_size_t, c_null_char, c_associated, &
+                             c_f_pointer
+    use iso_fortran_env, only: int64
+    use strings_m, only: from_c_chars
+    implicit none
+    private
+    public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
+              parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size
+
+    integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
+    integer(c_int), parameter :: MODE_0755 = 493_c_int   !< octal 0755 = rwxr-xr-x
+
+    interface
+        function c_mkdir(path, mode) bind(C, name='mkdir') result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: path(*)
+            ! mode_t is a 32-bit unsigned int on Linux; 0755 fits a c_int
+            integer(c_int), value, intent(in) :: mode
+            integer(c_int) :: rc
+        end function c_mkdir
+
+        function c_rename(from, to) bind(C, name='rename') result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: from(*)
+            character(kind=c_char), intent(in) :: to(*)
+            integer(c_int) :: rc
+        end function c_rename
+
+        function c_unlink(path) bind(C, name='unlink') result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: rc
+        end function c_unlink
+
+
+        function c_access(path, mode) bind(C, name='access') result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int), value, intent(in) :: mode
+            integer(c_int) :: rc
+        end function c_access
+
+        ! fopen/fclose rather than open(2): open is variadic, which bind(C) cannot describe
+        function c_fopen(path, mode) bind(C, name='fopen') result(stream)
+            import :: c_char, c_ptr
+            character(kind=c_char), intent(in) :: path(*)
+            character(kind=c_char), intent(in) :: mode(*)
+            type(c_ptr) :: stream
+        end function c_fopen
+
+        function c_fclose(stream) bind(C, name='fclose') result(rc)
+            import :: c_ptr, c_int
+            type(c_ptr), value, intent(in) :: stream
+            integer(c_int) :: rc
+        end function c_fclose
+
+        function c_strerror(errnum) bind(C, name='strerror') result(text)
+            import :: c_int, c_ptr
+            integer(c_int), value, intent(in) :: errnum
+            type(c_ptr) :: text
+        end function c_strerror
+
+        function c_strlen(text) bind(C, name='strlen') result(n)
+            import :: c_ptr, c_size_t
+            type(c_ptr), value, intent(in) :: text
+            integer(c_size_t) :: n
+        end function c_strlen
+
+        function c_errno_location() bind(C, name='__errno_location') result(p)
+            import :: c_ptr
+            type(c_ptr) :: p
+        end function c_errno_location
+
+        function c_reserve(path, bytes) bind(C, name='rc_reserve_file_size') result(err)   ! src/base/fsys_c.c
+            import :: c_char, c_int, c_long_long
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_long_long), value, intent(in) :: bytes
+            integer(c_int) :: err
+        end function c_reserve
+
+        function c_write_errno() bind(C, name='rc_write_errno') result(err)   ! src/base/fsys_c.c
+            import :: c_int
+            integer(c_int) :: err
+        end function c_write_errno
+
+        function c_same_file(a, b) bind(C, name='rc_same_file') result(same)   ! src/base/fsys_c.c
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: a(*), b(*)
+            integer(c_int) :: same
+        end function c_same_file
+    end interface
+
+contains
+
+    !> Create directory `path` and any missing parents with mode 0755, like `mkdir -p`.
+    !> An existing directory is success; ok=.false. and a message naming the directory
+    !> and the system's reason otherwise.
+    subroutine mkdir_p(path, ok, message)
+        character(len=*), intent(in) :: path
+        logical, intent(out) :: ok
+        character(len=:), allocatable, intent(out) :: message
+
+        character(len=:), allocatable :: p
+        integer :: i, err
+        integer(c_int) :: rc
+
+        ok = .false.
+        p = trim(path)
+        if (len(p) == 0) then
+            message = 'cannot create a directory with an empty name'
+            return
+        end if
+        ! walk every prefix that ends just before a '/', then the whole path
+        do i = 1, len(p) + 1
+            if (i <= len(p)) then
+                if (p(i:i) /= '/') cycle
+            end if
+            if (i == 1) cycle                 ! the root '/'
+            if (p(i-1:i-1) == '/') cycle      ! 'a//b': the prefix 'a/' is 'a', already done
+            if (dir_exists(p(1:i-1))) cycle
+            rc = c_mkdir(p(1:i-1)//c_null_char, MODE_0755)
+            if (rc /= 0) then
+                err = errno()
+                ! another process may have created it between the test and mkdir
+                if (dir_exists(p(1:i-1))) cycle
+                if (file_exists(p(1:i-1))) then
+                    ! EEXIST's 'File exists' would not say what is wrong
+                    message = "'"//p(1:i-1)//"' exists and is not a directory"
+                else
+                    message = "cannot create directory '"//p(1:i-1)//"': "//strerror(err)
+                end if
+                return
+            end if
+        end do
+        ok = .true.
+        message = ''
+    end subroutine mkdir_p
+
+    !> Rename `from` to `to` (C rename: atomic, replaces an existing `to` on the same filesystem).
+    subroutine rename_file(from, to, ok, message)
+        character(len=*), intent(in) :: from
+        character(len=*), intent(in) :: to
+        logical, intent(out) :: ok
+        character(len=:), allocatable, intent(out) :: message
+
+        integer(c_int) :: rc
+
+        rc = c_rename(trim(from)//c_null_char, trim(to)//c_null_char)
+        ok = (rc == 0)
+        if (ok) then
+            message = ''
+        else
+            message = "cannot rename '"//trim(from)//"' to '"//trim(to)//"': "//strerror(errno())
+        end if
+    end subroutine rename_file
+
+    !> Remove a file if it exists. Errors are ignored: callers use this to clean up after
+    !> a failure that they are already reporting, and a missing file is the wanted state.
+    subroutine remove_file(path)
+        character(len=*), intent(in) :: path
+
+        integer(c_int) :: rc
+
+        rc = c_unlink(trim(path)//c_null_char)
+    end subroutine remove_file
+
+    !> True when `path` names an existing file, directory or other filesystem object.
+    function file_exists(path) result(yes)
+        character(len=*), intent(in) :: path
+        logical :: yes
+
+        yes = (c_access(trim(path)//c_null_char, F_OK) == 0)
+    end function file_exists
+
+    !> True when paths a and b both exist and are the same file (same device and inode:
+    !> through relative paths, '..', symbolic and hard links alike).
+    function same_file(a, b) result(yes)
+        character(len=*), intent(in) :: a, b
+        logical :: yes
+
+        yes = (c_same_file(trim(a)//c_null_char, trim(b)//c_null_char) == 1)
+    end function same_file
+
+    !> True when `path` names an existing directory ('<path>/.' resolves only through a
+    !> directory, so this needs no struct stat, whose layout is platform-specific).
+    function dir_exists(path) result(yes)
+        character(len=*), intent(in) :: path
+        logical :: yes
+
+        yes = (c_access(trim(path)//'/.'//c_null_char, F_OK) == 0)
+    end function dir_exists
+
+    !> Directory part of `path`: 'out/run' -> 'out', '/run' -> '/', 'run' -> ''.
+    function parent_dir(path) result(dir)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: dir
+
+        integer :: n, i
+
+        n = len_trim(path)
+        ! a trailing '/' names the directory itself, not a child ('a/b/' -> 'a')
+        do while (n > 1)
+            if (path(n:n) /= '/') exit
+            n = n - 1
+        end do
+        i = index(path(1:n), '/', back=.true.)
+        if (i == 0) then
+            dir = ''
+            return
+        end if
+        ! drop the separator and any repeated ones before it ('a//b' -> 'a')
+        do while (i > 1)
+            if (path(i-1:i-1) /= '/') exit
+            i = i - 1
+        end do
+        if (i == 1) then
+            dir = '/'
+        else
+            dir = path(1:i-1)
+        end if
+    end function parent_dir
+
+    !> Create (or truncate) `path` as an empty file. Used to learn, with the system's own
+    !> reason, whether a file can be created there before handing the name to a library
+    !> (HDF5) that reports only that it failed.
+    subroutine create_empty_file(path, ok, message)
+        character(len=*), intent(in) :: path
+        logical, intent(out) :: ok
+        character(len=:), allocatable, intent(out) :: message
+
+        type(c_ptr) :: stream
+        integer(c_int) :: rc
+
+        ok = .false.
+        stream = c_fopen(trim(path)//c_null_char, 'w'//c_null_char)
+        if (.not. c_associated(stream)) then
+            message = strerror(errno())
+            return
+        end if
+        rc = c_fclose(stream)
+        if (rc /= 0) then
+            message = strerror(errno())
+            return
+        end if
+        ok = .true.
+        message = ''
+    end subroutine create_empty_file
+
+    !> Current value of C errno; read it right after the failing call.
+    function errno() result(err)
+        integer :: err
+
+        integer(c_int), pointer :: p
+
+        call c_f_pointer(c_errno_location(), p)
+        err = int(p)
+    end function errno
+
+    !> Reserve disk space for the first `bytes` bytes of file `path` (it grows to that size if
+    !> shorter; its contents stay). ok=.false. and the system's reason ('No space left on
+    !> device', 'File too large') when the space is not there.
+    subroutine reserve_file_size(path, bytes, ok, message)
+        character(len=*), intent(in) :: path
+        integer(int64), intent(in) :: bytes
+        logical, intent(out) :: ok
+        character(len=:), allocatable, intent(out) :: message
+        integer(c_int) :: err
+
+        err = c_reserve(trim(path)//c_null_char, int(bytes, c_long_long))
+        ok = err == 0
+        message = ''
+        if (.not. ok) message = strerror(int(err))
+    end subroutine reserve_file_size
+
+    !> The system's reason for a failed write when errno names one about space or the device
+    !> ('No space left on device', 'File too large', 'Disk quota exceeded', ...), else ''.
+    !> Call it right after the failing call (HDF5 keeps the errno of its failed write).
+    function write_failure_reason() result(text)
+        character(len=:), allocatable :: text
+        integer(c_int) :: err
+
+        err = c_write_errno()
+        text = ''
+        if (err /= 0) text = strerror(int(err))
+    end function write_failure_reason
+
+    !> strerror(err) as a Fortran string.
+    function strerror(err) result(text)
+        integer, intent(in) :: err
+        character(len=:), allocatable :: text
+
+        type(c_ptr) :: cp
+        character(kind=c_char), pointer :: chars(:)
+        integer :: n
+
+        cp = c_strerror(int(err, c_int))
+        if (c_associated(cp)) then
+            n = int(c_strlen(cp))
+            call c_f_pointer(cp, chars, [n])
+            text = from_c_chars(chars)
+        else
+            text = 'unknown error'
+        end if
+    end function strerror
+
+end module fsys_m

@@ -1,0 +1,69 @@
+!> Clean stop on a signal (SPEC section 4; issue 14): install handlers for SIGTERM, SIGINT
+!> and SIGUSR1 (src/driver/signals_c.c) and ask, once per time step, whether one has arrived. The
+!> handler only sets a flag; run_m finishes the step, writes a checkpoint and closes the
+!> file as <prefix>.h5.part with status 'interrupted: <signal>' (exit EXIT_INTERRUPTED).
+module stop_signal_m
+    use iso_c_binding, only: c_int
+    use errors_m, only: fatal, EXIT_OUTPUT
+    implicit none
+    private
+    public :: install_stop_handlers, stop_signal_name, ignore_file_size_signal
+
+    interface
+        function c_install() bind(C, name='rc_install_stop_handlers') result(rc)
+            import :: c_int
+            integer(c_int) :: rc
+        end function c_install
+
+        function c_stop_signal() bind(C, name='rc_stop_signal') result(sig)
+            import :: c_int
+            integer(c_int) :: sig
+        end function c_stop_signal
+
+        function c_ignore_xfsz() bind(C, name='rc_ignore_file_size_signal') result(rc)
+            import :: c_int
+            integer(c_int) :: rc
+        end function c_ignore_xfsz
+
+        subroutine c_numbers(term, intr, usr1) bind(C, name='rc_stop_signal_numbers')
+            import :: c_int
+            integer(c_int), intent(out) :: term, intr, usr1
+        end subroutine c_numbers
+    end interface
+
+contains
+
+    !> From now on SIGTERM, SIGINT and SIGUSR1 only set the flag that stop_signal_name reads.
+    subroutine install_stop_handlers()
+        if (c_install() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot install the handlers of SIGTERM, ' // &
+                                         'SIGINT and SIGUSR1 (sigaction failed)')
+    end subroutine install_stop_handlers
+
+    !> A write past the file size limit (ulimit -f) fails with EFBIG instead of killing the
+    !> run with SIGXFSZ, so that it ends like a full disk: message, exit status 4, the
+    !> .h5.part with its last checkpoint left to restart from (output_m).
+    subroutine ignore_file_size_signal()
+        if (c_ignore_xfsz() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot ignore SIGXFSZ (sigaction failed)')
+    end subroutine ignore_file_size_signal
+
+    !> 'SIGTERM', 'SIGINT' or 'SIGUSR1' when one of them has arrived, else ''.
+    function stop_signal_name() result(name)
+        character(len=:), allocatable :: name
+        integer(c_int) :: sig, term, intr, usr1
+
+        name = ''
+        sig = c_stop_signal()
+        if (sig == 0) return
+        call c_numbers(term, intr, usr1)
+        if (sig == term) then
+            name = 'SIGTERM'
+        else if (sig == intr) then
+            name = 'SIGINT'
+        else if (sig == usr1) then
+            name = 'SIGUSR1'
+        else
+            name = 'signal'
+        end if
+    end function stop_signal_name
+
+end module stop_signal_m

@@ -1,0 +1,707 @@
+!> The HDF5 writer of SPEC section 4. Layout as h5py sees it:
+!>
+!>     /mesh/x                                          (s+1,)          float64
+!>     /series/<name>   one per fields_m's SERIES table (n_series,)     float64 or int32
+!>     /snapshots/t                                     (n_snap,)       float64
+!>     /snapshots/<field>  fields_m's FIELDS in OUTPUT_ORDER (n_snap, s+1) float64
+!>     root attributes: input values 'group.variable', version, counters, 'status'
+!>     dataset attributes: long_name, units (from the tables)
+!>
+!> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
+!> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
+!> no run leaves a truncated file under the final name (SPEC section 2). Until finish()
+!> writes the real status, the root attribute `status` reads 'incomplete'.
+!>
+!> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
+module output_m
+    use kinds_m, only: dp
+    use iso_fortran_env, only: int64
+    use strings_m, only: int_str
+    use config_m, only: MAX_COMPRESSION
+    use errors_m, only: fatal, fatal_now, EXIT_OUTPUT
+    use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
+                      write_failure_reason, reserve_file_size
+    use h5_read_m, only: h5_library_init
+    use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
+    use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
+    use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
+                    h5pset_cache_f, H5F_ACC_TRUNC_F, &
+                    H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
+                    h5pset_chunk_f, h5pset_deflate_f, h5pset_shuffle_f, h5pset_fclose_degree_f, &
+                    H5P_FILE_ACCESS_F, H5P_FILE_CREATE_F, h5pset_istore_k_f, &
+                    H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
+                    h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
+                    H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
+                    h5dwrite_f, h5dset_extent_f, h5dget_space_f, &
+                    H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
+    implicit none
+    private
+    public :: h5_writer_t
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK
+
+    !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
+    !> reals (192 KiB) whatever the length of the run.
+    integer, parameter :: SERIES_BUFFER_SIZE = 4096
+    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64
+    !> (snapshot fields: one row per chunk, see create()).
+    !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
+    !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
+    integer, parameter :: SERIES_CHUNK = 256
+    !> Half the number of entries of a node of a chunk index (a B-tree; HDF5's default 32
+    !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
+    !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
+    integer, parameter :: ISTORE_K = 4
+
+    !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
+    !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
+    type :: h5_writer_t
+        private
+        logical :: opened = .false.
+        !> true inside create(): a failure there is reported as "cannot create" against
+        !> &output prefix, later ones as "cannot write"
+        logical :: creating = .false.
+        character(len=:), allocatable :: final_path
+        character(len=:), allocatable :: part_path
+        integer :: n_nodes = 0
+        integer :: compression = 0                 !< deflate level of the extendible datasets (0: none)
+        integer(hid_t) :: file_id = -1
+        integer(hid_t) :: series_ids(N_SERIES) = -1
+        integer(hid_t) :: snap_t_id = -1
+        integer(hid_t) :: snap_field_ids(N_OUTPUT_FIELDS) = -1
+        integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
+        integer(hsize_t) :: n_snap = 0             !< snapshots in the file
+        integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
+        !> what the last complete checkpoint is ('step 250 (t = 2.5000E-02)'), '' before the first
+        character(len=:), allocatable :: checkpoint_note
+        integer :: n_buf = 0                       !< series entries waiting in the buffer
+        real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
+        character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
+        integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
+        integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
+        integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
+    contains
+        procedure :: create => writer_create
+        procedure :: append_series => writer_append_series
+        procedure :: append_snapshot => writer_append_snapshot
+        procedure :: append_native => writer_append_native
+        procedure :: attr_real => writer_attr_real
+        procedure :: attr_int => writer_attr_int
+        procedure :: attr_str => writer_attr_str
+        procedure :: attr_logical => writer_attr_logical
+        procedure :: attr_real_array => writer_attr_real_array
+        procedure :: describe_si => writer_describe_si
+        procedure :: flush => writer_flush
+        procedure :: write_checkpoint => writer_write_checkpoint
+        procedure :: write_events => writer_write_events
+        procedure :: finish => writer_finish
+        procedure :: abandon => writer_abandon
+        procedure, private :: check => writer_check
+        procedure, private :: put_real => writer_put_real
+        procedure, private :: drop => writer_drop
+        procedure, private :: fail => writer_fail
+        procedure, private :: flush_series => writer_flush_series
+        procedure, private :: reserve => writer_reserve
+        procedure, private :: attr_target => writer_attr_target
+        procedure, private :: create_extendible => writer_create_extendible
+        procedure, private :: select_append => writer_select_append
+        procedure, private :: close_spaces => writer_close_spaces
+        procedure, private :: describe => writer_describe
+    end type h5_writer_t
+
+    interface   ! the checkpoint writer (src/files/output_checkpoint_s.f90), dataset descriptions (src/files/output_describe_s.f90),
+                ! the contact events (src/files/output_events_s.f90)
+        module subroutine writer_write_events(w, t, kind)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: t(:)
+            integer, intent(in) :: kind(:)
+        end subroutine writer_write_events
+
+        module subroutine writer_append_native(w, x, values)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: x(:)
+            real(dp), intent(in) :: values(:, :)
+        end subroutine writer_append_native
+
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: state(:, :)
+            real(dp), intent(in) :: counters(:)
+            character(len=*), intent(in) :: note
+            real(dp), intent(in), optional :: previous(:, :)
+            real(dp), intent(in), optional :: control(:)
+            real(dp), intent(in), optional :: history(:, :)
+            real(dp), intent(in), optional :: events(:, :)
+            real(dp), intent(in), optional :: mesh(:)
+        end subroutine writer_write_checkpoint
+
+        module subroutine writer_drop(w, name)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: name
+        end subroutine writer_drop
+
+        module subroutine writer_put_real(w, name, values, shape2)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: name
+            real(dp), intent(in) :: values(*)
+            integer, intent(in) :: shape2(2)
+        end subroutine writer_put_real
+
+        module subroutine writer_describe(w, dset_id, what, long_name, units)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: what, long_name, units
+        end subroutine writer_describe
+
+        module subroutine writer_describe_si(w, scale, factor, si_units)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: scale, si_units
+            real(dp), intent(in) :: factor
+        end subroutine writer_describe_si
+
+        pure module function described(long_name, scale) result(text)
+            character(len=*), intent(in) :: long_name, scale
+            character(len=:), allocatable :: text
+        end function described
+    end interface
+
+contains
+
+    !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
+    !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes;
+    !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of the /snapshots
+    !> fields (with the shuffle filter before it; 0: no filters).
+    subroutine writer_create(w, prefix, x, compression)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: prefix
+        real(dp), intent(in) :: x(0:)
+        integer, intent(in), optional :: compression
+
+        character(len=:), allocatable :: dir, message
+        logical :: ok
+        integer(hid_t) :: fapl_id, fcpl_id, group_id, space_id, dset_id
+        integer(hsize_t) :: dims(1), dims2(2), chunk_rows
+        integer :: hdferr, k
+
+        if (w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: create() on a writer that is &
+                                 &already writing '"//w%part_path//"'")
+        call h5_library_init()
+        w%final_path = trim(prefix)//'.h5'
+        w%part_path = trim(prefix)//'.h5.part'
+        w%creating = .true.
+        if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
+        w%n_nodes = size(x)
+        w%compression = 0
+        if (present(compression)) w%compression = compression
+        if (w%compression < 0 .or. w%compression > MAX_COMPRESSION) &
+            call w%fail('internal error: compression level outside 0 .. 9')
+        w%n_series_written = 0
+        w%n_snap = 0
+        w%n_native_snap = 0
+        w%n_native_values = 0
+        w%n_buf = 0
+        w%logical_names = ''
+        w%checkpoint_note = ''
+
+        dir = parent_dir(prefix)
+        if (len(dir) > 0) then
+            if (.not. dir_exists(dir)) then
+                call mkdir_p(dir, ok, message)
+                if (.not. ok) call w%fail(message)
+            end if
+        end if
+        ! finish() renames the .part file to <prefix>.h5, which fails on a directory: say so
+        ! now, not after the whole run
+        if (dir_exists(w%final_path)) call w%fail("'"//w%final_path//"' exists and is a directory")
+        ! HDF5 says only that h5fcreate_f failed; creating the file first gets the system's
+        ! reason ('Permission denied', 'Is a directory', ...) for the message
+        call create_empty_file(w%part_path, ok, message)
+        if (.not. ok) call w%fail(message)
+
+        ! from here on abandon() has something to close
+        w%opened = .true.
+        ! strong close: h5fclose_f also closes any object still open, so abandon() after a
+        ! failure half-way through cannot leave the file held open
+        call h5pcreate_f(H5P_FILE_ACCESS_F, fapl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (file access)')
+        call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
+        call w%check(hdferr, 'h5pset_fclose_degree_f')
+        ! no chunk cache: every chunk is written, and its space allocated, by the h5dwrite_f
+        ! that fills it, so that a full disk fails there, between flushes, and a flush
+        ! (flush()) writes metadata only, into space reserved for it first. Appends write
+        ! whole chunks (a snapshot row, 256 series entries) except at a flush, so the cache
+        ! would save nothing.
+        call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
+        call w%check(hdferr, 'h5pset_cache_f')
+        call h5pcreate_f(H5P_FILE_CREATE_F, fcpl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (file creation)')
+        call h5pset_istore_k_f(fcpl_id, ISTORE_K, hdferr)
+        call w%check(hdferr, 'h5pset_istore_k_f')
+        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, creation_prp=fcpl_id, access_prp=fapl_id)
+        call w%check(hdferr, 'h5fcreate_f')
+        call h5pclose_f(fcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (file creation)')
+        call h5pclose_f(fapl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (file access)')
+
+        ! /mesh/x
+        call h5gcreate_f(w%file_id, 'mesh', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /mesh')
+        dims = int(w%n_nodes, hsize_t)
+        call h5screate_simple_f(1, dims, space_id, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f /mesh/x')
+        call h5dcreate_f(group_id, 'x', H5T_IEEE_F64LE, space_id, dset_id, hdferr)
+        call w%check(hdferr, 'h5dcreate_f /mesh/x')
+        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, x, dims, hdferr)
+        call w%check(hdferr, 'h5dwrite_f /mesh/x')
+        w%mesh_x_id = dset_id   ! closed by finish(), after describe_si
+        call w%describe(dset_id, '/mesh/x', 'position x along the rod (nondimensional, scale: position)', '1')
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f /mesh/x')
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /mesh')
+
+        ! /series/*: 1D, chunks of SERIES_CHUNK entries, written SERIES_BUFFER_SIZE at a time
+        call h5gcreate_f(w%file_id, 'series', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /series')
+        dims = 0
+        do k = 1, N_SERIES
+            call w%create_extendible(group_id, '/series/', trim(SERIES(k)%name), &
+                                     merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
+                                     dims, [int(SERIES_CHUNK, hsize_t)], w%series_ids(k))
+            call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), &
+                            described(SERIES(k)%long_name, SERIES(k)%scale), SERIES(k)%units)
+        end do
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /series')
+
+        ! /snapshots/*: t is 1D, the fields are (s+1, n_snap) growing by one row per snapshot
+        call h5gcreate_f(w%file_id, 'snapshots', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /snapshots')
+        chunk_rows = 1   ! one row per chunk: each append writes whole chunks (see h5pset_cache_f)
+        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, &
+                                 [int(SERIES_CHUNK, hsize_t)], w%snap_t_id)
+        call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
+                        SERIES(S_T)%units)
+        dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
+        do k = 1, N_OUTPUT_FIELDS
+            associate (field => FIELDS(OUTPUT_ORDER(k)))
+                call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
+                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k), &
+                                         compress=.true.)
+                call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), &
+                                described(field%long_name, field%scale), field%units)
+            end associate
+        end do
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /snapshots')
+
+        allocate (w%buf(SERIES_BUFFER_SIZE, N_SERIES), stat=hdferr)
+        if (hdferr /= 0) call w%fail('cannot allocate the series buffer')
+        call w%attr_str('status', 'incomplete')
+        w%creating = .false.
+    end subroutine writer_create
+
+    !> Add one series entry: values(k) of the dataset fields_m's SERIES(k) (integer ones
+    !> hold whole numbers). Held in a fixed-size buffer and written SERIES_BUFFER_SIZE
+    !> entries at a time: this is called every time step, so it must cost a few stores.
+    subroutine writer_append_series(w, values)
+        class(h5_writer_t), intent(inout) :: w
+        real(dp), intent(in) :: values(N_SERIES)
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_series() on a closed writer')
+        w%n_buf = w%n_buf + 1
+        w%buf(w%n_buf, :) = values
+        if (w%n_buf == SERIES_BUFFER_SIZE) call w%flush_series()
+    end subroutine writer_append_series
+
+    !> Add one snapshot at time t: values(:, k) holds the nodal values (boundary zeros
+    !> included) of field OUTPUT_ORDER(k). Written to the file at once (one new row per dataset).
+    subroutine writer_append_snapshot(w, t, values)
+        class(h5_writer_t), intent(inout) :: w
+        real(dp), intent(in) :: t
+        real(dp), intent(in) :: values(:, :)
+
+        integer(hid_t) :: file_space, mem_space
+        integer(hsize_t) :: row(2)
+        integer :: hdferr, k
+        character(len=:), allocatable :: what
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_snapshot() on a closed writer')
+        if (any(shape(values) /= [w%n_nodes, N_OUTPUT_FIELDS])) &
+            call w%fail('internal error: append_snapshot() given arrays whose size is not the number of mesh nodes')
+
+        call w%select_append(w%snap_t_id, '/snapshots/t', [1_hsize_t], w%n_snap, file_space, mem_space)
+        call h5dwrite_f(w%snap_t_id, H5T_NATIVE_DOUBLE, [t], [1_hsize_t], hdferr, &
+                        mem_space_id=mem_space, file_space_id=file_space)
+        call w%check(hdferr, 'h5dwrite_f /snapshots/t')
+        call w%close_spaces('/snapshots/t', file_space, mem_space)
+
+        row = [int(w%n_nodes, hsize_t), 1_hsize_t]
+        do k = 1, N_OUTPUT_FIELDS
+            what = '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
+            call w%select_append(w%snap_field_ids(k), what, row, w%n_snap, file_space, mem_space)
+            call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, values(:, k), row, hdferr, &
+                            mem_space_id=mem_space, file_space_id=file_space)
+            call w%check(hdferr, 'h5dwrite_f '//what)
+            call w%close_spaces(what, file_space, mem_space)
+        end do
+        w%n_snap = w%n_snap + 1
+    end subroutine writer_append_snapshot
+
+    !> Scalar float64 attribute of the root group (or of dataset `on`); replaced if present.
+    subroutine writer_attr_real(w, name, value, on)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: value
+        integer(hid_t), intent(in), optional :: on
+        character(len=:), allocatable :: failed
+
+        call put_attr_real(w%attr_target(name, on), name, value, failed)
+        if (failed /= '') call w%fail(failed//' failed')
+    end subroutine writer_attr_real
+
+    !> Scalar int32 root attribute; replaced if present.
+    subroutine writer_attr_int(w, name, value)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: value
+        character(len=:), allocatable :: failed
+
+        call put_attr_int(w%attr_target(name), name, value, failed)
+        if (failed /= '') call w%fail(failed//' failed')
+    end subroutine writer_attr_int
+
+    !> Logical root attribute, stored as int32 1 (.true.) / 0 (.false.): numeric, so
+    !> scripts can test it directly (`if f.attrs['output.quiet']:`), unlike 'false' strings,
+    !> which are true in Python. What makes it unambiguous: finish() lists every logical
+    !> attribute in the root attribute `logical_attributes` (docs/output.md).
+    subroutine writer_attr_logical(w, name, value)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        logical, intent(in) :: value
+
+        call w%attr_int(name, merge(1, 0, value))
+        if (index(' '//w%logical_names//' ', ' '//name//' ') == 0) w%logical_names = trim(adjustl(w%logical_names//' '//name))
+    end subroutine writer_attr_logical
+
+    !> Float64 array root attribute (e.g. polynomial coefficients); replaced if present.
+    !> An empty array is stored with a null dataspace (h5py: h5py.Empty).
+    subroutine writer_attr_real_array(w, name, values)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: values(:)
+        character(len=:), allocatable :: failed
+
+        call put_attr_real_array(w%attr_target(name), name, values, failed)
+        if (failed /= '') call w%fail(failed//' failed')
+    end subroutine writer_attr_real_array
+
+    !> String attribute of the root group (or of dataset `on`), a variable-length UTF-8
+    !> string (h5py: str); replaced if present.
+    subroutine writer_attr_str(w, name, value, on)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: value
+        integer(hid_t), intent(in), optional :: on   !< a dataset (default: the root group)
+        character(len=:), allocatable :: failed
+
+        call put_attr_str(w%attr_target(name, on), name, value, failed)
+        if (failed /= '') call w%fail(failed//' failed')
+    end subroutine writer_attr_str
+
+    !> The object an attribute goes on: dataset `on`, else the root group.
+    function writer_attr_target(w, name, on) result(obj_id)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in), optional :: on
+        integer(hid_t) :: obj_id
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
+                                       "' written on a closed writer")
+        obj_id = w%file_id
+        if (present(on)) obj_id = on
+    end function writer_attr_target
+
+    !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
+    !> crash leaves everything appended so far readable in the .part file.
+    subroutine writer_flush(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer :: hdferr
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
+        call w%flush_series()
+        call w%reserve()
+        call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
+        call w%check(hdferr, 'h5fflush_f')
+    end subroutine writer_flush
+
+    !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
+    !> flush writes the metadata that lies there. A flush that fails half-way (disk full, file
+    !> size limit) would write the superblock with the new end of the file but not all that
+    !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
+    !> leaves the file as the previous flush wrote it, with its checkpoint.
+    subroutine writer_reserve(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer(hsize_t) :: bytes
+        integer :: hdferr
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        call h5fget_filesize_f(w%file_id, bytes, hdferr)
+        call w%check(hdferr, 'h5fget_filesize_f')
+        call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
+        if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
+    end subroutine writer_reserve
+
+    !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
+    !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
+    !> `<prefix>.h5`, replacing an older file of that name.
+    subroutine writer_finish(w, status, keep_part)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: status
+        !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
+        !> continued by restart_from), not renamed
+        logical, intent(in), optional :: keep_part
+
+        integer :: hdferr, k
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: finish() on a closed writer')
+        call w%flush_series()
+        call w%attr_str('status', status)
+        call w%attr_str('logical_attributes', w%logical_names)
+        call w%flush()   ! with its space reserved; closing then writes nothing new
+
+        call h5dclose_f(w%mesh_x_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /mesh/x')
+        w%mesh_x_id = -1
+
+        do k = 1, N_SERIES
+            call h5dclose_f(w%series_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES(k)%name))
+            w%series_ids(k) = -1
+        end do
+        call h5dclose_f(w%snap_t_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /snapshots/t')
+        w%snap_t_id = -1
+        do k = 1, N_OUTPUT_FIELDS
+            call h5dclose_f(w%snap_field_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
+            w%snap_field_ids(k) = -1
+        end do
+        call h5fclose_f(w%file_id, hdferr)
+        call w%check(hdferr, 'h5fclose_f')
+        w%file_id = -1
+        w%opened = .false.
+        deallocate (w%buf)
+
+        if (present(keep_part)) then
+            if (keep_part) return
+        end if
+        call rename_file(w%part_path, w%final_path, ok, message)
+        ! the .part file is complete and valid here: keep it rather than lose the run
+        if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
+                                 //w%part_path//"')")
+    end subroutine writer_finish
+
+    !> Close whatever is open, ignoring errors, and delete the .part file. For output
+    !> failures, where no valid file can be promised. A writer that is not open is left alone.
+    subroutine writer_abandon(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer :: hdferr
+
+        if (.not. w%opened) return
+        w%opened = .false.
+        ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
+        if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
+        w%file_id = -1
+        w%series_ids = -1
+        w%mesh_x_id = -1
+        w%snap_t_id = -1
+        w%snap_field_ids = -1
+        w%n_buf = 0
+        if (allocated(w%buf)) deallocate (w%buf)
+        call remove_file(w%part_path)
+    end subroutine writer_abandon
+
+    ! ---------------------------------------------------------------- private helpers
+
+    !> On a negative HDF5 error flag: abandon the file and stop (exit status 4).
+    subroutine writer_check(w, hdferr, what)
+        class(h5_writer_t), intent(inout) :: w
+        integer, intent(in) :: hdferr
+        character(len=*), intent(in) :: what
+
+        if (hdferr >= 0) return
+        call w%fail(what//' failed')
+    end subroutine writer_check
+
+    !> Abandon the file and stop with a message naming the file and the reason. During
+    !> create() the fault is the &output prefix; later it is a write failure.
+    subroutine writer_fail(w, reason)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: reason
+
+        character(len=:), allocatable :: path, system, keep
+
+        system = write_failure_reason()   ! first: errno of the failed write, before any other call
+        if (allocated(w%part_path)) then
+            path = w%part_path
+        else
+            path = '(no file)'
+        end if
+        if (w%creating) then
+            ! abandon() only acts on an open writer; the empty .part may exist already
+            call w%abandon()
+            call remove_file(path)
+            call fatal(EXIT_OUTPUT, 'output.prefix', "cannot create '"//path//"': "//reason// &
+                       '; &output prefix must name a file in a directory that exists or can be created, '// &
+                       'and that this user may write to')
+        else
+            ! A failed write (disk full, file size limit, I/O error): the file on disk is as
+            ! the last flush left it (every checkpoint flushes), plus raw data past its end.
+            ! Closing it, or HDF5's own shutdown at exit, would flush the caches half-way
+            ! and could leave a file that no longer opens; so it is left as it is, like the
+            ! .part of a killed run, and the process ends at once (fatal_now).
+            if (system /= '') system = ' ('//system//')'
+            if (w%checkpoint_note /= '') then
+                keep = '; the file is left as its last flush wrote it, with the checkpoint of '// &
+                       w%checkpoint_note//": free space, then continue with --set time.restart_from='"// &
+                       path//"' and another output.prefix"
+            else
+                keep = "; the file is left as its last flush wrote it; it holds no checkpoint (&output "// &
+                       'checkpoint_every > 0 makes a long run restartable after such a failure)'
+            end if
+            call fatal_now(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason//system//keep)
+        end if
+    end subroutine writer_fail
+
+    !> Append the buffered series entries to the /series datasets.
+    subroutine writer_flush_series(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer(hid_t) :: file_space, mem_space
+        integer(hsize_t) :: n(1)
+        integer :: hdferr, k
+        character(len=:), allocatable :: what
+
+        if (w%n_buf == 0) return
+        n = int(w%n_buf, hsize_t)
+        do k = 1, N_SERIES
+            what = '/series/'//trim(SERIES(k)%name)
+            call w%select_append(w%series_ids(k), what, n, w%n_series_written, file_space, mem_space)
+            if (SERIES(k)%is_integer) then
+                call h5dwrite_f(w%series_ids(k), H5T_NATIVE_INTEGER, nint(w%buf(1:w%n_buf, k)), n, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            else
+                call h5dwrite_f(w%series_ids(k), H5T_NATIVE_DOUBLE, w%buf(1:w%n_buf, k), n, hdferr, &
+                                mem_space_id=mem_space, file_space_id=file_space)
+            end if
+            call w%check(hdferr, 'h5dwrite_f '//what)
+            call w%close_spaces(what, file_space, mem_space)
+        end do
+        w%n_series_written = w%n_series_written + n(1)
+        w%n_buf = 0
+    end subroutine writer_flush_series
+
+    !> Create an empty dataset `name` in group_id whose last dimension is unlimited.
+    !> dims gives the initial size (last entry 0), chunk the chunk shape.
+    !> With compress (the snapshot fields only) and compression > 0: shuffle and deflate.
+    !> Only datasets whose chunks are written once, whole, are compressed: rewriting a
+    !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
+    !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
+    !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
+    subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id, compress)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: group_id
+        character(len=*), intent(in) :: group_path
+        character(len=*), intent(in) :: name
+        integer(hid_t), intent(in) :: file_type
+        integer(hsize_t), intent(in) :: dims(:)
+        integer(hsize_t), intent(in) :: chunk(:)
+        integer(hid_t), intent(out) :: dset_id
+        logical, intent(in), optional :: compress
+
+        logical :: filtered
+        integer(hid_t) :: space_id, dcpl_id
+        integer(hsize_t) :: maxdims(size(dims))
+        integer :: hdferr, rank
+        character(len=:), allocatable :: what
+
+        what = group_path//name
+        rank = size(dims)
+        maxdims = dims
+        maxdims(rank) = H5S_UNLIMITED_F
+        call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
+        call w%check(hdferr, 'h5screate_simple_f '//what)
+        call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (dataset creation) '//what)
+        call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
+        call w%check(hdferr, 'h5pset_chunk_f '//what)
+        filtered = .false.
+        if (present(compress)) filtered = compress .and. w%compression > 0
+        if (filtered) then
+            ! shuffle first: grouping the bytes of each float by significance lets deflate
+            ! find the repeated exponent and sign bytes (docs/performance.md, "Output")
+            call h5pset_shuffle_f(dcpl_id, hdferr)
+            call w%check(hdferr, 'h5pset_shuffle_f '//what)
+            call h5pset_deflate_f(dcpl_id, w%compression, hdferr)
+            call w%check(hdferr, 'h5pset_deflate_f '//what)
+        end if
+        call h5dcreate_f(group_id, name, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
+        call w%check(hdferr, 'h5dcreate_f '//what)
+        call h5pclose_f(dcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (dataset creation) '//what)
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f '//what)
+    end subroutine writer_create_extendible
+
+    !> Grow dataset dset_id along its last dimension from `offset` to offset + block(rank)
+    !> and return the file dataspace with the new block selected and a matching memory
+    !> dataspace; the caller writes, then calls close_spaces.
+    subroutine writer_select_append(w, dset_id, what, block, offset, file_space, mem_space)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: what
+        integer(hsize_t), intent(in) :: block(:)
+        integer(hsize_t), intent(in) :: offset
+        integer(hid_t), intent(out) :: file_space
+        integer(hid_t), intent(out) :: mem_space
+
+        integer(hsize_t) :: new_dims(size(block)), start(size(block))
+        integer :: hdferr, rank
+
+        rank = size(block)
+        new_dims = block
+        new_dims(rank) = offset + block(rank)
+        start = 0
+        start(rank) = offset
+        call h5dset_extent_f(dset_id, new_dims, hdferr)
+        call w%check(hdferr, 'h5dset_extent_f '//what)
+        call h5dget_space_f(dset_id, file_space, hdferr)
+        call w%check(hdferr, 'h5dget_space_f '//what)
+        call h5sselect_hyperslab_f(file_space, H5S_SELECT_SET_F, start, block, hdferr)
+        call w%check(hdferr, 'h5sselect_hyperslab_f '//what)
+        call h5screate_simple_f(rank, block, mem_space, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
+    end subroutine writer_select_append
+
+    subroutine writer_close_spaces(w, what, file_space, mem_space)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: what
+        integer(hid_t), intent(in) :: file_space
+        integer(hid_t), intent(in) :: mem_space
+
+        integer :: hdferr
+
+        call h5sclose_f(mem_space, hdferr)
+        call w%check(hdferr, 'h5sclose_f (memory) '//what)
+        call h5sclose_f(file_space, hdferr)
+        call w%check(hdferr, 'h5sclose_f '//what)
+    end subroutine writer_close_spaces
+
+end module output_m

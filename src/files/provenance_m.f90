@@ -1,0 +1,91 @@
+!> Where a file came from (SPEC section 4, "provenance"): when, on which host, by which
+!> command, from which source, with which HDF5 library and compiler. Root attributes
+!> written by run_m; the time and host name come from src/files/provenance_c.c.
+module provenance_m
+    use iso_c_binding, only: c_char, c_int, c_null_char
+    use iso_fortran_env, only: compiler_version
+    use hdf5, only: h5get_libversion_f
+    use h5_read_m, only: h5_library_init
+    use strings_m, only: int_str, from_c_chars
+    implicit none
+    private
+    public :: utc_now, host_name, command_line, hdf5_version, fortran_compiler
+
+    interface
+        function c_utc_now(buf, n) bind(C, name='rc_utc_now') result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_int), value :: n
+            integer(c_int) :: rc
+        end function c_utc_now
+
+        function c_hostname(buf, n) bind(C, name='rc_hostname') result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_int), value :: n
+            integer(c_int) :: rc
+        end function c_hostname
+    end interface
+
+contains
+
+    !> The current time in UTC, ISO 8601: '2026-11-23T07:30:00Z' ('unknown' if the clock fails).
+    function utc_now() result(text)
+        character(len=:), allocatable :: text
+        character(kind=c_char) :: buf(32)
+
+        if (c_utc_now(buf, size(buf, kind=c_int)) == 0) then
+            text = from_c_chars(buf)
+        else
+            text = 'unknown'
+        end if
+    end function utc_now
+
+    !> The host name (gethostname(2)); 'unknown' if it fails.
+    function host_name() result(text)
+        character(len=:), allocatable :: text
+        character(kind=c_char) :: buf(256)
+
+        if (c_hostname(buf, size(buf, kind=c_int)) == 0) then
+            text = from_c_chars(buf)
+        else
+            text = 'unknown'
+        end if
+    end function host_name
+
+    !> The command that started this run, as the shell passed it (arguments joined by ' ').
+    function command_line() result(text)
+        character(len=:), allocatable :: text
+        integer :: length, stat
+
+        call get_command(length=length, status=stat)
+        if (stat > 0 .or. length == 0) then
+            text = 'unknown'
+            return
+        end if
+        allocate (character(len=length) :: text)
+        call get_command(text)
+    end function command_line
+
+    !> 'major.minor.release' of the HDF5 library this program runs with.
+    function hdf5_version() result(text)
+        character(len=:), allocatable :: text
+        integer :: major, minor, release, hdferr
+
+        call h5_library_init()
+        call h5get_libversion_f(major, minor, release, hdferr)
+        if (hdferr < 0) then
+            text = 'unknown'
+        else
+            text = int_str(major)//'.'//int_str(minor)//'.'//int_str(release)
+        end if
+    end function hdf5_version
+
+    !> The Fortran compiler that built this program (compiler_version() of iso_fortran_env).
+    function fortran_compiler() result(text)
+        character(len=:), allocatable :: text
+
+        text = compiler_version()
+    end function fortran_compiler
+
+end module provenance_m

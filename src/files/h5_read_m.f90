@@ -1,14 +1,16 @@
-!> Small reader for rodcontact HDF5 files (SPEC section 4): whole datasets and root
+!> Small reader for rodcontact HDF5 files (docs/output.md): whole datasets and root
 !> attributes, one call each (the file is opened and closed every time). Used by the tests,
 !> and by restart and summary tools. Also owns the once-only HDF5 library start-up shared
-!> with the writer (output_m).
+!> with the writer (output_m). Every file it reads is an input of the run (a checkpoint to
+!> restart from, a file to summarise): a file it cannot read stops the run with exit 2
+!> (EXIT_INPUT), naming the file and what is missing.
 !>
 !> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) comes back as
 !> values(s+1, n_snap), i.e. values(:, k) is snapshot k.
 module h5_read_m
     use iso_c_binding, only: c_ptr, c_char, c_int, c_size_t, c_loc, c_f_pointer, c_associated
     use kinds_m, only: dp
-    use errors_m, only: fatal, EXIT_OUTPUT
+    use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists
     use strings_m, only: from_c_chars
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
@@ -318,7 +320,7 @@ contains
         character(len=*), intent(in) :: what
         character(len=*), intent(in) :: reason
 
-        call fatal(EXIT_OUTPUT, 'h5_read', "cannot read '"//trim(what)//"' from '"//trim(file)//"': "//reason)
+        call fatal(EXIT_INPUT, 'h5_read', "cannot read '"//trim(what)//"' from '"//trim(file)//"': "//reason)
     end subroutine fail
 
     function open_file(file, what) result(file_id)

@@ -1,4 +1,4 @@
-!> Where a file came from (SPEC section 4, "provenance"): when, on which host, by which
+!> Where a file came from (docs/output.md, "Provenance"): when, on which host, by which
 !> command, from which source, with which HDF5 library and compiler. Root attributes
 !> written by run_m; the time and host name come from src/files/provenance_c.c.
 module provenance_m

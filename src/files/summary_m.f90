@@ -1,4 +1,4 @@
-!> One-line summary of a rodcontact HDF5 file (SPEC section 4) for parameter scans: whether
+!> One-line summary of a rodcontact HDF5 file (docs/output.md) for parameter scans: whether
 !> and when the rod touched the obstacle, how far it went, how the energy decayed, and what
 !> the run cost. `rodcontact --summary file.h5` prints summary_row(summarise_file(file));
 !> scripts/scan.sh joins the rows of all points of a scan (docs/scans.md).

@@ -22,6 +22,7 @@
 !> scaling of scheme_m), and stepper_m checks the solver against the band LU once per run.
 module block_tridiagonal_m
     use kinds_m, only: dp
+    use reals_m, only: is_zero
     use banded_m, only: band_t
     implicit none
     private
@@ -88,8 +89,8 @@ contains
             self%g(:, :, i) = block(a, i, i)
             if (i > 0) then
                 f = block(a, i, i - 1)
-                self%l(:, :, i) = product(f, self%g(:, :, i - 1), nb)
-                self%g(:, :, i) = self%g(:, :, i) - product(self%l(:, :, i), self%e(:, :, i - 1), nb)
+                self%l(:, :, i) = block_product(f, self%g(:, :, i - 1), nb)
+                self%g(:, :, i) = self%g(:, :, i) - block_product(self%l(:, :, i), self%e(:, :, i - 1), nb)
             end if
             if (i < self%last) self%e(:, :, i) = block(a, i, i + 1)
             if (inline) then
@@ -104,7 +105,7 @@ contains
             end if
         end do
         do i = 0, self%last - 1
-            self%h(:, :, i) = product(self%g(:, :, i), self%e(:, :, i), nb)
+            self%h(:, :, i) = block_product(self%g(:, :, i), self%e(:, :, i), nb)
         end do
     contains
         pure function block(a, row_node, col_node) result(blk)
@@ -134,7 +135,7 @@ contains
         info = 0
         do k = 1, n
             p = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
-            if (a(p, k) == 0.0_dp) then
+            if (is_zero(a(p, k))) then
                 info = k
                 return
             end if
@@ -243,7 +244,7 @@ contains
     !> a b for nb x nb blocks: matmul, with the loops of constant length for nb = 5 (every
     !> field in the system), which the compiler unrolls (matmul with a run-time size was a
     !> quarter of an adaptive-mesh run). The same sums in the same order as matmul's.
-    pure function product(a, b, nb) result(c)
+    pure function block_product(a, b, nb) result(c)
         integer, intent(in) :: nb
         real(dp), intent(in) :: a(nb, nb), b(nb, nb)
         real(dp) :: c(nb, nb)
@@ -253,9 +254,9 @@ contains
         else
             c = matmul(a, b)
         end if
-    end function product
+    end function block_product
 
-    !> a b for 5 x 5 blocks (product).
+    !> a b for 5 x 5 blocks (block_product).
     pure function product5(a, b) result(c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
         real(dp) :: c(NB_MAX, NB_MAX)

@@ -22,6 +22,7 @@
 !> scaling of scheme_m), and stepper_m checks the solver against the band LU once per run.
 module block_tridiagonal_m
     use kinds_m, only: dp
+    use errors_m, only: check_allocation
     use reals_m, only: is_zero
     use banded_m, only: band_t
     implicit none
@@ -70,7 +71,8 @@ contains
         integer, intent(out) :: info
         logical, intent(in), optional :: inline_inverse
         real(dp) :: f(nb, nb), work(nb * nb)
-        integer :: i, ipiv(nb), lapack_info
+        integer :: i, ipiv(nb), lapack_info, stat
+        character(len=256) :: message
         logical :: inline
 
         inline = .false.
@@ -82,8 +84,8 @@ contains
         self%last = a%n / nb - 1
         if (allocated(self%g)) deallocate (self%g, self%l, self%e, self%h)
         allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%e(nb, nb, 0:self%last - 1), &
-                  self%h(nb, nb, 0:self%last - 1), stat=lapack_info)
-        if (lapack_info /= 0) return
+                  self%h(nb, nb, 0:self%last - 1), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the block LU factors')
         info = 0
         do i = 0, self%last
             self%g(:, :, i) = block(a, i, i)
@@ -211,24 +213,17 @@ contains
         integer :: i, r, k
 
         before(1:nb) = b(:, 0)
-        do i = 0, last
-            if (i > 0) then
-                do r = 1, nb
-                    acc = b(r, i)
-                    do k = 1, nb
-                        acc = acc - l(r, k, i) * before(k)
-                    end do
-                    now(r) = acc
-                end do
-                before(1:nb) = now(1:nb)
-            end if
+        call apply_pivot(0)
+        do i = 1, last
             do r = 1, nb
-                acc = 0.0_dp
+                acc = b(r, i)
                 do k = 1, nb
-                    acc = acc + g(r, k, i) * before(k)
+                    acc = acc - l(r, k, i) * before(k)
                 end do
-                b(r, i) = acc
+                now(r) = acc
             end do
+            before(1:nb) = now(1:nb)
+            call apply_pivot(i)
         end do
         do i = last - 1, 0, -1
             do r = 1, nb
@@ -239,6 +234,21 @@ contains
                 b(r, i) = acc
             end do
         end do
+
+    contains
+
+        !> b(:, j) = g_j before: the inverted pivot block of node j applied.
+        subroutine apply_pivot(j)
+            integer, intent(in) :: j
+
+            do r = 1, nb
+                acc = 0.0_dp
+                do k = 1, nb
+                    acc = acc + g(r, k, j) * before(k)
+                end do
+                b(r, j) = acc
+            end do
+        end subroutine apply_pivot
     end subroutine solve_reduced
 
     !> a b for nb x nb blocks: matmul, with the loops of constant length for nb = 5 (every

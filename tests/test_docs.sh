@@ -3,7 +3,8 @@
 # folders' READMEs name exists, every script has its line in scripts/README.md
 # (tests/tools/doc_paths.py), and docs/uses.dot, the use graph of docs/architecture.md, is
 # the one the sources give today (tests/tools/layers.py dot src; regenerate it with that
-# command when a `use` changes). The path check is shown to fail on a copy of the README
+# command when a `use` changes) and docs/uses.svg its drawing (Graphviz, installed by
+# scripts/setup.sh). The path check is shown to fail on a copy of the README
 # that names a missing script.
 # Usage: bash test_docs.sh <rodcontact> <source dir> <scratch dir>
 set -u
@@ -17,6 +18,10 @@ check "every path the docs name exists, every script is indexed ($(head -c 600 p
 python3 "$src/tests/tools/layers.py" dot "$src/src" > uses.dot
 check "docs/uses.dot is the use graph of the sources (regenerate: python3 tests/tools/layers.py dot src > docs/uses.dot)" \
     cmp -s uses.dot "$src/docs/uses.dot"
+
+dot -Tsvg uses.dot > uses.svg 2> dot.err
+check "docs/uses.svg is docs/uses.dot drawn by Graphviz (regenerate: dot -Tsvg docs/uses.dot -o docs/uses.svg)" \
+    cmp -s uses.svg "$src/docs/uses.svg"
 
 mkdir -p copy/docs copy/scripts copy/src
 cp "$src/README.md" copy/ && cp "$src/scripts/README.md" copy/scripts/

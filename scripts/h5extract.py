@@ -55,14 +55,15 @@ import math
 import os
 import sys
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib'))
 
 # curve colours, early to late: plotdata.py's hue ramp (nine times differ in hue, not only
 # in lightness; the viridis ramp used before made t >= 0.5 hard to tell apart)
-from plotdata import colours, check_rodcontact, decode  # noqa: E402
+from plotdata import colours  # noqa: E402
+import rodrun  # noqa: E402
+from textfiles import fmt_time, write_columns  # noqa: E402
 
 MODES = ("series", "snapshot", "matrix", "figures")
 
@@ -78,33 +79,22 @@ class Parser(argparse.ArgumentParser):
 
 def open_any(path):
     """Open a rodcontact output file for reading, or raise UsageError saying why not."""
-    if not os.path.exists(path):
-        raise UsageError(f"{path}: no such file")
-    if os.path.isdir(path):
-        raise UsageError(f"{path} is a directory, not a rodcontact output file")
     try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        raise UsageError(f"cannot open {path} as HDF5: {exc}")
-    try:
-        check_rodcontact(f, path)
-    except ValueError as exc:
-        f.close()
+        return rodrun.open_run(path)
+    except rodrun.RunFileError as exc:
         raise UsageError(str(exc))
-    return f
 
 
 def units_of(d, si):
     """Factor and units of dataset d: (1, its units) or, with si, (si_factor, si_units)."""
-    if not si:
-        return 1.0, decode(d.attrs.get("units", "1"))
-    if "si_factor" not in d.attrs:
-        raise UsageError(f"--si: {d.name} has no si_factor (only runs with &material have SI units)")
-    return float(d.attrs["si_factor"]), decode(d.attrs["si_units"])
+    try:
+        return rodrun.units(d, si)
+    except rodrun.RunFileError as exc:
+        raise UsageError(f"--si: {exc}")
 
 
 def header(out, f, path, what, names, units, long_names):
-    out.write(f"# rodcontact {what} of {path} (status: {decode(f.attrs['status'])})\n")
+    out.write(f"# rodcontact {what} of {path} (status: {rodrun.status(f)})\n")
     for k, (n, ln) in enumerate(zip(names, long_names), 1):
         out.write(f"#   column {k}: {n}: {ln}\n")
     out.write("# " + " ".join(f"{n} [{u}]" for n, u in zip(names, units)) + "\n")
@@ -123,13 +113,6 @@ def chosen(listing, available, kind, path):
     return names
 
 
-def snapshot_fields(f):
-    """Names of the /snapshots fields of f (2D, one row per snapshot, one column per node)."""
-    n_snap, n_x = f["snapshots/t"].shape[0], f["mesh/x"].shape[0]
-    return [k for k, d in f["snapshots"].items()
-            if isinstance(d, h5py.Dataset) and d.shape == (n_snap, n_x)]
-
-
 def parse_time(text, what):
     try:
         t = float(text)
@@ -146,9 +129,7 @@ def fmt_row(values):
 
 def write_series(f, path, a, out):
     series = f["series"]
-    names = [k for k in series if isinstance(series[k], h5py.Dataset)]
-    names = ["t"] + [k for k in names if k != "t"]
-    names = chosen(a.datasets, names, "series dataset(s)", path)
+    names = chosen(a.datasets, rodrun.series_names(f), "series dataset(s)", path)
     if a.every < 1:
         raise UsageError(f"--every: got {a.every}; must be an integer >= 1")
     n = series["t"].shape[0]
@@ -158,7 +139,7 @@ def write_series(f, path, a, out):
         factor, u = units_of(series[k], a.si)
         cols.append(series[k][:][keep] * factor if factor != 1.0 else series[k][:][keep])
         units.append(u)
-    header(out, f, path, "series", names, units, [decode(series[k].attrs.get("long_name", k)) for k in names])
+    header(out, f, path, "series", names, units, [rodrun.long_name(series[k], k) for k in names])
     for row in zip(*cols):
         out.write(fmt_row(row))
 
@@ -171,8 +152,8 @@ def write_snapshot(f, path, a, out):
     tol = 1e-9 * max(1.0, abs(t_req))
     if t_req < ts[0] - tol or t_req > ts[-1] + tol:
         raise UsageError(f"--time: got {t_req:g}; the snapshots of {path} are at {ts[0]:g} <= t <= {ts[-1]:g}")
-    k = int(np.argmin(np.abs(ts - t_req)))
-    fields = chosen(a.fields, snapshot_fields(f), "field(s)", path)
+    k = rodrun.nearest(ts, t_req)
+    fields = chosen(a.fields, rodrun.snapshot_fields(f), "field(s)", path)
     x = f["mesh/x"]
     fx, ux = units_of(x, a.si)
     ft, ut = units_of(f["snapshots/t"], a.si)
@@ -185,13 +166,13 @@ def write_snapshot(f, path, a, out):
     note = f"snapshot {k} of {ts.size} at t = {ts[k] * ft:.17g} [{ut}] (nearest to the requested t = {t_req:g})"
     sys.stderr.write(f"h5extract.py: {note}\n")
     header(out, f, path, note, ["x"] + fields, units,
-           [decode(x.attrs.get("long_name", "x"))] + [decode(f["snapshots/" + n].attrs.get("long_name", n)) for n in fields])
+           [rodrun.long_name(x, "x")] + [rodrun.long_name(f["snapshots/" + n], n) for n in fields])
     for row in zip(*cols):
         out.write(fmt_row(row))
 
 
 def write_matrix(f, path, a, out):
-    fields = snapshot_fields(f)
+    fields = rodrun.snapshot_fields(f)
     if a.field not in fields:
         raise UsageError(f"{path} has no field {a.field}; it has: {', '.join(fields)}")
     ts = f["snapshots/t"][:]
@@ -210,8 +191,7 @@ def write_matrix(f, path, a, out):
     times = ts[keep] * ft
     names = ["x", "t", a.field]
     units = [ux, ut, uv]
-    long_names = [decode(x.attrs.get("long_name", "x")), decode(f["snapshots/t"].attrs.get("long_name", "t")),
-                  decode(d.attrs.get("long_name", a.field))]
+    long_names = [rodrun.long_name(x, "x"), rodrun.long_name(f["snapshots/t"], "t"), rodrun.long_name(d, a.field)]
     if a.format == "columns":
         header(out, f, path, f"field {a.field} over (x, t): one block per snapshot "
                "(splot FILE using 1:2:3 with pm3d)", names, units, long_names)
@@ -303,18 +283,13 @@ PROFILE_SETS = {           # run -> (sets, fields)
 SERIES_RUNS = ["exp1", "exp1_varpi05", "exp1_varpi1", "exp2"]
 MAX_SERIES_ROWS = 4000
 
-def fmt_time(t):
-    return ("%.2f" % t).rstrip("0").rstrip(".") if t != 0 else "0"
-
-
 def open_run(out_dir, run):
     path = os.path.join(out_dir, run + ".h5")
     try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        raise RuntimeError(f"cannot open {path}: {exc} (run scripts/paper/figures.sh to make it)")
-    status = f.attrs.get("status", b"")
-    status = status.decode() if isinstance(status, bytes) else str(status)
+        f = rodrun.open_run(path, checked=False)
+    except rodrun.RunFileError as exc:
+        raise RuntimeError(f"{exc} (run scripts/paper/figures.sh to make it)")
+    status = rodrun.status(f)
     if status != "complete":
         f.close()
         raise RuntimeError(f"{path}: status '{status}', not 'complete'")
@@ -332,19 +307,6 @@ def pick_times(t_snap, wanted):
         n = min(6, len(t_snap))
         idx = sorted(set(int(round(i)) for i in np.linspace(0, len(t_snap) - 1, n)))
     return idx
-
-
-def write_columns(path, titles, columns):
-    with open(path, "w", encoding="utf-8") as out:
-        out.write(" ".join('"%s"' % s for s in titles) + "\n")
-        np.savetxt(out, np.column_stack(columns), fmt="%.9g")
-
-
-def contact_interval(t, pen):
-    on = np.nonzero(pen > 0.0)[0]
-    if on.size == 0:
-        return float("nan"), float("nan")
-    return float(t[on[0]]), float(t[on[-1]])
 
 
 def figures_main(out_dir, data_dir):
@@ -376,7 +338,7 @@ def figures_main(out_dir, data_dir):
                     for fld in fields:
                         data = f["snapshots/" + fld][idx, :]
                         write_columns(os.path.join(data_dir, f"{run}.{s}.{fld}.dat"),
-                                      ["x"] + ["t = " + fmt_time(t) for t in times],
+                                      ["x"] + ["t = " + fmt_time(t, 2) for t in times],
                                       [x] + [row for row in data])
                 if run == "exp2":
                     a = f.attrs
@@ -393,15 +355,14 @@ def figures_main(out_dir, data_dir):
                 stride = max(1, math.ceil(t.size / MAX_SERIES_ROWS))
                 keep = np.r_[np.arange(0, t.size, stride), t.size - 1]
                 keep = np.unique(keep)
-                parts = sorted(k for k in f["series"].keys()
-                               if k.startswith("energy_") and f["series/" + k].shape == t.shape)
+                parts = rodrun.energy_parts(f)
                 write_columns(os.path.join(data_dir, f"{run}.series.dat"),
                               ["t", "E", "u(1,t)"] + [k[7:] for k in parts],
                               [t[keep], energy[keep], u_end[keep]] + [f["series/" + k][:][keep] for k in parts])
                 if run == "exp1":     # Fig. 4 gets a panel with the parts when they exist
                     param("n_parts", len(parts))
                     param("part_names", " ".join(k[7:] for k in parts))
-                on, off = contact_interval(t, pen)
+                on, off = rodrun.contact_interval(t, pen)
                 param(f"t_on_{run}", on)
                 param(f"t_off_{run}", off)
                 param(f"t_end_{run}", float(t[-1]))

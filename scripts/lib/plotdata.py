@@ -28,8 +28,10 @@ import math
 import os
 import sys
 
-import h5py
 import numpy as np
+
+import rodrun
+from textfiles import fmt_time, write_columns
 
 SYMBOL = {"u": "u", "v": "v", "theta": "θ", "P": "P", "q": "q", "eta": "η", "sigma": "σ"}
 ALL_FIELDS = ["u", "v", "theta", "P", "q", "eta", "sigma"]
@@ -56,23 +58,6 @@ def colours(n):
     return [colour(k / (n - 1) if n > 1 else 0.0) for k in range(n)]
 
 
-def fmt_time(t):
-    return ("%.3f" % t).rstrip("0").rstrip(".") if t != 0 else "0"
-
-
-def decode(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
-
-
-def check_rodcontact(f, path):
-    """Raise ValueError naming what makes f not a rodcontact output file."""
-    missing = [p for p in ("mesh/x", "snapshots/t", "series/t", "series/energy") if p not in f]
-    if missing:
-        raise ValueError(f"{path} is not a rodcontact output file: no {', '.join('/' + m for m in missing)}")
-    if "model.alpha" not in f.attrs or "status" not in f.attrs:
-        raise ValueError(f"{path} is not a rodcontact output file: no 'model.alpha'/'status' attributes on /")
-
-
 def stride_for(n, m=MAX_SAMPLES):
     return max(1, math.ceil((n - 1) / (m - 1)))
 
@@ -80,12 +65,6 @@ def stride_for(n, m=MAX_SAMPLES):
 def sample(n, m=MAX_SAMPLES):
     """Indices 0, k, 2k, ... and always the last one."""
     return np.unique(np.r_[np.arange(0, n, stride_for(n, m)), n - 1])
-
-
-def write_columns(path, titles, columns):
-    with open(path, "w", encoding="utf-8") as out:
-        out.write(" ".join('"%s"' % s for s in titles) + "\n")
-        np.savetxt(out, np.column_stack(columns), fmt="%.9g")
 
 
 def main(argv):
@@ -97,16 +76,11 @@ def main(argv):
     p.add_argument("--times", default=None, help="comma-separated profile times")
     a = p.parse_args(argv[1:])
     try:
-        f = h5py.File(a.run, "r")
-    except OSError as exc:
-        sys.stderr.write(f"plotdata.py: cannot open {a.run} as HDF5: {exc}\n")
+        f = rodrun.open_run(a.run)
+    except rodrun.RunFileError as exc:
+        sys.stderr.write(f"plotdata.py: {exc}\n")
         return 2
     with f:
-        try:
-            check_rodcontact(f, a.run)
-        except ValueError as exc:
-            sys.stderr.write(f"plotdata.py: {exc}\n")
-            return 2
         snaps = f["snapshots"]
         if a.fields:
             fields = [s.strip() for s in a.fields.split(",") if s.strip()]
@@ -124,7 +98,7 @@ def main(argv):
         os.makedirs(a.data_dir, exist_ok=True)
         x = f["mesh/x"][:]
         ts = f["snapshots/t"][:]
-        status = decode(f.attrs["status"])
+        status = rodrun.status(f)
         t_max = a.t_max if a.t_max is not None else float(ts[-1])
         in_range = np.nonzero(ts <= t_max * (1 + 1e-12))[0]
         if in_range.size == 0:
@@ -159,7 +133,7 @@ def main(argv):
                     out.write("\n")
             prof = data[ip, :]
             write_columns(os.path.join(a.data_dir, f"prof.{fld}.dat"),
-                          ["x"] + ["t = " + fmt_time(t) for t in tp], [x] + [r for r in prof])
+                          ["x"] + ["t = " + fmt_time(t, 3) for t in tp], [x] + [r for r in prof])
         # series
         ser = f["series"]
         t = ser["t"][:]
@@ -169,20 +143,19 @@ def main(argv):
         for name in ("u_end", "penetration", "contact_stress"):
             cols.append(ser[name][:] if name in ser else np.full(t.size, np.nan))
             titles.append(name)
-        parts = sorted(k for k in ser.keys() if k.startswith("energy_") and ser[k].shape == t.shape)
+        parts = rodrun.energy_parts(f)
         for k in parts:
             cols.append(ser[k][:])
             titles.append(k[len("energy_"):])
         write_columns(os.path.join(a.data_dir, "series.dat"), titles, [c[keep] for c in cols])
-        pen = ser["penetration"][:] if "penetration" in ser else np.zeros(t.size)
-        on = np.nonzero(pen > 0)[0]
+        t_on, t_off = rodrun.contact_interval(t, rodrun.series(f, "penetration", np.zeros(t.size)))
         at = f.attrs
         params = {
             "fields": " ".join(fields),
             "symbols": " ".join(SYMBOL[s] for s in fields),
             "n_fields": len(fields),
             "n_prof": len(tp),
-            "prof_times": " ".join(fmt_time(t) for t in tp),
+            "prof_times": " ".join(fmt_time(t, 3) for t in tp),
             "prof_colours": " ".join(colours(len(tp))),
             "t_max": t_max,
             "t_end_series": float(t[-1]),
@@ -191,8 +164,8 @@ def main(argv):
             "run_name": os.path.basename(a.run).replace('"', "'"),
             "g": float(at["contact.g"]) if "contact.g" in at else math.nan,
             "varpi": float(at["model.varpi"]),
-            "t_on": float(t[on[0]]) if on.size else math.nan,
-            "t_off": float(t[on[-1]]) if on.size else math.nan,
+            "t_on": t_on,
+            "t_off": t_off,
             "u_end_min": float(np.nanmin(cols[2])) if t.size else 0.0,
             "u_end_max": float(np.nanmax(cols[2])) if t.size else 1.0,
             "n_parts": len(parts),

@@ -15,20 +15,15 @@ Exit status: 0 success, 1 file cannot be read, 2 usage error, 77 h5py not import
 (so that a shell test can report a skip).
 """
 
+import os
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib'))
 
 
 def format_value(value):
-    """Attribute value on one line; bytes decoded, numpy scalars/arrays as plain Python."""
-    if isinstance(value, bytes):
-        return repr(value.decode("utf-8", errors="replace"))
-    if isinstance(value, str):
-        return repr(value)
-    if hasattr(value, "tolist"):  # numpy scalar or array
-        value = value.tolist()
-        if isinstance(value, bytes):
-            return repr(value.decode("utf-8", errors="replace"))
-    return repr(value)
+    """An attribute value decoded by rodrun.value on one line; arrays as Python lists."""
+    return repr(value.tolist() if hasattr(value, "tolist") else value)
 
 
 def main(argv):
@@ -37,15 +32,15 @@ def main(argv):
         return 2
     try:
         import h5py
+        import rodrun
     except ImportError as exc:
         sys.stderr.write(f"h5layout.py: h5py cannot be imported by {sys.executable}: {exc}\n")
         return 77
 
-    path = argv[1]
     try:
-        f = h5py.File(path, "r")
-    except OSError as exc:
-        sys.stderr.write(f"h5layout.py: cannot open '{path}': {exc}\n")
+        f = rodrun.open_run(argv[1], checked=False)
+    except rodrun.RunFileError as exc:
+        sys.stderr.write(f"h5layout.py: {exc}\n")
         return 1
 
     with f:
@@ -62,7 +57,7 @@ def main(argv):
             print(line)
         for name in sorted(f.attrs.keys()):
             try:
-                value = format_value(f.attrs[name])
+                value = format_value(rodrun.value(f.attrs[name]))
             except (OSError, TypeError) as exc:  # e.g. a type h5py cannot convert
                 value = f"<unreadable: {exc}>"
             print(f"attr {name} = {value}")

@@ -25,7 +25,7 @@ REQUIRED = ("mesh/x", "snapshots/t", "series/t", "series/energy")
 FIELDS = ("u", "v", "theta", "P", "q", "eta")        # the snapshot fields of every run
 
 
-class RunFileError(Exception):
+class RunFileError(OSError):
     """A file that cannot be read as a rodcontact run file; the message names the file."""
 
 

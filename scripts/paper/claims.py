@@ -27,8 +27,10 @@ import math
 import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'lib'))
+import rodrun  # noqa: E402
 
 RUNS = ["exp1", "exp1_varpi05", "exp1_varpi1", "exp2", "exp2_amp5", "exp3", "exp1_long"]
 VANISH = 1e-3            # "vanished": max-norm below this fraction of the field's peak
@@ -43,59 +45,12 @@ SYMBOL = {"u": "u", "v": "v", "theta": "θ", "P": "P", "q": "q", "eta": "η"}
 
 
 class DataError(Exception):
-    pass
+    """Runs whose data do not fit together (e.g. snapshots at different times)."""
 
 
-class Run:
-    """Everything of one HDF5 output file, read once."""
-
-    def __init__(self, out_dir, name):
-        path = os.path.join(out_dir, name + ".h5")
-        try:
-            f = h5py.File(path, "r")
-        except OSError as exc:
-            raise DataError(f"cannot open {path}: {exc}")
-        with f:
-            status = f.attrs.get("status", b"")
-            status = status.decode() if isinstance(status, bytes) else str(status)
-            if status != "complete":
-                raise DataError(f"{path}: status '{status}', not 'complete'")
-            self.name = name
-            self.attrs = {k: f.attrs[k] for k in f.attrs.keys()}
-            self.x = f["mesh/x"][:]
-            self.t = f["series/t"][:]
-            self.energy = f["series/energy"][:]
-            self.u_end = f["series/u_end"][:]
-            self.pen = f["series/penetration"][:]
-            self.ts = f["snapshots/t"][:]
-            self.snap = {k: f["snapshots/" + k][:] for k in ("u", "v", "theta", "P", "q", "eta")}
-        self.h = self.x[1] - self.x[0]
-        self.t_end = float(self.t[-1])
-
-    def a(self, key):
-        return float(self.attrs[key])
-
-    def maxnorm(self, field):
-        return np.abs(self.snap[field]).max(axis=1)
-
-    def k_at(self, t):
-        """Index of the snapshot at time t, or None when there is none."""
-        k = int(np.argmin(np.abs(self.ts - t)))
-        return k if abs(self.ts[k] - t) <= 1e-6 * max(1.0, t) else None
-
-    def contact_intervals(self):
-        on = self.pen > 0.0
-        out, k = [], 0
-        while k < on.size:
-            if on[k]:
-                j = k
-                while j + 1 < on.size and on[j + 1]:
-                    j += 1
-                out.append((float(self.t[k]), float(self.t[j])))
-                k = j + 1
-            else:
-                k += 1
-        return out
+def load(out_dir, name):
+    """The complete run out_dir/name.h5, read once (rodrun.Run; RunFileError, an OSError)."""
+    return rodrun.Run(os.path.join(out_dir, name + ".h5"), complete=True)
 
 
 def g3(v):
@@ -776,14 +731,14 @@ def main(argv):
     args = p.parse_args(argv[1:])
     args.out_label = args.out_label or args.out
     try:
-        R = {name: Run(args.out, name) for name in RUNS}
+        R = {name: load(args.out, name) for name in RUNS}
         levels = []
         for spec in args.level:
             if "=" not in spec:
                 sys.stderr.write("claims.py: --level expects LABEL=DIR, got %r\n" % spec)
                 return 2
             label, d = spec.rsplit("=", 1)
-            levels.append((label, {name: Run(d, name) for name in RUNS}))
+            levels.append((label, {name: load(d, name) for name in RUNS}))
         args.adaptive_md = None
         if args.adaptive:
             with open(args.adaptive, encoding="utf-8") as f:

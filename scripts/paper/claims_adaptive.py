@@ -16,27 +16,25 @@ mesh's nodes), which is where claims.py measures.
 import os
 import sys
 
-import h5py
-import numpy as np
-
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import claims  # noqa: E402
+import claims  # noqa: E402  (puts scripts/lib on the path)
+import rodrun  # noqa: E402
 
 HEADING = "## Experiment 2 on adaptive meshes"
 CHECKS = (claims.c_front_theta, claims.c_front_P, claims.c_contact_exp2)
 
 
-def describe(name, out_dir):
-    with h5py.File(os.path.join(out_dir, name + ".h5"), "r") as f:
-        a = f.attrs
+def describe(run):
+    """One line about an adaptive-mesh run (rodrun.Run): its settings, elements, cost."""
+    with rodrun.open_run(run.path) as f:
         n_el = f["series/n_elements"][:]
-        scheme = a["time.scheme"].decode() if isinstance(a["time.scheme"], bytes) else str(a["time.scheme"])
-        steps = "adaptive steps, error_tol %g" % a["time.error_tol"] if a["time.adaptive"] else "dt = %g" % a["time.dt"]
-        return ("coarse mesh %d, max_level %d (finest h = 1/%d), error_tol %g; %s, %s; elements %d to %d (mean %.0f), "
-                "%d remeshes, %d steps, %.1f s" % (
-                    a["mesh.n_elements"], a["mesh.max_level"], a["mesh.n_elements"] * 2 ** a["mesh.max_level"],
-                    a["mesh.error_tol"], scheme, steps, n_el.min(), n_el.max(), n_el.mean(), a["mesh.remeshes"],
-                    a["steps"], a["wall_seconds"]))
+    a = run.attrs
+    steps = "adaptive steps, error_tol %g" % a["time.error_tol"] if a["time.adaptive"] else "dt = %g" % a["time.dt"]
+    return ("coarse mesh %d, max_level %d (finest h = 1/%d), error_tol %g; %s, %s; elements %d to %d (mean %.0f), "
+            "%d remeshes, %d steps, %.1f s" % (
+                a["mesh.n_elements"], a["mesh.max_level"], a["mesh.n_elements"] * 2 ** a["mesh.max_level"],
+                a["mesh.error_tol"], a["time.scheme"], steps, n_el.min(), n_el.max(), n_el.mean(), a["mesh.remeshes"],
+                a["steps"], a["wall_seconds"]))
 
 
 def section(out_dir, names):
@@ -47,8 +45,8 @@ def section(out_dir, names):
     ok = True
     results = []
     for name in names:
-        r = claims.Run(out_dir, name)
-        L.append("- `%s`: %s." % (name, describe(name, out_dir)))
+        r = claims.load(out_dir, name)
+        L.append("- `%s`: %s." % (name, describe(r)))
         results.append((name, [check({"exp2": r}) for check in CHECKS]))
     L += ["", "| run | # | claim | measured | holds |", "|---|---|---|---|---|"]
     for name, res in results:
@@ -72,7 +70,7 @@ def main(argv):
         return 2
     try:
         text, ok = section(argv[1], argv[2:])
-    except claims.DataError as exc:
+    except (claims.DataError, OSError) as exc:
         sys.stderr.write("claims_adaptive.py: %s\n" % exc)
         return 2
     sys.stdout.write(text)

@@ -28,6 +28,7 @@ As a module:
     ex = ExactLinear.from_attrs(h5file.attrs, n_modes=2**18)
     fields = ex.fields(t)              # dict u, v, theta, P, q, eta on ex.x (midpoints)
     err = ex.rel_l2(fields, x_nodes, {"u": u_nodes, ...})   # relative L2 per field
+    cache = Cache(2**18); ex, fields = cache.get(attrs, t)  # each model and t computed once
 As a program:
     <python with scipy, h5py> tests/tools/exact_linear.py RUN.h5 [--times t1,t2,...] [--modes K]
     <python> tests/tools/exact_linear.py --self-check
@@ -38,6 +39,7 @@ contact), 2 usage / not a rodcontact file.
 
 import argparse
 import math
+import os
 import sys
 
 import numpy as np
@@ -223,6 +225,29 @@ class ExactLinear:
         return err
 
 
+class Cache:
+    """Exact solutions for the runs of a study: one ExactLinear per model and initial data
+    (the model.* and initial.* root attributes), and its fields per t, each computed once."""
+
+    def __init__(self, n_modes=2**18):
+        self.n_modes = n_modes
+        self.models, self.cache = {}, {}
+
+    @staticmethod
+    def key(attrs):
+        return tuple(sorted((k, str(np.asarray(v).tolist())) for k, v in attrs.items()
+                            if k.startswith("model.") or k.startswith("initial.")))
+
+    def get(self, attrs, t):
+        """(ExactLinear, its fields at t) for a run with the root attributes attrs."""
+        key = self.key(attrs)
+        if key not in self.models:
+            self.models[key] = ExactLinear.from_attrs(attrs, self.n_modes)
+        if (key, t) not in self.cache:
+            self.cache[(key, t)] = self.models[key].fields(t)
+        return self.models[key], self.cache[(key, t)]
+
+
 def first_contact_time(f):
     pen = f["series/penetration"][:]
     on = np.nonzero(pen > 0.0)[0]
@@ -233,24 +258,23 @@ def errors_of_run(path, times=None, n_modes=2**18):
     """{t: {field: relative L2 error}} of the run file at the given snapshot times (default:
     every snapshot with 0 < t < first contact). Raises ValueError for a time at or after
     the first contact or without a snapshot."""
-    import h5py
-    with h5py.File(path, "r") as f:
-        if "model.alpha" not in f.attrs or "snapshots/t" not in f:
-            raise KeyError(f"{path} is not a rodcontact output file")
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))),
+                                    'scripts', 'lib'))
+    import rodrun     # here: the self-check needs no h5py
+    with rodrun.open_run(path) as f:
         t_contact = first_contact_time(f)
         ts = f["snapshots/t"][:]
         if times is None:
             times = [float(t) for t in ts if 0.0 < t < t_contact]
-        ex = ExactLinear.from_attrs(f.attrs, n_modes)
-        x = f["mesh/x"][:]
+        ex = ExactLinear.from_attrs(rodrun.attributes(f), n_modes)
         out = {}
         for t in times:
             if t >= t_contact:
                 raise ValueError(f"t = {t:g} is not before the first contact (t = {t_contact:g})")
-            k = int(np.argmin(np.abs(ts - t)))
+            k = rodrun.nearest(ts, t)
             if abs(ts[k] - t) > 1e-9 * max(1.0, t):
                 raise ValueError(f"{path} has no snapshot at t = {t:g}")
-            nodal = {name: f["snapshots/" + name][k, :] for name in FIELDS}
+            x, nodal = rodrun.snapshot(f, k, FIELDS)
             out[t] = ex.rel_l2(ex.fields(float(ts[k])), x, nodal)
     return out
 

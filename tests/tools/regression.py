@@ -14,17 +14,22 @@ dt^2 z_s) amplifies that to ~2e-10 of its scale; a change of the scheme moves re
 results regenerates the references (tests/test_regression.sh --update) and says why in the
 commit.
 """
+import os
 import sys
 
 import h5py
 import numpy as np
+
+_repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.join(_repo, 'scripts', 'lib'))
+import rodrun  # noqa: E402
 
 RTOL = 1e-8
 GROUPS = ("mesh", "series", "snapshots")
 
 
 def store(run, ref):
-    with h5py.File(run, "r") as src, h5py.File(ref, "w") as dst:
+    with rodrun.open_run(run, checked=False) as src, h5py.File(ref, "w") as dst:
         for group in GROUPS:
             for name, dset in src[group].items():
                 if isinstance(dset, h5py.Dataset):
@@ -34,9 +39,9 @@ def store(run, ref):
 
 def compare(run, ref):
     problems = []
-    with h5py.File(run, "r") as got, h5py.File(ref, "r") as want:
-        if got.attrs["status"] != want.attrs["status"]:
-            problems.append(f"status {got.attrs['status']!r}, reference {want.attrs['status']!r}")
+    with rodrun.open_run(run, checked=False) as got, rodrun.open_run(ref, checked=False) as want:
+        if rodrun.status(got) != rodrun.status(want):
+            problems.append(f"status {rodrun.status(got)!r}, reference {rodrun.status(want)!r}")
         for group in GROUPS:
             for name, dset in want[group].items():
                 path = f"{group}/{name}"
@@ -68,7 +73,7 @@ def same(first, second):
     /series and /snapshots datasets (with /snapshots/native of an adaptive mesh) with the
     same bytes, and the same run counters."""
     bad = []
-    with h5py.File(first, "r") as a, h5py.File(second, "r") as b:
+    with rodrun.open_run(first, checked=False) as a, rodrun.open_run(second, checked=False) as b:
         groups = ["series", "snapshots"] + (["snapshots/native"] if "snapshots/native" in a or "snapshots/native" in b else [])
         for g in groups:
             if g not in a or g not in b:
@@ -84,18 +89,25 @@ def same(first, second):
                     diff = float(np.max(np.abs(x - y))) if x.shape == y.shape else "n/a"
                     bad.append(f"/{g}/{k}: shapes {x.shape} vs {y.shape}, max diff {diff}")
         for k in SAME_ATTRIBUTES:
-            if a.attrs[k] != b.attrs[k]:
-                bad.append(f"attribute {k}: {a.attrs[k]} vs {b.attrs[k]}")
+            va, vb = rodrun.value(a.attrs[k]), rodrun.value(b.attrs[k])
+            if va != vb:
+                bad.append(f"attribute {k}: {va} vs {vb}")
     print("\n".join(bad) if bad else "identical")
     return 1 if bad else 0
 
 
-if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("store", "compare", "same"):
+def main(argv):
+    if len(argv) != 4 or argv[1] not in ("store", "compare", "same"):
         sys.exit(__doc__)
-    if sys.argv[1] == "store":
-        store(sys.argv[2], sys.argv[3])
-        sys.exit(0)
-    if sys.argv[1] == "same":
-        sys.exit(same(sys.argv[2], sys.argv[3]))
-    sys.exit(compare(sys.argv[2], sys.argv[3]))
+    try:
+        if argv[1] == "store":
+            store(argv[2], argv[3])
+            return 0
+        return (same if argv[1] == "same" else compare)(argv[2], argv[3])
+    except rodrun.RunFileError as exc:
+        sys.stderr.write(f"regression.py: {exc}\n")
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -35,14 +35,15 @@ import os
 import statistics
 import sys
 
-import h5py
 import numpy as np
 
 _repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(_repo, 'tests', 'tools'))  # exact_linear
+sys.path.insert(0, os.path.join(_repo, 'scripts', 'lib'))  # rodrun, textfiles
 import exact_linear  # noqa: E402
-from adaptive_steps import attr  # noqa: E402  (a root attribute as a Python value)
+import rodrun  # noqa: E402
+import textfiles  # noqa: E402
+from rodrun import attr  # noqa: E402
 
 FIELDS = exact_linear.FIELDS
 SHOWN = ["u", "theta", "P", "eta"]
@@ -55,29 +56,22 @@ TARGET_PREFIX = "| exp2 adaptive mesh"
 
 def read_final(path):
     """The last snapshot of a run: {x, fields, t, native, wall, steps, ...}."""
-    with h5py.File(path, "r") as f:
+    with rodrun.open_run(path) as f:
         d = {"path": path, "status": attr(f, "status"), "wall": attr(f, "wall_seconds"),
              "steps": attr(f, "steps"), "rejected": attr(f, "time_steps_rejected"),
-             "attrs": {k: f.attrs[k] for k in f.attrs.keys()}}
+             "attrs": rodrun.attributes(f)}
         ts = f["snapshots/t"][:]
         k = ts.size - 1
         d["t"] = float(ts[k])
-        d["x_grid"] = f["mesh/x"][:]
-        d["grid"] = {n: f["snapshots/" + n][k, :] for n in FIELDS}
-        d["native"] = "snapshots/native" in f
+        d["x_grid"], d["grid"] = rodrun.snapshot(f, k, FIELDS)
+        d["native"] = rodrun.has_native(f)
+        d["x"], d["fields"] = rodrun.native_snapshot(f, k, FIELDS)
         if d["native"]:
             g = f["snapshots/native"]
-            off, cnt = int(g["offset"][k]), int(g["count"][k])
             d["native_counts"] = [int(c) for c in g["count"][:]]
-            d["x"] = g["x"][off:off + cnt]
-            d["fields"] = {n: g[n][off:off + cnt] for n in FIELDS}
             d["native_checks"] = native_checks(g, ts)
-        else:
-            d["x"] = d["x_grid"]
-            d["fields"] = d["grid"]
-        pen = f["series/penetration"][:]
-        on = np.nonzero(pen > 0)[0]
-        d["t_contact"] = float(f["series/t"][on[0]]) if on.size else None
+        t_on = rodrun.contact_interval(rodrun.series(f, "t"), rodrun.series(f, "penetration"))[0]
+        d["t_contact"] = None if math.isnan(t_on) else t_on
         for name in ("mesh.n_elements", "mesh.max_level", "mesh.error_tol", "time.error_tol", "time.dt"):
             d[name] = attr(f, name)
         d["dt_min_used"] = d["dt_max_used"] = None
@@ -116,26 +110,6 @@ def native_checks(g, ts):
     return problems
 
 
-class Exact:
-    """The exact solution per (model, initial data) and t, computed once."""
-
-    def __init__(self):
-        self.models, self.cache = {}, {}
-
-    @staticmethod
-    def key(attrs):
-        return tuple(sorted((k, str(np.asarray(v).tolist())) for k, v in attrs.items()
-                            if k.startswith("model.") or k.startswith("initial.")))
-
-    def get(self, attrs, t):
-        key = self.key(attrs)
-        if key not in self.models:
-            self.models[key] = exact_linear.ExactLinear.from_attrs(attrs, N_MODES)
-        if (key, t) not in self.cache:
-            self.cache[(key, t)] = self.models[key].fields(t)
-        return self.models[key], self.cache[(key, t)]
-
-
 def rel_l2_between(xa, fa, xb, fb, n=2**18):
     """Relative L2 distance of P1 function a from P1 function b, both at n midpoints."""
     xm = (np.arange(n) + 0.5) / n
@@ -145,7 +119,7 @@ def rel_l2_between(xa, fa, xb, fb, n=2**18):
 
 
 def cmd_points(raw, spec):
-    ex = Exact()
+    ex = exact_linear.Cache(N_MODES)
     for line in open(spec):
         w = line.split()
         if not w:
@@ -214,9 +188,7 @@ def cmd_after(raw, spec):
 
 # ------------------------------------------------------------------------------------ report
 def pct(e):
-    if e is None or (isinstance(e, float) and math.isnan(e)):
-        return "–"
-    return ("%.3g %%" % (100 * e)) if 100 * e >= 0.01 else ("%.1e %%" % (100 * e))
+    return textfiles.pct(e, 3)
 
 
 def describe(r):
@@ -255,11 +227,7 @@ def cmd_report(outdir, figure):
     rows = [json.loads(l) for l in open(os.path.join(outdir, "work_precision_mesh.raw")) if l.strip()]
     after_path = os.path.join(outdir, "work_precision_mesh.after")
     after = [json.loads(l) for l in open(after_path) if l.strip()] if os.path.exists(after_path) else []
-    meta = {}
-    for line in open(os.path.join(outdir, "work_precision_mesh.meta")):
-        if "=" in line:
-            k, v = line.rstrip("\n").split("=", 1)
-            meta[k] = v
+    meta = textfiles.read_meta(os.path.join(outdir, "work_precision_mesh.meta"))
     quick = meta.get("quick") == "1"
     main = [r for r in rows if not r["series"].startswith("pulse_") and "failed" not in r]
     failed = [r for r in rows if "failed" in r]

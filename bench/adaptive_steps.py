@@ -28,8 +28,11 @@ import os
 import statistics
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'scripts', 'lib'))
+import rodrun  # noqa: E402
+from textfiles import read_meta  # noqa: E402
 
 T_SPLIT = 2.0              # contact phase [0, 2] (release at t ~ 1.45) and decay (2, t_end]
 TARGET_A_RATIO = 20.0      # issue 12: max|du| <= 1e-5, events within 1e-5, >= 20x less wall time
@@ -43,26 +46,14 @@ STYLE = {("fixed", "euler"): ("#c0392b", 7, 1), ("fixed", "bdf2"): ("#1f5fa8", 5
          ("adaptive", "midpoint"): ("#5b2c83", 13, 2)}
 
 
-def attr(f, name, default=None):
-    if name not in f.attrs:
-        return default
-    v = f.attrs[name]
-    if isinstance(v, bytes):
-        return v.decode()
-    if isinstance(v, np.ndarray) and v.size == 1:
-        v = v.reshape(-1)[0]
-    return v.item() if hasattr(v, "item") else v
-
-
 def read_run(path):
-    with h5py.File(path, "r") as f:
-        d = {"t": f["series/t"][:], "u": f["series/u_end"][:],
-             "ev_t": f["events/t"][:] if "events/t" in f else np.zeros(0),
-             "ev_kind": f["events/kind"][:] if "events/kind" in f else np.zeros(0, dtype=int)}
+    with rodrun.open_run(path) as f:
+        d = {"t": rodrun.series(f, "t"), "u": rodrun.series(f, "u_end")}
+        d["ev_t"], d["ev_kind"] = rodrun.events(f)
         for k in ("wall_seconds", "steps", "time_steps_rejected", "time_error_estimate",
                   "time_error_estimate_relative", "time_steps_at_dt_min", "status", "t_final"):
-            d[k] = attr(f, k)
-        d["dt_series"] = f["series/dt"][:] if "series/dt" in f else None
+            d[k] = rodrun.attr(f, k)
+        d["dt_series"] = rodrun.series(f, "dt")
     return d
 
 
@@ -149,8 +140,8 @@ def cmd_refcheck(args):
            "ref_onset": events(ref, 1e300)[0], "ref_release": events(ref, 1e300)[1],
            "ref_n_events": n_events(ref, 1e300), "ref_elapsed": elapsed(ref_path)}
     u = ref["u"]
-    with h5py.File(ref_path, "r") as f:
-        energy = f["series/energy"][:]
+    with rodrun.open_run(ref_path) as f:
+        energy = rodrun.series(f, "energy")
     out["energy"] = [(float(ref["t"][i]), float(energy[i])) for i in
                      sorted({int(np.searchsorted(ref["t"], x)) for x in (0, 2, 10, 20, 40)} & set(range(energy.size)))]
     out["energy_max"] = float(energy.max())
@@ -220,11 +211,7 @@ def cmd_report(args):
     outdir = args[0]
     rows = [json.loads(l) for l in open(os.path.join(outdir, "work_precision_adaptive.raw")) if l.strip()]
     rc = json.loads(open(os.path.join(outdir, "work_precision_adaptive.refcheck")).read())
-    meta = {}
-    for line in open(os.path.join(outdir, "work_precision_adaptive.meta")):
-        if "=" in line:
-            k, v = line.rstrip("\n").split("=", 1)
-            meta[k] = v
+    meta = read_meta(os.path.join(outdir, "work_precision_adaptive.meta"))
     t_long = float(meta["t_end"])
     t_short = float(meta["t_end_short"])
     long_rows = [r for r in rows if r["t_end"] == t_long]

@@ -15,16 +15,17 @@ bench/adaptive_mesh.py measures them (an adaptive-mesh run on its own final mesh
 import sys
 import os
 
-import h5py
 import numpy as np
 
 _repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(_repo, 'scripts', 'paper'))  # claims
 sys.path.insert(0, os.path.join(_repo, 'tests', 'tools'))  # exact_linear
+sys.path.insert(0, os.path.join(_repo, 'scripts', 'lib'))  # rodrun
 import claims  # noqa: E402
 import exact_linear  # noqa: E402
-from adaptive_mesh import Exact, read_final, pct  # noqa: E402
+import rodrun  # noqa: E402
+from adaptive_mesh import N_MODES, read_final, pct  # noqa: E402
 
 HEADING = "## Error budget of experiment 2"
 T1_REF = "bdf2_s8000_dt6.25e-6"       # the issue's uniform BDF2 run for the 1 % target
@@ -32,7 +33,7 @@ WINDOWS = 512                          # the rod cut into 1/512 windows for the 
 
 
 def load(spec):
-    ex = Exact()
+    ex = exact_linear.Cache(N_MODES)
     rows = []
     for line in open(spec):
         w = line.split()
@@ -42,7 +43,6 @@ def load(spec):
         d = read_final(path)
         model, exact = ex.get(d["attrs"], d["t"])
         scheme = d["attrs"]["time.scheme"]
-        scheme = scheme.decode() if isinstance(scheme, bytes) else str(scheme)
         rows.append({"label": label, "group": group, "t": d["t"], "path": path, "wall": d["wall"],
                      "steps": d["steps"], "err": model.rel_l2(exact, d["x"], d["fields"]),
                      "s": d["mesh.n_elements"], "dt": d["time.dt"], "scheme": scheme,
@@ -55,10 +55,10 @@ def error_map(path):
     """Per snapshot t > 0: the fraction of [0, 1] (in windows of 1/WINDOWS) that holds 90 % and
     95 % of the squared error of P and of eta."""
     out = []
-    with h5py.File(path, "r") as f:
+    with rodrun.open_run(path) as f:
         ts = f["snapshots/t"][:]
         x = f["mesh/x"][:]
-        ex = exact_linear.ExactLinear.from_attrs(f.attrs, 2**16)
+        ex = exact_linear.ExactLinear.from_attrs(rodrun.attributes(f), 2**16)
         for k in range(1, ts.size):
             exact = ex.fields(float(ts[k]))
             row = {"t": float(ts[k])}

@@ -19,6 +19,9 @@ import re
 import statistics
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'scripts', 'lib'))
+import textfiles  # noqa: E402
+
 TARGET_EXP1_SECONDS = 2.5
 TARGET_RSS_MB = 50.0
 TARGET_SPEEDUP = 5.0
@@ -29,15 +32,6 @@ STEPS_CASES = [("step_monolithic_euler", "monolithic, Euler"), ("step_monolithic
 
 def kv(words):
     return dict(w.split("=", 1) for w in words if "=" in w)
-
-
-def read_meta(outdir):
-    meta = {}
-    for line in open(os.path.join(outdir, "meta.txt")):
-        if "=" in line:
-            k, v = line.rstrip("\n").split("=", 1)
-            meta[k] = v
-    return meta
 
 
 def read_kernels(outdir):
@@ -93,7 +87,7 @@ def pretty_function(name):
 
 def main():
     outdir, doc = sys.argv[1], sys.argv[2]
-    meta = read_meta(outdir)
+    meta = textfiles.read_meta(os.path.join(outdir, "meta.txt"))
     cases, setups = read_kernels(outdir)
     blases = [b for b in ("reference", "openblas") if any(k[0] == b for k in cases)]
     sizes = sorted({k[1] for k in cases})

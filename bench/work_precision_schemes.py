@@ -17,7 +17,9 @@ import math
 import os
 import sys
 
-from work_precision import time_at
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'scripts', 'lib'))
+import textfiles  # noqa: E402
+from work_precision import time_at  # noqa: E402
 
 SCHEMES = [("euler", "Euler"), ("bdf2", "BDF2"), ("midpoint", "midpoint")]
 EXP1_ERRORS = [("e_uend_max", "max error of u(1,t), t in [0, T]"), ("e_uend_pre", "the same before contact"),
@@ -39,15 +41,6 @@ def read_lines(path):
                 pass
         rows.append(d)
     return rows
-
-
-def read_meta(outdir):
-    meta = {}
-    for line in open(os.path.join(outdir, "wps_meta.txt")):
-        if "=" in line:
-            k, v = line.rstrip("\n").split("=", 1)
-            meta[k] = v
-    return meta
 
 
 def by_scheme(rows, scheme):
@@ -205,7 +198,7 @@ def impact_reading(seqs, floor):
 
 def main():
     outdir = sys.argv[1]
-    meta = read_meta(outdir)
+    meta = textfiles.read_meta(os.path.join(outdir, "wps_meta.txt"))
     exp1 = read_lines(os.path.join(outdir, "wps_exp1.raw"))
     impact = {law: read_lines(os.path.join(outdir, "wps_impact_%s.raw" % law)) for law in ("penalty", "signorini")}
     floor = read_lines(os.path.join(outdir, "wps_impact_floor.raw"))

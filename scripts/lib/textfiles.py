@@ -1,15 +1,15 @@
 """The small text formats the scripts share besides run files (those are scripts/lib/rodrun.py):
 column files for gnuplot, the key=value files the benchmark scripts write next to their raw
-data (meta files), and how times and relative errors are printed.
+data (meta files), and how times and relative errors are printed. Plain Python: only
+write_columns needs numpy (the benchmark reports run with any python3).
 """
 
 import math
 
-import numpy as np
-
 
 def write_columns(path, titles, columns):
     """A text file for gnuplot: a line of quoted column titles, then the columns (%.9g)."""
+    import numpy as np
     with open(path, "w", encoding="utf-8") as out:
         out.write(" ".join('"%s"' % s for s in titles) + "\n")
         np.savetxt(out, np.column_stack(columns), fmt="%.9g")

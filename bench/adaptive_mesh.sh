@@ -102,7 +102,7 @@ run() {   # run <prefix> <input> <arg>...: one run; exit 1 on failure (2 only fo
         exit 1
     fi
 }
-wall_of() { "$py" -c 'import h5py, sys; print(float(h5py.File(sys.argv[1], "r").attrs.get("wall_seconds", 1e9)))' "$1"; }
+wall_of() { "$py" "$repo_root/scripts/lib/rodrun.py" attr "$1" wall_seconds 1e9; }
 
 # --- does this binary have the adaptive mesh? -------------------------------------------------
 mesh_adaptive=no

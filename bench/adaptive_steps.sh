@@ -71,7 +71,7 @@ run() {   # run <prefix> <arg>...: one run of exp1, /usr/bin/time's elapsed into
         exit 1
     fi
 }
-wall_of() { "$py" -c 'import h5py, sys; print(float(h5py.File(sys.argv[1], "r").attrs["wall_seconds"]))' "$1"; }
+wall_of() { "$py" "$repo_root/scripts/lib/rodrun.py" attr "$1" wall_seconds; }
 
 raw="$out/work_precision_adaptive.raw"
 : >"$raw"
@@ -82,12 +82,14 @@ load_start="$(cut -d' ' -f1-3 /proc/loadavg)"
 # --- the reference and its check ------------------------------------------------------------
 ref_args() { echo --set time.t_end="$t_long" --set time.scheme=bdf2 --set time.dt="$1" --set output.series_every=1; }
 if [[ "${WPA_REUSE_REF:-0}" == 1 && -s "$ref.h5" && -s "$check.h5" ]] &&
-    "$py" - "$ref.h5" "$check.h5" "$t_long" <<'PY'
-import sys, h5py
+    "$py" - "$repo_root/scripts/lib" "$ref.h5" "$check.h5" "$t_long" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[1])
+import rodrun
 ok = True
-for p in sys.argv[1:3]:
-    with h5py.File(p, "r") as f:
-        ok &= f.attrs["status"] in (b"complete", "complete") and abs(float(f.attrs["t_final"]) - float(sys.argv[3])) < 1e-9
+for p in sys.argv[2:4]:
+    with rodrun.open_run(p) as f:
+        ok &= rodrun.status(f) == "complete" and abs(rodrun.attr(f, "t_final") - float(sys.argv[4])) < 1e-9
 sys.exit(0 if ok else 1)
 PY
 then

@@ -253,16 +253,16 @@ if h5python="$("$repo_root/scripts/lib/find_python.sh" 2>/dev/null)"; then
         env LD_LIBRARY_PATH="$ref_path" "$exe" "$input" --set time.t_end=3 --set time.scheme="$scheme" \
             --set output.snapshot_every=100000 --set output.prefix="$tmp/energy" --set output.quiet=.true. \
             >/dev/null 2>"$tmp/energy.err" || { cat "$tmp/energy.err" >&2; exit 1; }
-        "$h5python" - "$tmp/energy.h5" "$scheme" >>"$out/energy.raw" <<'PY'
+        "$h5python" - "$tmp/energy.h5" "$scheme" "$repo_root/scripts/lib" >>"$out/energy.raw" <<'PY'
 import sys
-import h5py
 import numpy as np
-with h5py.File(sys.argv[1], "r") as f:
+sys.path.insert(0, sys.argv[3])
+import rodrun
+with rodrun.open_run(sys.argv[1]) as f:
     e = f["series/energy"][:]
     pen = f["series/penetration"][:]
     law_rise = float(f.attrs["energy_max_relative_rise"])
-    law = f.attrs["energy_law"]
-    law = law.decode() if isinstance(law, bytes) else str(law)
+    law = rodrun.text(f.attrs["energy_law"])
 rel = np.diff(e) / np.maximum(e[:-1], 1e-300)          # relative change of E^n, step n-1 -> n
 contact = (pen[1:] > 0) | (pen[:-1] > 0)
 print("scheme=%s steps=%d contact_steps=%d law_max_rise=%.3e En_max_rise_contact=%.3e "

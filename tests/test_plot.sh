@@ -46,8 +46,8 @@ done
     solver.max_iter=3 output.snapshot_every=7
 "$prog" "$dir/failed.nml" >/dev/null 2>&1
 [[ $? -eq 3 ]] || fail "the run meant to fail did not exit 3"
-"$py" -c 'import sys, h5py; s = h5py.File(sys.argv[1], "r").attrs["status"]; s = s.decode() if isinstance(s, bytes) else s; sys.exit(0 if s.startswith("failed") else 1)' \
-    "$dir/failed.h5" || fail "failed.h5 has no status 'failed: ...'"
+[[ "$("$py" "$src/scripts/lib/rodrun.py" attr "$dir/failed.h5" status)" == failed* ]] ||
+    fail "failed.h5 has no status 'failed: ...'"
 if ! "$src/scripts/plot.sh" "$dir/failed.h5" --style all --out "$dir/figs" >"$dir/failed.log" 2>&1; then
     fail "plot.sh on a failed run: $(cat "$dir/failed.log")"
 fi

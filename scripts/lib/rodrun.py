@@ -11,12 +11,16 @@ Python scripts open a run file, decode its attributes and take out its series, s
         x, fields = rodrun.native_snapshot(f, -1)        # own nodes (else /mesh/x)
     run = rodrun.Run("out/exp1.h5", complete=True)       # everything of a run, read once
 
+From a shell script: `$PY scripts/lib/rodrun.py attr RUN.h5 NAME [DEFAULT]` prints one root
+attribute (e.g. status, wall_seconds).
+
 Scripts in other folders import it by putting the repository's scripts/lib first on
 sys.path, relative to their own __file__. Needs h5py and numpy (scripts/lib/find_python.sh).
 """
 
 import math
 import os
+import sys
 
 import h5py
 import numpy as np
@@ -227,3 +231,26 @@ class Run:
             else:
                 k += 1
         return out
+
+
+def main(argv):
+    """rodrun.py attr RUN.h5 NAME [DEFAULT]: print one root attribute, decoded, for shell
+    scripts (DEFAULT when it is absent). Exit 0; 1 no such attribute; 2 usage, unreadable file."""
+    if len(argv) not in (4, 5) or argv[1] != "attr":
+        sys.stderr.write("usage: rodrun.py attr RUN.h5 NAME [DEFAULT]\n")
+        return 2
+    try:
+        with open_run(argv[2], checked=False) as f:
+            v = attr(f, argv[3], argv[4] if len(argv) == 5 else None)
+    except RunFileError as exc:
+        sys.stderr.write(f"rodrun.py: {exc}\n")
+        return 2
+    if v is None:
+        sys.stderr.write(f"rodrun.py: {argv[2]} has no root attribute {argv[3]}\n")
+        return 1
+    print(v)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -140,9 +140,7 @@ run_one() {
         "output.prefix='$out_dir/$name'" output.quiet=.true. "$@"
     if ((!force)) && [[ -f "$h5" && "$h5" -nt "$src" && "$h5" -nt "$exe" && -f "$copy" ]] &&
         cmp -s "$copy.new" "$copy" &&
-        "$py" -c 'import sys, h5py
-s = h5py.File(sys.argv[1], "r").attrs.get("status", b"")
-sys.exit(0 if (s.decode() if isinstance(s, bytes) else str(s)) == "complete" else 1)' "$h5" 2>/dev/null; then
+        [[ "$("$py" "$scripts/lib/rodrun.py" attr "$h5" status 2>/dev/null)" == complete ]]; then
         rm -f "$copy.new"
         say "$name: up to date ($h5)"
         return 0

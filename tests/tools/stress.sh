@@ -100,13 +100,13 @@ run_case() {
 
     local info="-|-|-|-|-"
     if [[ -f "$dir/run.h5" ]]; then
-        info=$("$PY" - "$dir/run.h5" 2>&1 <<'PYTHON'
+        info=$("$PY" - "$dir/run.h5" "$repo_root/scripts/lib" 2>&1 <<'PYTHON'
 import sys
-import h5py
 import numpy as np
-with h5py.File(sys.argv[1], "r") as f:
-    status = f.attrs["status"]
-    status = status.decode() if isinstance(status, bytes) else str(status)
+sys.path.insert(0, sys.argv[2])
+import rodrun
+with rodrun.open_run(sys.argv[1], checked=False) as f:
+    status = rodrun.text(f.attrs["status"])
     finite = all(np.all(np.isfinite(f[g + "/" + n][:])) for g in ("series", "snapshots") for n in f[g])
     # the attribute, and the same measured on the stored series (every step here)
     energy = f["series/energy"][:]

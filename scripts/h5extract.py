@@ -63,7 +63,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib
 # in lightness; the viridis ramp used before made t >= 0.5 hard to tell apart)
 from plotdata import colours  # noqa: E402
 import rodrun  # noqa: E402
-from textfiles import fmt_time, write_columns  # noqa: E402
+from textfiles import fmt_time, gnuplot_assignment, write_columns  # noqa: E402
 
 MODES = ("series", "snapshot", "matrix", "figures")
 
@@ -315,12 +315,7 @@ def figures_main(out_dir, data_dir):
     params = []
 
     def param(name, value):
-        if isinstance(value, str):
-            params.append('%s = "%s"' % (name, value))
-        elif isinstance(value, float) and math.isnan(value):
-            params.append("%s = NaN" % name)
-        else:
-            params.append("%s = %.10g" % (name, value))
+        params.append(gnuplot_assignment(name, value))
 
     try:
         for run, (sets, fields) in PROFILE_SETS.items():

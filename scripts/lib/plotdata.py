@@ -31,7 +31,7 @@ import sys
 import numpy as np
 
 import rodrun
-from textfiles import fmt_time, write_columns
+from textfiles import fmt_time, gnuplot_assignment, write_columns
 
 SYMBOL = {"u": "u", "v": "v", "theta": "θ", "P": "P", "q": "q", "eta": "η", "sigma": "σ"}
 ALL_FIELDS = ["u", "v", "theta", "P", "q", "eta", "sigma"]
@@ -184,12 +184,7 @@ def main(argv):
     with open(os.path.join(a.data_dir, "params.gp"), "w", encoding="utf-8") as out:
         out.write("# written by scripts/lib/plotdata.py from %s\n" % a.run)
         for k, v in params.items():
-            if isinstance(v, str):
-                out.write('%s = "%s"\n' % (k, v))
-            elif isinstance(v, float) and math.isnan(v):
-                out.write("%s = NaN\n" % k)
-            else:
-                out.write("%s = %.10g\n" % (k, v))
+            out.write(gnuplot_assignment(k, v) + "\n")
     return 0
 
 

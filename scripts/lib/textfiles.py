@@ -1,5 +1,5 @@
 """The small text formats the scripts share besides run files (those are scripts/lib/rodrun.py):
-column files for gnuplot, the key=value files the benchmark scripts write next to their raw
+column files and assignments for gnuplot, the key=value files the benchmark scripts write next to their raw
 data (meta files), and how times and relative errors are printed. Plain Python: only
 write_columns needs numpy (the benchmark reports run with any python3).
 """
@@ -13,6 +13,15 @@ def write_columns(path, titles, columns):
     with open(path, "w", encoding="utf-8") as out:
         out.write(" ".join('"%s"' % s for s in titles) + "\n")
         np.savetxt(out, np.column_stack(columns), fmt="%.9g")
+
+
+def gnuplot_assignment(name, value):
+    """A line `name = value` for a gnuplot script: strings quoted, NaN as NaN, numbers %.10g."""
+    if isinstance(value, str):
+        return '%s = "%s"' % (name, value)
+    if isinstance(value, float) and math.isnan(value):
+        return "%s = NaN" % name
+    return "%s = %.10g" % (name, value)
 
 
 def read_meta(path):

@@ -15,7 +15,6 @@ Exit status 0 written, 1 a file is missing or unreadable, 2 usage.
 import argparse
 import math
 import os
-import re
 import sys
 
 import numpy as np

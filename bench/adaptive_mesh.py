@@ -120,10 +120,7 @@ def rel_l2_between(xa, fa, xb, fb, n=2**18):
 
 def cmd_points(raw, spec):
     ex = exact_linear.Cache(N_MODES)
-    for line in open(spec):
-        w = line.split()
-        if not w:
-            continue
+    for w in textfiles.spec_lines(spec):
         label, series, t_end, runs = w[0], w[1], float(w[2]), w[3:]
         d = read_final(runs[0])
         row = {"label": label, "series": series, "t_end": t_end, "status": d["status"]}
@@ -159,10 +156,8 @@ def cmd_points(raw, spec):
 
 def cmd_after(raw, spec):
     groups = {}
-    for line in open(spec):
-        w = line.split()
-        if w:
-            groups.setdefault(w[1], []).append((w[0], w[2], float(w[3]), w[4]))
+    for w in textfiles.spec_lines(spec):
+        groups.setdefault(w[1], []).append((w[0], w[2], float(w[3]), w[4]))
     for group, rows in groups.items():
         refs = [r for r in rows if r[1] == "ref"]
         if len(refs) != 1:

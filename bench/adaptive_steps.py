@@ -32,7 +32,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'scripts', 'lib'))
 import rodrun  # noqa: E402
-from textfiles import read_meta  # noqa: E402
+from textfiles import read_meta, spec_lines  # noqa: E402
 
 T_SPLIT = 2.0              # contact phase [0, 2] (release at t ~ 1.45) and decay (2, t_end]
 TARGET_A_RATIO = 20.0      # issue 12: max|du| <= 1e-5, events within 1e-5, >= 20x less wall time
@@ -85,9 +85,8 @@ def elapsed(path):
 def cmd_points(args):
     raw, ref_path, spec = args
     ref = read_run(ref_path)
-    for line in open(spec):
-        if line.split():
-            point(raw, ref, *line.split())
+    for words in spec_lines(spec):
+        point(raw, ref, *words)
 
 
 def window_max(t, x):

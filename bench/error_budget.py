@@ -25,6 +25,7 @@ sys.path.insert(0, os.path.join(_repo, 'scripts', 'lib'))  # rodrun
 import claims  # noqa: E402
 import exact_linear  # noqa: E402
 import rodrun  # noqa: E402
+import textfiles  # noqa: E402
 from adaptive_mesh import N_MODES, read_final, pct  # noqa: E402
 
 HEADING = "## Error budget of experiment 2"
@@ -35,10 +36,7 @@ WINDOWS = 512                          # the rod cut into 1/512 windows for the 
 def load(spec):
     ex = exact_linear.Cache(N_MODES)
     rows = []
-    for line in open(spec):
-        w = line.split()
-        if not w:
-            continue
+    for w in textfiles.spec_lines(spec):
         label, group, t_end, path = w[0], w[1], float(w[2]), w[3]
         d = read_final(path)
         model, exact = ex.get(d["attrs"], d["t"])

@@ -1,7 +1,8 @@
 """The small text formats the scripts share besides run files (those are scripts/lib/rodrun.py):
-column files and assignments for gnuplot, the key=value files the benchmark scripts write next to their raw
-data (meta files), and how times and relative errors are printed. Plain Python: only
-write_columns needs numpy (the benchmark reports run with any python3).
+column files and assignments for gnuplot, the key=value files the benchmark scripts write next
+to their raw data (meta files) and the spec files that list their points, and how times and
+relative errors are printed. Plain Python: only write_columns needs numpy (the benchmark
+reports run with any python3).
 """
 
 import math
@@ -34,6 +35,12 @@ def read_meta(path):
                 k, v = line.rstrip("\n").split("=", 1)
                 meta[k] = v
     return meta
+
+
+def spec_lines(path):
+    """The words of every non-blank line of a spec file (one benchmark point per line)."""
+    with open(path) as f:
+        return [line.split() for line in f if line.split()]
 
 
 def fmt_time(t, decimals):

@@ -111,8 +111,8 @@ contains
         do j = 1, 3
             call estimator%push(levels(j)%u, levels(j)%w, t(j) - t(max(j - 1, 1)))
         end do
-        est = estimator%estimate(mms%model, coarse%u, coarse%w, dt)
-        truth = sqrt(2.0_dp * linear_energy(mms%model, coarse%u - fine_end%u, coarse%w - fine_end%w))
+        est = estimator%estimate(mms%model, coarse%u, coarse%w, dt, coarse%mesh)
+        truth = sqrt(2.0_dp * linear_energy(mms%model, coarse%u - fine_end%u, coarse%w - fine_end%w, coarse%mesh))
         ratio = est / truth
     end function estimate_over_true
 

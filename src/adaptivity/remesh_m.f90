@@ -1,8 +1,8 @@
 !> Remeshing a run (&mesh adaptive = .true.): the first mesh, fitted to the initial data,
 !> and the remesh between two steps, which moves every time level the run holds (the
 !> state, the level before of a multistep scheme, the error estimator's levels) with
-!> transfer_m, hands the new mesh to the stepper and lets the energy monitor check that
-!> the law energy did not rise.
+!> transfer_m, hands the new mesh to the stepper, lets the energy monitor measure the law
+!> energy across the move and counts the remesh on the state's mesh (mesh_m).
 module remesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -33,7 +33,7 @@ contains
         call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, front_buffer(cfg))
         do pass = 1, cfg%mesh%max_level + 2
             call initial_state(cfg, state, mesh%nodes())
-            call mesh%adapt(state%x, state%u, state%w, changed)
+            call mesh%adapt(state%mesh, state%u, state%w, changed)
             if (.not. changed) exit
         end do
         if (changed) call initial_state(cfg, state, mesh%nodes())
@@ -68,10 +68,11 @@ contains
         logical, intent(out) :: changed
         integer(int64), allocatable :: k_old(:)
         real(dp), allocatable :: levels_old(:, :, :)
+        real(dp) :: rise
         integer :: s, j
 
         k_old = mesh%k
-        call mesh%adapt(state%x, state%u, state%w, changed)
+        call mesh%adapt(state%mesh, state%u, state%w, changed)
         if (.not. changed) return
         s = mesh%s()
         call move(state%u, state%w)
@@ -83,7 +84,8 @@ contains
             call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j))
         end do
         call stepper%remesh(state)
-        call monitor%remeshed(state)
+        call monitor%remeshed(state, rise)
+        call state%mesh%record_remesh(rise)
 
     contains
 

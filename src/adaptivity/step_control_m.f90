@@ -20,6 +20,7 @@ module step_control_m
     use config_m, only: model_t
     use fields_m, only: N_FIELDS
     use energy_m, only: linear_energy
+    use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
     implicit none
     private
@@ -130,13 +131,13 @@ contains
     end function estimator_ready
 
     !> est_n = factor |X^n - P^n|_E for the new level (u, w) reached by a step of size dt
-    !> (the module's header); needs ready().
-    function estimator_estimate(self, model, u, w, dt, h) result(est)
+    !> on mesh (the module's header); needs ready().
+    function estimator_estimate(self, model, u, w, dt, mesh) result(est)
         class(error_estimator_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp), intent(in) :: dt
-        real(dp), intent(in), optional :: h(:)   !< element sizes of a graded mesh
+        type(mesh_t), intent(in) :: mesh
         real(dp) :: est
         real(dp) :: d(MAX_LEVELS), weight(MAX_LEVELS)
         integer :: j, k, n, slot
@@ -162,7 +163,7 @@ contains
             self%w_diff = self%w_diff - weight(j) * self%levels(:, 1:, slot)
         end do
         est = local_error_factor(self%scheme, d(1:n), self%steps(level_slot(self%head, 1))) * &
-              energy_norm(linear_energy(model, self%u_diff, self%w_diff, h))
+              energy_norm(linear_energy(model, self%u_diff, self%w_diff, mesh))
     end function estimator_estimate
 
     !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).

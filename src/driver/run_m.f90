@@ -13,9 +13,9 @@ module run_m
     use fe_m, only: mesh_nodes, evaluate_p1
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
                         S_N_ELEMENTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
-    use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state, set_mesh, &
-                       state_nodes
+    use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state, set_mesh
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
+    use mesh_m, only: mesh_t
     use remesh_m, only: initial_mesh, remesh
     use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, &
                               pack_control, unpack_control, energy_norm
@@ -99,7 +99,7 @@ contains
             call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters, control_values, history, &
                                  event_table, mesh_data)
             if (cfg%mesh%adaptive) then
-                call restore_mesh(mesh, mesh_data, monitor)
+                call restore_mesh(mesh, mesh_data, state%mesh)
                 call set_mesh(state, mesh%nodes())
                 call stepper%remesh(state)
                 call estimator%resize(state%s)
@@ -174,7 +174,7 @@ contains
             est = 0.0_dp
             err = -1.0_dp
             if (estimator%ready() .and. .not. flipped) then
-                est = estimator%estimate(cfg%model, state%u, state%w, dt_try, state%h)
+                est = estimator%estimate(cfg%model, state%u, state%w, dt_try, state%mesh)
                 err = control%ratio(est)
             end if
             if (adaptive) then
@@ -275,9 +275,9 @@ contains
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
         call record_time_error(writer, control, adaptive)
         if (cfg%mesh%adaptive) then
-            call writer%attr_int('mesh.remeshes', monitor%n_remeshes)
+            call writer%attr_int('mesh.remeshes', state%mesh%n_remeshes())
             call writer%attr_int('mesh.n_elements_max', n_elements_max)
-            call writer%attr_real('energy_max_relative_rise_remesh', monitor%max_rise_remesh)
+            call writer%attr_real('energy_max_relative_rise_remesh', state%mesh%max_rise_remesh())
         end if
         if (interrupted /= '') then
             call writer%finish('interrupted: '//interrupted, keep_part=.true.)
@@ -332,7 +332,7 @@ contains
                 if (state%dt_last > 0.0_dp) dt_try = min(dt_try, GROWTH_MAX * state%dt_last)
                 dt_try = min(max(dt_try, cfg%time%dt_min), cfg%time%dt_max)
                 if (cfg%mesh%adaptive .and. v_front > 0.0_dp) &
-                    dt_try = max(min(dt_try, FRONT_CFL * minval(state%h) / v_front), cfg%time%dt_min)
+                    dt_try = max(min(dt_try, FRONT_CFL * minval(state%mesh%h) / v_front), cfg%time%dt_min)
                 slack = 1.0e-9_dp * dt_try
             else
                 dt_try = cfg%time%dt
@@ -501,32 +501,32 @@ contains
         ! an unallocated actual argument is an absent optional one (the level before: multistep
         ! schemes; the mesh: &mesh adaptive)
         if (allocated(state%u_prev)) previous = pack_state(state%u_prev, state%w_prev)
-        if (allocated(mesh%k)) mesh_values = pack_mesh(mesh, monitor)
+        if (allocated(mesh%k)) mesh_values = pack_mesh(mesh, state%mesh)
         call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, previous, control=values, &
                                      history=history, events=events%packed(), mesh=mesh_values)
     end subroutine write_checkpoint
 
     !> The adaptive mesh in a checkpoint: the field scales (1 + N_FIELDS), the remesh
-    !> counters of the monitor (2), then the node keys (restore_mesh is the inverse).
-    function pack_mesh(mesh, monitor) result(values)
+    !> counters of the state's mesh (2), then the node keys (restore_mesh is the inverse).
+    function pack_mesh(mesh, state_mesh) result(values)
         type(adaptive_mesh_t), intent(in) :: mesh
-        type(energy_monitor_t), intent(in) :: monitor
+        type(mesh_t), intent(in) :: state_mesh
         real(dp), allocatable :: values(:)
 
-        values = [mesh%scale, monitor%max_rise_remesh, real(monitor%n_remeshes, dp), real(mesh%k, dp)]
+        values = [mesh%scale, state_mesh%max_rise_remesh(), real(state_mesh%n_remeshes(), dp), real(mesh%k, dp)]
     end function pack_mesh
 
-    !> The adaptive mesh of a checkpoint (pack_mesh), on mesh initialised for this run.
-    subroutine restore_mesh(mesh, values, monitor)
+    !> The adaptive mesh of a checkpoint (pack_mesh), on mesh initialised for this run; the
+    !> remesh counters go to the state's mesh.
+    subroutine restore_mesh(mesh, values, state_mesh)
         type(adaptive_mesh_t), intent(inout) :: mesh
         real(dp), intent(in) :: values(:)
-        type(energy_monitor_t), intent(inout) :: monitor
+        type(mesh_t), intent(inout) :: state_mesh
         integer :: n
 
         n = 1 + N_FIELDS
         mesh%scale = values(1:n)
-        monitor%max_rise_remesh = values(n + 1)
-        monitor%n_remeshes = nint(values(n + 2))
+        call state_mesh%restore_remesh_counters(nint(values(n + 2)), values(n + 1))
         call mesh%set_keys(nint(values(MESH_HEADER + 1:), int64))
     end subroutine restore_mesh
 
@@ -577,16 +577,16 @@ contains
         do k = 1, N_OUTPUT_FIELDS
             values(:, k) = field_values(state, OUTPUT_ORDER(k))
         end do
-        if (size(x_out) == state%s + 1 .and. .not. allocated(state%x)) then
+        if (size(x_out) == state%s + 1 .and. state%mesh%is_uniform()) then
             call writer%append_snapshot(state%t, values)
             return
         end if
-        x = state_nodes(state)
+        x = state%mesh%x
         do k = 1, N_OUTPUT_FIELDS
             on_grid(:, k) = evaluate_p1(x, values(:, k), x_out)
         end do
         call writer%append_snapshot(state%t, on_grid)
-        if (allocated(state%x)) call writer%append_native(x, values)
+        if (.not. state%mesh%is_uniform()) call writer%append_native(x, values)
     end subroutine write_snapshot
 
     !> Every input value as a root attribute named group.variable (SPEC section 4).

@@ -7,6 +7,7 @@ module energy_m
     use contact_law_m, only: contact_law_t
     use time_scheme_m, only: time_scheme_t
     use state_m, only: state_t
+    use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
     implicit none
     private
@@ -24,10 +25,6 @@ module energy_m
         !> BDF2 only: the largest relative rise at steps whose size differs from the step
         !> before (w /= 1), where its law is not stated (not in max_rise)
         real(dp) :: max_rise_step_change = 0.0_dp
-        !> adaptive mesh: the largest relative rise of the law energy across a remesh
-        !> (transfer_m's projections cannot raise it: round-off only), and the remeshes
-        real(dp) :: max_rise_remesh = 0.0_dp
-        integer :: n_remeshes = 0
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
     contains
@@ -39,27 +36,27 @@ module energy_m
 
 contains
 
-    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini).
-    !> h: element sizes of a graded mesh (absent: uniform).
-    pure function discrete_energy(model, law, u, w, h) result(energy)
+    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini)
+    !> of the level (u, w) on mesh.
+    pure function discrete_energy(model, law, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
-        real(dp), intent(in), optional :: h(:)
+        type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
 
-        energy = linear_energy(model, u, w, h) + law%energy(u(ubound(u, 1)))
+        energy = linear_energy(model, u, w, mesh) + law%energy(u(ubound(u, 1)))
     end function discrete_energy
 
     !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
     !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions.
-    !> h(1:s): the element sizes of a graded mesh (absent: the uniform mesh, h = 1/s).
-    pure function linear_energy(model, u, w, h) result(energy)
+    !> On a uniform mesh the sums over the elements are scaled by h = 1/s once, at the end.
+    pure function linear_energy(model, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
-        real(dp), intent(in), optional :: h(:)
+        type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
         real(dp) :: mass_terms, strain_terms, h_e
         integer :: e, s
@@ -70,9 +67,9 @@ contains
         s = ubound(u, 1)
         mass_terms = 0.0_dp
         strain_terms = 0.0_dp
-        if (present(h)) then
+        if (.not. mesh%is_uniform()) then
             do e = 1, s
-                h_e = h(e)
+                h_e = mesh%h(e)
                 mass_terms = mass_terms + h_e * element_energy_density(model, w(e - 1, :), w(e, :))
                 strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
             end do
@@ -100,24 +97,24 @@ contains
     !> penalty BDF2 has no such law (the nonlinear term is not G-stable).
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
     !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
-    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, u_work, w_work, energy, lin_now, h)
+    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, energy, lin_now)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
+        type(mesh_t), intent(in) :: mesh           !< the mesh of both levels
         real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
         real(dp), intent(out) :: energy
         real(dp), intent(in), optional :: lin_now
-        real(dp), intent(in), optional :: h(:)     !< element sizes of a graded mesh
         real(dp) :: lin
 
         if (present(lin_now)) then
             lin = lin_now
         else
-            lin = linear_energy(model, u, w, h)
+            lin = linear_energy(model, u, w, mesh)
         end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
-        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, h)) + law%energy(u(ubound(u, 1)))
+        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, mesh)) + law%energy(u(ubound(u, 1)))
     end subroutine bdf2_energy
 
     !> The energy of the first level and the law it must obey from then on.
@@ -137,9 +134,9 @@ contains
         self%own_law_model = present(law_model)
         self%law = law
         self%bdf2 = scheme%is_bdf2()
-        self%energy = discrete_energy(model, law, state%u, state%w, state%h)
+        self%energy = discrete_energy(model, law, state%u, state%w, state%mesh)
         self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%h)
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%mesh)
         self%have_law = .not. self%bdf2
         self%max_rise = 0.0_dp
         if (self%bdf2) then
@@ -182,34 +179,35 @@ contains
         type(state_t), intent(in) :: state
         real(dp) :: energy_lin
 
-        energy_lin = linear_energy(self%model, state%u, state%w, state%h)
+        energy_lin = linear_energy(self%model, state%u, state%w, state%mesh)
         self%energy = energy_lin + self%law%energy(state%u(state%s))
         self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%h)
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%mesh)
         if (self%bdf2) then
             self%have_law = allocated(state%u_prev)
             if (self%have_law) then
                 if (size(self%u_work) /= size(state%u)) call self%resize(state)
-                call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &
-                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin, h=state%h)
+                call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
+                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin)
             end if
         end if
     end subroutine measure
 
     !> The level has moved to a new mesh (transfer_m): its energies on the new mesh, and
-    !> the relative rise of the law energy across the move in max_rise_remesh.
-    subroutine monitor_remeshed(self, state)
+    !> the relative rise of the law energy across the move (0 where the law energy is not
+    !> defined before and after it; mesh_m's record_remesh keeps the largest).
+    subroutine monitor_remeshed(self, state, rise)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
+        real(dp), intent(out) :: rise
         real(dp) :: law_old
         logical :: had_law
 
         law_old = self%law_energy
         had_law = self%have_law
         call measure(self, state)
-        self%n_remeshes = self%n_remeshes + 1
-        if (had_law .and. self%have_law) self%max_rise_remesh = &
-            max(self%max_rise_remesh, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
+        rise = 0.0_dp
+        if (had_law .and. self%have_law) rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
     end subroutine monitor_remeshed
 
     !> The work arrays shaped as the state's level (after a remesh).

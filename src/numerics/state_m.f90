@@ -1,20 +1,19 @@
 !> The discrete state at one time level: (u, v, theta, P, q, eta) at the nodes 0..s, and
-!> the mesh they live on when it is graded (&mesh adaptive: x and h allocated; absent, the
-!> uniform mesh x_i = i/s of fe_m's mesh_nodes).
+!> the mesh they live on (mesh_m: uniform, or graded with &mesh adaptive).
 module state_m
     use kinds_m, only: dp
     use config_m, only: config_t
-    use fe_m, only: mesh_nodes
+    use mesh_m, only: mesh_t, copy_mesh
     use initial_data_m, only: profile
     use errors_m, only: check_allocation
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
     private
-    public :: state_t, initial_state, set_mesh, state_nodes, field_values, advance_time, accept_step, land_on, &
+    public :: state_t, initial_state, set_mesh, field_values, advance_time, accept_step, land_on, &
               copy_state, keep_copy
 
     type :: state_t
-        integer :: s = 0                !< number of elements
+        integer :: s = 0                !< number of elements (mesh%s())
         integer :: step = 0             !< n, the time level
         real(dp) :: t = 0.0_dp          !< t_n
         real(dp) :: dt_last = 0.0_dp    !< t_n - t_{n-1} (0 at t = 0)
@@ -26,8 +25,7 @@ module state_m
         real(dp), allocatable :: w(:, :)    !< w(i, f): field f (fields_m's F_*) at node i
         real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
                                                           !< only; allocated by the stepper)
-        real(dp), allocatable :: x(:)   !< graded mesh only: the nodes x_i, i = 0..s
-        real(dp), allocatable :: h(:)   !< graded mesh only: element sizes h_e = x_e - x_{e-1}, e = 1..s
+        type(mesh_t) :: mesh            !< the nodes x_i and element sizes h_e (set_mesh)
     end type state_t
 
 contains
@@ -40,29 +38,28 @@ contains
         type(config_t), intent(in) :: cfg
         type(state_t), intent(out) :: state
         real(dp), intent(in), optional :: nodes(0:)
-        real(dp), allocatable :: x(:)
         integer :: s, i, f, stat
         character(len=256) :: message
 
-        s = cfg%mesh%n_elements
-        if (present(nodes)) s = ubound(nodes, 1)
-        state%s = s
-        allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the state')
         if (present(nodes)) then
-            x = nodes
             call set_mesh(state, nodes)
         else
-            x = mesh_nodes(s)        ! x is allocated first so that it keeps the bounds 0:s
+            call state%mesh%set_uniform(cfg%mesh%n_elements)
+            state%s = cfg%mesh%n_elements
         end if
-        do i = 0, s
-            state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
-            state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
-            state%w(i, F_THETA) = profile(poly=cfg%initial%theta0_poly, step=cfg%initial%theta0_step, x=x(i))
-            state%w(i, F_P) = profile(poly=cfg%initial%p0_poly, step=cfg%initial%p0_step, x=x(i))
-            state%w(i, F_Q) = profile(poly=cfg%initial%q0_poly, x=x(i))
-            state%w(i, F_ETA) = profile(poly=cfg%initial%eta0_poly, x=x(i))
-        end do
+        s = state%s
+        allocate (state%u(0:s), state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the state')
+        associate (x => state%mesh%x)
+            do i = 0, s
+                state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
+                state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
+                state%w(i, F_THETA) = profile(poly=cfg%initial%theta0_poly, step=cfg%initial%theta0_step, x=x(i))
+                state%w(i, F_P) = profile(poly=cfg%initial%p0_poly, step=cfg%initial%p0_step, x=x(i))
+                state%w(i, F_Q) = profile(poly=cfg%initial%q0_poly, x=x(i))
+                state%w(i, F_ETA) = profile(poly=cfg%initial%eta0_poly, x=x(i))
+            end do
+        end associate
         state%u(0) = 0.0_dp
         do f = 1, N_FIELDS
             if (is_dirichlet(f, 0, s)) state%w(0, f) = 0.0_dp
@@ -70,33 +67,15 @@ contains
         end do
     end subroutine initial_state
 
-    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched).
+    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched; the
+    !> mesh's remesh counters are kept).
     subroutine set_mesh(state, x)
         type(state_t), intent(inout) :: state
         real(dp), intent(in) :: x(0:)
-        integer :: s, stat
-        character(len=256) :: message
 
-        s = ubound(x, 1)
-        if (allocated(state%x)) deallocate (state%x, state%h)
-        allocate (state%x(0:s), state%h(s), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the mesh')
-        state%x = x
-        state%h = x(1:s) - x(0:s - 1)
-        state%s = s
+        call state%mesh%set_nodes(x)
+        state%s = ubound(x, 1)
     end subroutine set_mesh
-
-    !> The nodes of the state's mesh.
-    pure function state_nodes(state) result(x)
-        type(state_t), intent(in) :: state
-        real(dp) :: x(0:state%s)
-
-        if (allocated(state%x)) then
-            x = state%x
-        else
-            x = mesh_nodes(state%s)
-        end if
-    end function state_nodes
 
     !> The nodal values of field f (fields_m's F_*, F_U the displacement).
     pure function field_values(state, f) result(values)
@@ -173,16 +152,7 @@ contains
         copy%dt_last = state%dt_last
         copy%t_anchor = state%t_anchor
         copy%step_anchor = state%step_anchor
-        if (allocated(state%x)) then
-            if (.not. allocated(copy%x)) then
-                call set_mesh(copy, state%x)
-            else if (any(shape(copy%x) /= shape(state%x))) then
-                call set_mesh(copy, state%x)
-            else
-                copy%x = state%x
-                copy%h = state%h
-            end if
-        end if
+        call copy_mesh(state%mesh, copy%mesh)
         call keep_copy(state%u, state%w, copy%u, copy%w, 'the saved state')
         if (allocated(state%u_prev)) then
             call keep_copy(state%u_prev, state%w_prev, copy%u_prev, copy%w_prev, 'the saved state')

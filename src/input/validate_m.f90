@@ -1,7 +1,8 @@
-!> Input validation (SPEC section 3, "Validation"), run before any allocation or output:
-!> the checks go through the groups in the order model, contact, mesh, time, initial,
-!> solver, output, and the first failure stops with EXIT_INPUT, naming group.variable,
-!> the value given and what is allowed.
+!> Input validation (the ranges and combinations of docs/input.md), run before any
+!> allocation or output: the checks go through the groups in the order model, contact,
+!> mesh, time, initial, solver, output, and the first failure stops with EXIT_INPUT, naming
+!> group.variable, the value given and what is allowed. The time schemes' rules come from
+!> time_scheme_m (a later layer) as an argument: scheme_rule_t.
 module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -47,7 +48,7 @@ module validate_m
 
 contains
 
-    !> Apply every check of SPEC section 3 to cfg; stop with EXIT_INPUT at the first failure.
+    !> Apply every check to cfg; stop with EXIT_INPUT at the first failure.
     !> A large (but allowed) output size gives a warning on stderr. schemes: the time
     !> schemes and their rules (time_scheme_m's scheme_rules()).
     subroutine validate_config(cfg, schemes)

@@ -14,6 +14,7 @@ program test_step_control
     use state_m, only: state_t
     use stepper_m, only: stepper_t, step_result_t
     use step_control_m, only: error_estimator_t, step_controller_t
+    use time_scheme_m, only: time_scheme
     use energy_m, only: linear_energy
     use mms_m, only: mms_t, mms_no_contact
     use convergence_m, only: mms_initial_state
@@ -53,7 +54,7 @@ contains
     subroutine controller_checks()
         type(step_controller_t) :: c
 
-        call c%init(1.0e-3_dp, 1.0e-6_dp, 0.1_dp, 2, 0.01_dp)
+        call c%init(1.0e-3_dp, 1.0e-6_dp, 0.1_dp, time_scheme('bdf2'), 0.01_dp)
         c%scale = 1.0_dp
         call check('ratio est / (tol S) = 8 for est = 8e-3', abs(c%ratio(8.0e-3_dp) - 8.0_dp) < 1.0e-12_dp)
         call c%reject(0.01_dp, 8.0_dp)
@@ -107,7 +108,7 @@ contains
         end if
         call stepper%advance(coarse, result, dt)
         if (.not. result%ok) error stop 'test_step_control: coarse step failed'
-        call estimator%init(scheme, S)
+        call estimator%init(time_scheme(scheme), S)
         do j = 1, 3
             call estimator%push(levels(j)%u, levels(j)%w, t(j) - t(max(j - 1, 1)))
         end do

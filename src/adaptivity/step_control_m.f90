@@ -5,15 +5,15 @@
 !> in the BDF codes (DASSL, CVODE). P^n is the polynomial of degree p (the scheme's order)
 !> through the last p+1 accepted levels, extrapolated to t_n; for smooth solutions
 !>   X^n - P^n = X^(p+1) / (p+1)! * d_1 ... d_{p+1} + h.o.t.,  d_j = t_n - t_{n-j},
-!> while the local error of the step is C X^(p+1) h_n^(p+1) (C and the exact factor per
-!> scheme in local_error_factor), so
+!> while the local error of the step is C X^(p+1) h_n^(p+1) (C, p and the exact factor
+!> are the scheme's: time_scheme_m's order and error_factor), so
 !>   est_n = factor * |X^n - P^n|_E,   |X|_E = sqrt(2 E_lin(X))   (Corollary 6.2's energy),
 !> over all fields at once. It costs no solve: one extrapolation and one energy per step.
 !> A step is accepted when est_n <= error_tol * S, S the largest |X^k|_E so far (k <= n);
 !> error_tol is thus relative to the size the solution has had. The controller is the
 !> standard one, dt_new = dt * safety * (error_tol S / est)^(1/(p+1)), limited to
-!> [SHRINK_MIN, GROWTH_MAX] (GROWTH_MAX = 2 < 1 + sqrt(2), the step-ratio bound under which
-!> variable-step BDF2 is zero-stable) and to [dt_min, dt_max]; a growth below
+!> [SHRINK_MIN, growth_max] (growth_max: the scheme's max_step_ratio, for BDF2 below the
+!> step-ratio bound of its zero-stability) and to [dt_min, dt_max]; a growth below
 !> GROWTH_MIN is not taken, because every new step size costs a factorisation.
 module step_control_m
     use kinds_m, only: dp
@@ -22,21 +22,21 @@ module step_control_m
     use energy_m, only: linear_energy
     use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
+    use time_scheme_m, only: time_scheme_t
     implicit none
     private
-    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX
+    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS
     public :: pack_control, unpack_control, energy_norm
 
     integer, parameter :: MAX_LEVELS = 3       !< past levels kept (p + 1 for p <= 2)
     real(dp), parameter :: SAFETY = 0.9_dp
-    real(dp), parameter :: GROWTH_MAX = 2.0_dp  !< largest dt_n / dt_{n-1}
     real(dp), parameter :: GROWTH_MIN = 1.25_dp !< smaller growths are not taken
     real(dp), parameter :: SHRINK_MIN = 0.2_dp  !< smallest dt_new / dt after a rejection
 
     !> The last accepted levels, most recent first, with the steps that reached them.
     type :: error_estimator_t
-        integer :: order = 1               !< p: 1 (Euler) or 2 (BDF2, midpoint)
-        character(len=8) :: scheme = 'euler'
+        type(time_scheme_t) :: scheme
+        integer :: order = 1               !< p: the scheme's order
         integer :: n_levels = 0            !< levels held (0..order+1)
         integer :: head = 1                !< slot of the most recent level
         real(dp) :: steps(MAX_LEVELS) = 0.0_dp   !< steps(slot): the step that reached that level
@@ -54,7 +54,8 @@ module step_control_m
     !> The controller's state between steps.
     type :: step_controller_t
         real(dp) :: tol = 1.0e-5_dp, dt_min = 0.0_dp, dt_max = huge(1.0_dp)
-        integer :: order = 1
+        integer :: order = 1               !< p: the scheme's order
+        real(dp) :: growth_max = 2.0_dp    !< largest dt_n / dt_{n-1}: the scheme's max_step_ratio
         real(dp) :: dt_next = 0.0_dp       !< the step the controller proposes next
         logical :: no_growth = .false.     !< after a rejection: no growth on the next step
         real(dp) :: scale = 0.0_dp         !< S: the largest |X^k|_E so far
@@ -76,15 +77,14 @@ contains
 
     ! ------------------------------------------------------------------ estimator
 
-    !> An estimator for the scheme named by &time scheme on s elements.
+    !> An estimator for `scheme` on s elements.
     subroutine estimator_init(self, scheme, s)
         class(error_estimator_t), intent(out) :: self
-        character(len=*), intent(in) :: scheme
+        type(time_scheme_t), intent(in) :: scheme
         integer, intent(in) :: s
 
         self%scheme = scheme
-        self%order = 2
-        if (scheme == 'euler') self%order = 1
+        self%order = scheme%order()
         call self%resize(s)
     end subroutine estimator_init
 
@@ -162,7 +162,7 @@ contains
             self%u_diff = self%u_diff - weight(j) * self%levels(:, 0, slot)
             self%w_diff = self%w_diff - weight(j) * self%levels(:, 1:, slot)
         end do
-        est = local_error_factor(self%scheme, d(1:n), self%steps(level_slot(self%head, 1))) * &
+        est = self%scheme%error_factor(d(1:n), self%steps(level_slot(self%head, 1))) * &
               energy_norm(linear_energy(model, self%u_diff, self%w_diff, mesh))
     end function estimator_estimate
 
@@ -180,41 +180,19 @@ contains
         level_slot = modulo(head - j, MAX_LEVELS) + 1
     end function level_slot
 
-    !> Local error of the step / (X^n - P^n), from the leading terms (h = h_n = d_1,
-    !> h_prev = h_{n-1}, w = h / h_prev):
-    !>   Euler     h^2 X''/2                                      -> h / d_2
-    !>   BDF2      h^2 (h + h_prev) (1+w)/(1+2w) X'''/6           -> h (1+w) / ((1+2w) d_3)
-    !>   midpoint  h^3 X'''/12 (linear problems)                  -> h^2 / (2 d_2 d_3)
-    !> (constant steps: 1/2, 2/9 and 1/12 of the p+1-st difference).
-    pure real(dp) function local_error_factor(scheme, d, h_prev) result(factor)
-        character(len=*), intent(in) :: scheme
-        real(dp), intent(in) :: d(:)
-        real(dp), intent(in) :: h_prev
-        real(dp) :: h, w
-
-        h = d(1)
-        select case (scheme)
-        case ('bdf2')
-            w = h / h_prev
-            factor = h * (1.0_dp + w) / ((1.0_dp + 2.0_dp * w) * d(3))
-        case ('midpoint')
-            factor = h**2 / (2.0_dp * d(2) * d(3))
-        case default
-            factor = h / d(2)
-        end select
-    end function local_error_factor
-
     ! ------------------------------------------------------------------ controller
 
-    subroutine controller_init(self, tol, dt_min, dt_max, order, dt_first)
+    !> A controller for `scheme` (its order and step-ratio bound) with error_tol tol.
+    subroutine controller_init(self, tol, dt_min, dt_max, scheme, dt_first)
         class(step_controller_t), intent(out) :: self
         real(dp), intent(in) :: tol, dt_min, dt_max, dt_first
-        integer, intent(in) :: order
+        type(time_scheme_t), intent(in) :: scheme
 
         self%tol = tol
         self%dt_min = dt_min
         self%dt_max = dt_max
-        self%order = order
+        self%order = scheme%order()
+        self%growth_max = scheme%max_step_ratio()
         self%dt_next = dt_first
     end subroutine controller_init
 
@@ -235,8 +213,8 @@ contains
 
         self%dt_next = dt
         if (err >= 0.0_dp .and. .not. self%no_growth) then
-            factor = GROWTH_MAX
-            if (err > 0.0_dp) factor = min(GROWTH_MAX, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))
+            factor = self%growth_max
+            if (err > 0.0_dp) factor = min(self%growth_max, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))
             if (factor >= GROWTH_MIN) self%dt_next = min(dt * factor, self%dt_max)
         end if
         self%dt_next = max(self%dt_next, self%dt_min)

@@ -17,7 +17,7 @@ module run_m
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
     use mesh_m, only: mesh_t
     use remesh_m, only: initial_mesh, remesh
-    use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, &
+    use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, &
                               pack_control, unpack_control, energy_norm
     use contact_law_m, only: contact_law_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
@@ -83,13 +83,9 @@ contains
         end if
         call stepper%init(cfg, result)
         if (cfg%mesh%adaptive) call stepper%remesh(state)
-        if (stepper%scheme%is_midpoint()) then
-            call monitor%init(cfg%model, stepper%law, stepper%scheme, state, law_model=stepper%step_model)
-        else
-            call monitor%init(cfg%model, stepper%law, stepper%scheme, state)
-        end if
-        call estimator%init(trim(cfg%time%scheme), state%s)
-        call control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, estimator%order, cfg%time%dt)
+        call monitor%init(cfg%model, stepper%step_model, stepper%law, stepper%scheme, state)
+        call estimator%init(stepper%scheme, state%s)
+        call control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, stepper%scheme, cfg%time%dt)
         event_tol = max(cfg%time%error_tol, cfg%time%dt_min)
         control%scale = energy_norm(monitor%energy)
         call estimator%push(state%u, state%w, 0.0_dp)
@@ -267,9 +263,9 @@ contains
         call writer%attr_real('t_final', state%t)
         call writer%attr_real('wall_seconds', seconds_since(clock_start, clock_rate))
         call writer%attr_real('energy_max_relative_rise', monitor%max_rise)
-        if (stepper%scheme%is_bdf2() .and. (adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
+        if (monitor%scheme_law%constant_steps .and. (adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
             call writer%attr_real('energy_max_relative_rise_step_change', monitor%max_rise_step_change)
-        call writer%attr_str('energy_law', stepper%scheme%law())
+        call writer%attr_str('energy_law', trim(monitor%scheme_law%text))
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
@@ -317,7 +313,7 @@ contains
             end if
         end function t_stop
 
-        !> The next step: &time dt or the controller's proposal (at most GROWTH_MAX times the
+        !> The next step: &time dt or the controller's proposal (at most growth_max times the
         !> last step), shortened to end on the next snapshot time or the end (target; lands).
         !> Adaptive steps that would leave less than a step to the target take half the
         !> distance instead, so no tiny step follows.
@@ -329,7 +325,7 @@ contains
 
             if (adaptive) then
                 dt_try = control%dt_next
-                if (state%dt_last > 0.0_dp) dt_try = min(dt_try, GROWTH_MAX * state%dt_last)
+                if (state%dt_last > 0.0_dp) dt_try = min(dt_try, control%growth_max * state%dt_last)
                 dt_try = min(max(dt_try, cfg%time%dt_min), cfg%time%dt_max)
                 if (cfg%mesh%adaptive .and. v_front > 0.0_dp) &
                     dt_try = max(min(dt_try, FRONT_CFL * minval(state%mesh%h) / v_front), cfg%time%dt_min)

@@ -5,7 +5,7 @@ module energy_m
     use config_m, only: model_t
     use fields_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
     use contact_law_m, only: contact_law_t
-    use time_scheme_m, only: time_scheme_t
+    use time_scheme_m, only: time_scheme_t, energy_law_t, LAW_G_ENERGY
     use state_m, only: state_t
     use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
@@ -14,16 +14,17 @@ module energy_m
     public :: discrete_energy, linear_energy, bdf2_energy, energy_monitor_t
 
     !> The discrete energy of every level and the largest relative rise of the energy the
-    !> scheme's law is stated for (time_scheme_m: E^n for Euler, the G-energy for BDF2).
+    !> scheme's law is stated for (time_scheme_m's energy_law: E^n, or BDF2's G-energy).
     type :: energy_monitor_t
         type(model_t) :: model
         type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
         type(contact_law_t) :: law
-        logical :: bdf2 = .false.
+        type(energy_law_t) :: scheme_law   !< the law the time scheme guarantees
         logical :: own_law_model = .false.   !< law_model differs from model
         real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
-        !> BDF2 only: the largest relative rise at steps whose size differs from the step
-        !> before (w /= 1), where its law is not stated (not in max_rise)
+        !> a law stated for constant steps only (BDF2): the largest relative rise at steps
+        !> whose size differs from the step before (w /= 1), where the law is not stated (not
+        !> in max_rise)
         real(dp) :: max_rise_step_change = 0.0_dp
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
@@ -117,29 +118,31 @@ contains
         energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, mesh)) + law%energy(u(ubound(u, 1)))
     end subroutine bdf2_energy
 
-    !> The energy of the first level and the law it must obey from then on.
-    subroutine monitor_init(self, model, law, scheme, state, law_model)
+    !> The energy of the first level and the law of `scheme` it must obey from then on;
+    !> step_model: the model of the steps (time_scheme_m's stiff_limit), the model of the law
+    !> if the scheme's law says so.
+    subroutine monitor_init(self, model, step_model, law, scheme, state)
         class(energy_monitor_t), intent(inout) :: self
-        type(model_t), intent(in) :: model
+        type(model_t), intent(in) :: model, step_model
         type(contact_law_t), intent(in) :: law
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
-        type(model_t), intent(in), optional :: law_model   !< default: model
         integer :: stat
         character(len=256) :: message
 
+        self%scheme_law = scheme%energy_law()
         self%model = model
         self%law_model = model
-        if (present(law_model)) self%law_model = law_model
-        self%own_law_model = present(law_model)
+        self%own_law_model = self%scheme_law%step_model
+        if (self%own_law_model) self%law_model = step_model
         self%law = law
-        self%bdf2 = scheme%is_bdf2()
         self%energy = discrete_energy(model, law, state%u, state%w, state%mesh)
         self%law_energy = self%energy
         if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%mesh)
-        self%have_law = .not. self%bdf2
+        ! the G-energy needs the level before: it is defined from the second level on
+        self%have_law = self%scheme_law%energy /= LAW_G_ENERGY
         self%max_rise = 0.0_dp
-        if (self%bdf2) then
+        if (self%scheme_law%energy == LAW_G_ENERGY) then
             allocate (self%u_work, mold=state%u, stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the energy monitor''s work arrays')
             allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
@@ -147,10 +150,10 @@ contains
         end if
     end subroutine monitor_init
 
-    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for
-    !> Euler, the G-energy of bdf2_energy for BDF2 (defined once a previous level exists,
-    !> compared from the first BDF2 step on). BDF2's law is stated for constant steps: a
-    !> rise at a step of another size than the one before (step_changed) is kept apart in
+    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2, with
+    !> the law's model), or the G-energy of bdf2_energy (defined once a previous level
+    !> exists, compared from the first BDF2 step on). A law stated for constant steps (BDF2's):
+    !> a rise at a step of another size than the one before (step_changed) is kept apart in
     !> max_rise_step_change.
     subroutine monitor_observe(self, state, step_changed)
         class(energy_monitor_t), intent(inout) :: self
@@ -165,7 +168,7 @@ contains
         if (.not. (had_law .and. self%have_law)) return
         rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
         changed = .false.
-        if (present(step_changed)) changed = step_changed .and. self%bdf2
+        if (present(step_changed)) changed = step_changed .and. self%scheme_law%constant_steps
         if (changed) then
             self%max_rise_step_change = max(self%max_rise_step_change, rise)
         else
@@ -183,7 +186,7 @@ contains
         self%energy = energy_lin + self%law%energy(state%u(state%s))
         self%law_energy = self%energy
         if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%mesh)
-        if (self%bdf2) then
+        if (self%scheme_law%energy == LAW_G_ENERGY) then
             self%have_law = allocated(state%u_prev)
             if (self%have_law) then
                 if (size(self%u_work) /= size(state%u)) call self%resize(state)

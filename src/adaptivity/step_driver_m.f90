@@ -74,7 +74,7 @@ contains
         self%model = cfg%model
         call self%estimator%init(trim(cfg%time%scheme), state%s)
         call self%control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, self%estimator%order, &
-                               cfg%time%dt, scale=energy_norm(monitor%energy))
+                               cfg%time%dt, scale=energy_norm(monitor%current_energy()))
         self%event_tol = max(cfg%time%error_tol, cfg%time%dt_min)
         call self%estimator%push(state%u, state%w, 0.0_dp)
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
@@ -195,11 +195,11 @@ contains
         if (err >= 0.0_dp) call self%control%add_estimate(est)
         if (self%adaptive) call self%control%accept(dt_try, err, shortened=lands)
         call monitor%observe(state, step_changed=dt_try /= saved_dt_last)
-        if (.not. ieee_is_finite(monitor%energy)) then
+        if (.not. ieee_is_finite(monitor%current_energy())) then
             failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
             return
         end if
-        call self%control%observe_size(energy_norm(monitor%energy))
+        call self%control%observe_size(energy_norm(monitor%current_energy()))
     end subroutine driver_take_step
 
     !> The next step: &time dt or the controller's proposal (at most GROWTH_MAX times the

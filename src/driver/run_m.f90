@@ -128,8 +128,8 @@ contains
             call copy_history(run%writer, trim(cfg%time%restart_from), run%state%t)
             call run%writer%attr_int('restart_step', run%state%step)
         else
-            run%result%contact_force = run%stepper%law%force(run%state%u(run%state%s))
-            call write_series(run%writer, run%stepper, run%state, run%monitor%energy, run%result)
+            call run%stepper%initial_result(run%state, run%result)
+            call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
             call write_snapshot(run%writer, run%state, run%x_out)
         end if
         call run%writer%flush()
@@ -164,7 +164,7 @@ contains
                 if (at_snapshot) run%n_snapshot_next = run%n_snapshot_next + 1
                 last = finished(run, cfg)
                 if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
-                    call write_series(run%writer, run%stepper, state, run%monitor%energy, run%result)
+                    call write_series(run%writer, run%stepper, state, run%monitor, run%result)
                 if (snapshot_due(cfg, state%step, at_snapshot) .or. last) call write_snapshot(run%writer, state, run%x_out)
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
@@ -207,7 +207,7 @@ contains
         if (failure /= '' .and. run%last_written > 0 .and. run%last_written == run%state%step) then
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
             if (mod(run%last_written, cfg%output%series_every) /= 0) &
-                call write_series(run%writer, run%stepper, run%state, run%monitor%energy, run%result)
+                call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
             if (.not. snapshot_due(cfg, run%last_written, .false.)) call write_snapshot(run%writer, run%state, run%x_out)
         end if
         call system_clock(clock_now)

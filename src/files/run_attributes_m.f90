@@ -88,24 +88,27 @@ contains
         real(dp), intent(in) :: wall_seconds
         integer, intent(in) :: n_elements_max
         type(event_log_t) :: events
+        real(dp) :: max_rise, max_rise_step_change, max_rise_remesh
+        integer :: n_remeshes
 
         events = driver%events_log()
         call writer%write_events(events%times(), events%kinds())
         call writer%attr_int('steps', state%step)
         call writer%attr_real('t_final', state%t)
         call writer%attr_real('wall_seconds', wall_seconds)
-        call writer%attr_real('energy_max_relative_rise', monitor%max_rise)
+        call monitor%rises(max_rise, max_rise_step_change, max_rise_remesh, n_remeshes)
+        call writer%attr_real('energy_max_relative_rise', max_rise)
         if (stepper%scheme%is_bdf2() .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
-            call writer%attr_real('energy_max_relative_rise_step_change', monitor%max_rise_step_change)
+            call writer%attr_real('energy_max_relative_rise_step_change', max_rise_step_change)
         call writer%attr_str('energy_law', stepper%scheme%law())
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
         call record_time_error(writer, driver%controller(), cfg%time%adaptive)
         if (cfg%mesh%adaptive) then
-            call writer%attr_int('mesh.remeshes', monitor%n_remeshes)
+            call writer%attr_int('mesh.remeshes', n_remeshes)
             call writer%attr_int('mesh.n_elements_max', n_elements_max)
-            call writer%attr_real('energy_max_relative_rise_remesh', monitor%max_rise_remesh)
+            call writer%attr_real('energy_max_relative_rise_remesh', max_rise_remesh)
         end if
     end subroutine record_results
 

@@ -9,6 +9,7 @@ module run_output_m
                         S_N_ELEMENTS, N_OUTPUT_FIELDS, OUTPUT_ORDER
     use state_m, only: state_t, field_values, state_nodes
     use stepper_m, only: stepper_t, step_result_t
+    use energy_m, only: energy_monitor_t
     use output_m, only: h5_writer_t
     implicit none
     private
@@ -31,16 +32,16 @@ contains
 
     !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
     !> (normal compliance (3.4), or the Signorini multiplier).
-    subroutine write_series(writer, stepper, state, energy, result)
+    subroutine write_series(writer, stepper, state, monitor, result)
         type(h5_writer_t), intent(inout) :: writer
         type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
-        real(dp), intent(in) :: energy
+        type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
         type(step_result_t), intent(in) :: result
         real(dp) :: values(N_SERIES)
 
         values(S_T) = state%t
-        values(S_ENERGY) = energy
+        values(S_ENERGY) = monitor%current_energy()
         values(S_U_END) = state%u(state%s)
         values(S_PENETRATION) = stepper%law%penetration(state%u(state%s))
         values(S_CONTACT_STRESS) = -result%contact_force

@@ -16,6 +16,7 @@ module energy_m
     !> The discrete energy of every level and the largest relative rise of the energy the
     !> scheme's law is stated for (time_scheme_m: E^n for Euler, the G-energy for BDF2).
     type :: energy_monitor_t
+        private
         type(model_t) :: model
         type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
         type(contact_law_t) :: law
@@ -38,6 +39,8 @@ module energy_m
         procedure :: remeshed => monitor_remeshed
         procedure :: save_checkpoint => monitor_save_checkpoint
         procedure :: restore_checkpoint => monitor_restore_checkpoint
+        procedure :: current_energy => monitor_current_energy
+        procedure :: rises => monitor_rises
     end type energy_monitor_t
 
 contains
@@ -228,6 +231,27 @@ contains
         allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the energy monitor''s work arrays')
     end subroutine monitor_resize
+
+    !> E^n of the level observed last.
+    pure real(dp) function monitor_current_energy(self) result(energy)
+        class(energy_monitor_t), intent(in) :: self
+
+        energy = self%energy
+    end function monitor_current_energy
+
+    !> The largest relative rises of the law energy so far (the root attributes
+    !> energy_max_relative_rise*): at steps of the step size before, at steps of another
+    !> size (BDF2), across remeshes; and the number of remeshes.
+    pure subroutine monitor_rises(self, max_rise, max_rise_step_change, max_rise_remesh, n_remeshes)
+        class(energy_monitor_t), intent(in) :: self
+        real(dp), intent(out) :: max_rise, max_rise_step_change, max_rise_remesh
+        integer, intent(out) :: n_remeshes
+
+        max_rise = self%max_rise
+        max_rise_step_change = self%max_rise_step_change
+        max_rise_remesh = self%max_rise_remesh
+        n_remeshes = self%n_remeshes
+    end subroutine monitor_rises
 
     !> The energies and the largest rises so far into a checkpoint.
     subroutine monitor_save_checkpoint(self, ckpt)

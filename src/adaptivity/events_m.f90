@@ -1,5 +1,5 @@
 !> Contact events: the times at which the contact node becomes active (onset) or inactive
-!> (release), as /events/t and /events/kind record them (SPEC section 4).
+!> (release), as /events/t and /events/kind record them (docs/output.md).
 module events_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation

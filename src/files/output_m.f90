@@ -1,4 +1,4 @@
-!> The HDF5 writer of SPEC section 4. Layout as h5py sees it:
+!> The HDF5 writer of the output file (docs/output.md). Layout as h5py sees it:
 !>
 !>     /mesh/x                                          (s+1,)          float64
 !>     /series/<name>   one per fields_m's SERIES table (n_series,)     float64 or int32
@@ -9,7 +9,7 @@
 !>
 !> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
 !> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
-!> no run leaves a truncated file under the final name (SPEC section 2). Until finish()
+!> no run leaves a truncated file under the final name (docs/output.md). Until finish()
 !> writes the real status, the root attribute `status` reads 'incomplete'.
 !>
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.

@@ -7,6 +7,7 @@ module provenance_m
     use hdf5, only: h5get_libversion_f
     use h5_read_m, only: h5_library_init
     use strings_m, only: int_str, from_c_chars
+    use errors_m, only: check_allocation
     use output_m, only: h5_writer_t
     implicit none
     private
@@ -73,13 +74,15 @@ contains
     function command_line() result(text)
         character(len=:), allocatable :: text
         integer :: length, stat
+        character(len=256) :: message
 
         call get_command(length=length, status=stat)
         if (stat > 0 .or. length == 0) then
             text = 'unknown'
             return
         end if
-        allocate (character(len=length) :: text)
+        allocate (character(len=length) :: text, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the command line')
         call get_command(text)
     end function command_line
 

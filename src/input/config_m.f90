@@ -1,4 +1,4 @@
-!> Run configuration: one derived type per namelist group (SPEC section 3), with the
+!> Run configuration: one derived type per namelist group (docs/input.md), with the
 !> defaults built into the types (the paper's values (7.1) and discretisation), and the
 !> rules that belong to the settings themselves (the number of time steps). The list of
 !> input variables is input_vars_m; the reader is config_reader_m.

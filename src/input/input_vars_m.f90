@@ -1,4 +1,4 @@
-!> The input variables of SPEC section 3 as one table, INPUT_VARS (group, name, kind, unit),
+!> The input variables of docs/input.md as one table, INPUT_VARS (group, name, kind, unit),
 !> and the one routine that knows which component of config_t holds each of them. The
 !> table drives the reader's checks and messages (known names, kinds, 'allowed: ...'), the
 !> namelist read of each assignment, the echo of &material, and the record of the inputs in
@@ -38,7 +38,7 @@ module input_vars_m
         character(len=24) :: unit = ''      !< unit (&material) or note (&model) in the echo
     end type input_var_t
 
-    !> Namelist groups of SPEC section 3, in the order validation checks them.
+    !> Namelist groups of docs/input.md, in the order validation checks them.
     character(len=*), parameter :: GROUP_NAMES(8) = [character(len=8) :: &
         'model', 'contact', 'mesh', 'time', 'initial', 'solver', 'output', 'material']
 
@@ -141,7 +141,7 @@ contains
     end function find_input
 
     !> Whether input variable `var` changes the computed history, so that a restart must
-    !> keep it (SPEC section 3): every variable of the physics, contact, mesh, initial data,
+    !> keep it (docs/input.md): every variable of the physics, contact, mesh, initial data,
     !> solver and time-stepping groups, except the end time and the restart file itself.
     !> &output (where and how often the history is written) may change.
     elemental logical function changes_history(var)

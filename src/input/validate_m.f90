@@ -1,4 +1,4 @@
-!> Input validation (SPEC section 3, "Validation"), run before any allocation or output:
+!> Input validation (docs/input.md), run before any allocation or output:
 !> the checks go through the groups in the order model, contact, mesh, time, initial,
 !> solver, output, and the first failure stops with EXIT_INPUT, naming group.variable,
 !> the value given and what is allowed.
@@ -40,7 +40,7 @@ module validate_m
 
 contains
 
-    !> Apply every check of SPEC section 3 to cfg; stop with EXIT_INPUT at the first failure.
+    !> Apply every check of docs/input.md to cfg; stop with EXIT_INPUT at the first failure.
     !> A large (but allowed) output size gives a warning on stderr.
     subroutine validate_config(cfg)
         type(config_t), intent(in) :: cfg

@@ -1,4 +1,4 @@
-!> One time step of (6.1) by either solution method of SPEC section 1.
+!> One time step of (6.1) by either solution method of docs/scheme.md.
 !>
 !> 'monolithic': all five fields in one band (nodes interleaved, kl = ku = 7), factored once
 !>   with dgbtrf; the per-step solve uses the block-tridiagonal LU of the same matrix

@@ -1,12 +1,13 @@
 !> The mesh type (mesh_m): the uniform mesh is the graded mesh with h_e = 1/s exactly; its
 !> mass and stiffness products (written-out kernel for the uniform mesh, per-element sizes
 !> for a graded one) against the dense matrices assembled from fe_m's element matrices; the
-!> remesh counters survive new nodes and copies; a copy takes the nodes of its source also
+!> remesh counters survive new nodes, copies and checkpoints; a copy takes the nodes of its source also
 !> when both have the same number of elements.
 program test_mesh_m
     use kinds_m, only: dp
     use fe_m, only: mesh_nodes, element_mass, element_stiffness
     use mesh_m, only: mesh_t, uniform_mesh, graded_mesh, copy_mesh
+    use checkpoint_m, only: checkpoint_t
     use testing_m, only: check_close, check_true, test_summary
     implicit none
     real(dp), parameter :: X_GRADED(0:4) = [0.0_dp, 0.125_dp, 0.25_dp, 0.5_dp, 1.0_dp]
@@ -53,6 +54,7 @@ contains
     !> record_remesh counts and keeps the largest rise; set_nodes and copy_mesh keep both.
     subroutine check_counters()
         type(mesh_t) :: mesh
+        type(checkpoint_t) :: ckpt
 
         mesh = uniform_mesh(4)
         call mesh%record_remesh(0.0_dp)
@@ -75,9 +77,11 @@ contains
         call check_close('copy of a uniform mesh onto a graded one of the same size: uniform nodes', 0.0_dp, &
                          maxval(abs(copy%x - mesh_nodes(4))), 0.0_dp)
         call check_close('... and sizes', 0.0_dp, maxval(abs(copy%h - 0.25_dp)), 0.0_dp)
-        call copy%restore_remesh_counters(7, 0.5_dp)
-        call check_true('restore_remesh_counters: the count', copy%n_remeshes() == 7)
-        call check_close('restore_remesh_counters: the largest rise', 0.5_dp, copy%max_rise_remesh(), 0.0_dp)
+        ! the counters through a checkpoint
+        call mesh%save_checkpoint(ckpt)
+        call copy%restore_checkpoint(ckpt)
+        call check_true('a checkpoint keeps the remesh count', copy%n_remeshes() == 3)
+        call check_close('a checkpoint keeps the largest rise', 1.0e-14_dp, copy%max_rise_remesh(), 0.0_dp)
     end subroutine check_counters
 
 end program test_mesh_m

@@ -13,6 +13,7 @@
 module mesh_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation
+    use checkpoint_m, only: checkpoint_t
     use fe_m, only: mesh_nodes, element_mass, element_stiffness, apply_assembled, apply_mass_graded, &
                     apply_stiffness_graded
     implicit none
@@ -35,7 +36,8 @@ module mesh_m
         procedure :: apply_mass => mesh_apply_mass
         procedure :: apply_stiffness => mesh_apply_stiffness
         procedure :: record_remesh => mesh_record_remesh
-        procedure :: restore_remesh_counters => mesh_restore_remesh_counters
+        procedure :: save_checkpoint => mesh_save_checkpoint
+        procedure :: restore_checkpoint => mesh_restore_checkpoint
         procedure :: n_remeshes => mesh_n_remeshes
         procedure :: max_rise_remesh => mesh_max_rise_remesh
     end type mesh_t
@@ -168,15 +170,23 @@ contains
         self%rise_remesh = max(self%rise_remesh, rise)
     end subroutine mesh_record_remesh
 
-    !> The remesh counters of a checkpoint (the inverse of n_remeshes and max_rise_remesh).
-    subroutine mesh_restore_remesh_counters(self, n_remeshes, max_rise_remesh)
-        class(mesh_t), intent(inout) :: self
-        integer, intent(in) :: n_remeshes
-        real(dp), intent(in) :: max_rise_remesh
+    !> The remesh counters into a checkpoint (the nodes are adaptive_mesh_m's keys).
+    subroutine mesh_save_checkpoint(self, ckpt)
+        class(mesh_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
 
-        self%remeshes = n_remeshes
-        self%rise_remesh = max_rise_remesh
-    end subroutine mesh_restore_remesh_counters
+        ckpt%n_remeshes = self%remeshes
+        ckpt%max_rise_remesh = self%rise_remesh
+    end subroutine mesh_save_checkpoint
+
+    !> The inverse of save_checkpoint (the nodes are set apart: set_nodes keeps the counters).
+    subroutine mesh_restore_checkpoint(self, ckpt)
+        class(mesh_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%remeshes = ckpt%n_remeshes
+        self%rise_remesh = ckpt%max_rise_remesh
+    end subroutine mesh_restore_checkpoint
 
     !> Remeshes of the run so far.
     pure integer function mesh_n_remeshes(self)

@@ -42,6 +42,7 @@
 !> check once).
 program work_precision
     use kinds_m, only: dp
+    use reals_m, only: equal
     use config_m, only: config_t, model_t
     use config_reader_m, only: read_config
     use energy_m, only: discrete_energy
@@ -178,7 +179,7 @@ contains
             end if
             cfg%contact%law = law
             ! u(1,t) = t - t^2/2 holds for rho = alpha = 1, u0 = 0, u1 = x (input/impact.nml)
-            if (cfg%model%rho /= 1.0_dp .or. cfg%model%alpha /= 1.0_dp) then
+            if (.not. (equal(cfg%model%rho, 1.0_dp) .and. equal(cfg%model%alpha, 1.0_dp))) then
                 write (*, '(a)') 'work_precision: impact: the exact solution needs rho = alpha = 1 (input/impact.nml)'
                 stop 2
             end if

@@ -32,7 +32,7 @@ cd "$repo_root"
 build_dir="${BUILD_DIR:-build}"
 [[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
 
-# The output prefix as the input file sets it (comments stripped; default of SPEC 3).
+# The output prefix as the input file sets it (comments stripped; default of docs/input.md).
 prefix="$(sed -e 's/!.*//' "$input" |
           grep -i -o -E "prefix[[:space:]]*=[[:space:]]*('[^']*'|\"[^\"]*\")" |
           tail -n 1 | sed -E "s/^[^=]*=[[:space:]]*['\"](.*)['\"]$/\1/")" || true

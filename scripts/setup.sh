@@ -14,12 +14,13 @@
 
 set -euo pipefail
 
+# graphviz: draws docs/uses.svg, the use graph of docs/architecture.md (tests/test_docs.sh).
 # parallel: GNU parallel, which runs the points of scripts/scan.sh (with moreutils installed
 # too, Debian moves moreutils' own 'parallel' aside to parallel.moreutils). The test-only
 # Slurm packages (slurm-wlm, munge) are installed by tests/test_slurm.sh itself.
 REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
                    gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-scipy python3-matplotlib
-                   valgrind parallel)
+                   valgrind parallel graphviz)
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Numerical failures through the real program (SPEC section 2): a run that fails must
+# Numerical failures through the real program (the README, "exit status"): a run that fails must
 #   - exit with status 3,
 #   - write one line to stderr naming the step, t and what failed,
 #   - leave <prefix>.h5 (never <prefix>.h5.part) that h5py opens, with root attribute

@@ -1,4 +1,4 @@
-!> The HDF5 file of a whole run (SPEC section 4): dataset shapes, the times of the series
+!> The HDF5 file of a whole run (docs/output.md): dataset shapes, the times of the series
 !> and snapshots, root attributes, no .part left behind, and the t = 0 entries equal to the
 !> initial data: snapshot columns against the initial profiles evaluated here from their
 !> formulas, the first energy against an independent quadrature of the P1 interpolants.

@@ -98,6 +98,14 @@ bad() {   # bad <what> <restart_from value> <sed expression or ''> [pattern the 
 bad "missing restart file" "does-not-exist.h5" ''
 make_input nock.nml nock 0.01 euler; sed -i 's/checkpoint_every=250/checkpoint_every=0/' nock.nml; "$exe" nock.nml
 bad "file without checkpoint" "nock.h5" ''
+# a damaged checkpoint (its state datasets removed): an input error, exit 2, naming the file
+cp half_euler.h5 damaged.h5 && "$py" -c "
+import h5py
+with h5py.File('damaged.h5', 'r+') as f:
+    for slot in ('slot0', 'slot1'):
+        if 'checkpoint/' + slot + '/state' in f:
+            del f['checkpoint/' + slot + '/state']"
+bad "damaged restart file" "damaged.h5" '' "damaged.h5" "/state" "no such dataset"
 bad "restart on another mesh" "half_euler.h5" 's/n_elements=100/n_elements=50/' mesh.n_elements "was 100" "has 50" "may change"
 bad "restart with another dt" "half_euler.h5" 's/dt=1e-4/dt=2e-4/' time.dt "was 0.0001" "has 0.0002"
 # every group that shapes the history, driven through --set-free edits of the input

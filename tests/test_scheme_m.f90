@@ -169,7 +169,7 @@ contains
         type(state_t) :: st, st0
         type(stepper_t) :: stepper
         type(step_result_t) :: res
-        real(dp), allocatable :: a(:, :), b(:), x(:), a0(:, :), b0(:)
+        real(dp), allocatable :: a(:, :), x(:), a0(:, :), b0(:)
         integer, allocatable :: ipiv(:)
         integer :: n, i, f, info, k, cdof, method
         real(dp) :: gap, scale

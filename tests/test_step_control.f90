@@ -56,23 +56,25 @@ contains
 
     subroutine controller_checks()
         type(step_controller_t) :: c
+        real(dp) :: error_sum, scale
+        integer :: n_estimated, n_rejected, n_forced
 
-        call c%init(1.0e-3_dp, 1.0e-6_dp, 0.1_dp, time_scheme('bdf2'), 0.01_dp)
-        c%scale = 1.0_dp
+        call c%init(1.0e-3_dp, 1.0e-6_dp, 0.1_dp, time_scheme('bdf2'), 0.01_dp, scale=1.0_dp)
         call check('ratio est / (tol S) = 8 for est = 8e-3', abs(c%ratio(8.0e-3_dp) - 8.0_dp) < 1.0e-12_dp)
         call c%reject(0.01_dp, 8.0_dp)
+        call c%counts(error_sum, scale, n_estimated, n_rejected, n_forced)
         call check('a rejected step is retried smaller (0.45 dt for err = 8, order 2)', &
-                   abs(c%dt_next - 0.01_dp * 0.9_dp * 0.5_dp) < 1.0e-15_dp .and. c%n_rejected == 1)
-        call c%accept(c%dt_next, 1.0e-6_dp)
-        call check('no growth on the step right after a rejection', abs(c%dt_next - 0.0045_dp) < 1.0e-15_dp)
+                   abs(c%proposal() - 0.01_dp * 0.9_dp * 0.5_dp) < 1.0e-15_dp .and. n_rejected == 1)
+        call c%accept(c%proposal(), 1.0e-6_dp)
+        call check('no growth on the step right after a rejection', abs(c%proposal() - 0.0045_dp) < 1.0e-15_dp)
         call c%accept(0.0045_dp, 1.0e-6_dp)
-        call check('a quiet step grows dt by the largest factor, 2', abs(c%dt_next - 0.009_dp) < 1.0e-15_dp)
+        call check('a quiet step grows dt by the largest factor, 2', abs(c%proposal() - 0.009_dp) < 1.0e-15_dp)
         call c%accept(0.009_dp, 0.5_dp)
-        call check('err = 0.5 (growth 1.13 < 1.25): dt is kept', abs(c%dt_next - 0.009_dp) < 1.0e-15_dp)
+        call check('err = 0.5 (growth 1.13 < 1.25): dt is kept', abs(c%proposal() - 0.009_dp) < 1.0e-15_dp)
         call c%accept(0.09_dp, 0.0_dp)
-        call check('growth stops at dt_max', abs(c%dt_next - 0.1_dp) < 1.0e-15_dp)
+        call check('growth stops at dt_max', abs(c%proposal() - 0.1_dp) < 1.0e-15_dp)
         call c%reject(2.0e-6_dp, 1.0e6_dp)
-        call check('shrinking stops at dt_min', abs(c%dt_next - 1.0e-6_dp) < 1.0e-18_dp)
+        call check('shrinking stops at dt_min', abs(c%proposal() - 1.0e-6_dp) < 1.0e-18_dp)
     end subroutine controller_checks
 
     !> est / |X^n - X_true|_E for one step of `scheme` of size dt ending at T_STEP_END, the

@@ -28,6 +28,7 @@ module adaptive_mesh_m
     use fields_m, only: N_FIELDS
     use config_m, only: model_t
     use errors_m, only: check_allocation
+    use checkpoint_m, only: checkpoint_t
     implicit none
     private
     public :: adaptive_mesh_t, COARSEN_MARGIN, FRONT_CFL, front_speed, nodes_of_keys
@@ -59,6 +60,8 @@ module adaptive_mesh_m
         procedure :: observe_scales => mesh_observe_scales
         procedure :: adapt => mesh_adapt
         procedure :: set_keys => mesh_set_keys
+        procedure :: save_checkpoint => mesh_save_checkpoint
+        procedure :: restore_checkpoint => mesh_restore_checkpoint
     end type adaptive_mesh_t
 
 contains
@@ -90,6 +93,25 @@ contains
         call check_allocation(stat, message, 'the adaptive mesh')
         self%k = k
     end subroutine mesh_set_keys
+
+    !> The node keys and the field scales into a checkpoint.
+    subroutine mesh_save_checkpoint(self, ckpt)
+        class(adaptive_mesh_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%has_mesh = .true.
+        ckpt%mesh_scale = self%scale
+        ckpt%mesh_keys = self%k
+    end subroutine mesh_save_checkpoint
+
+    !> The mesh of a checkpoint (save_checkpoint), on a mesh initialised for this run.
+    subroutine mesh_restore_checkpoint(self, ckpt)
+        class(adaptive_mesh_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%scale = ckpt%mesh_scale
+        call self%set_keys(ckpt%mesh_keys)
+    end subroutine mesh_restore_checkpoint
 
     !> Number of elements.
     pure integer function mesh_s(self)

@@ -1,5 +1,5 @@
 !> Contact events: the times at which the contact node becomes active (onset) or inactive
-!> (release), as /events/t and /events/kind record them (SPEC section 4).
+!> (release), as /events/t and /events/kind record them (docs/output.md).
 module events_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation
@@ -11,6 +11,7 @@ module events_m
 
     !> The events of a run, in order.
     type :: event_log_t
+        private
         integer :: n = 0
         real(dp), allocatable :: t(:)
         integer, allocatable :: kind(:)

@@ -1,4 +1,4 @@
-!> Exit codes of SPEC section 2 and the one way the program stops on an error.
+!> Exit codes of the README, "exit status" and the one way the program stops on an error.
 module errors_m
     use iso_fortran_env, only: error_unit, output_unit
     use iso_c_binding, only: c_int

@@ -1,4 +1,4 @@
-!> Progress report on stderr (SPEC section 2): step, t, % done, ETA and contact state,
+!> Progress report on stderr (the README, "exit status"): step, t, % done, ETA and contact state,
 !> for runs longer than about 2 s only, and never with `&output quiet=.true.`.
 !>
 !>     call progress%start(n_steps, quiet)

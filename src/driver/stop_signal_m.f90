@@ -1,4 +1,4 @@
-!> Clean stop on a signal (SPEC section 4; issue 14): install handlers for SIGTERM, SIGINT
+!> Clean stop on a signal (docs/output.md; README, exit status 5): install handlers for SIGTERM, SIGINT
 !> and SIGUSR1 (src/driver/signals_c.c) and ask, once per time step, whether one has arrived. The
 !> handler only sets a flag; run_m finishes the step, writes a checkpoint and closes the
 !> file as <prefix>.h5.part with status 'interrupted: <signal>' (exit EXIT_INTERRUPTED).

@@ -6,6 +6,7 @@
 module h5_attr_m
     use iso_c_binding, only: c_ptr, c_char, c_loc, c_null_char
     use kinds_m, only: dp
+    use errors_m, only: check_allocation
     use hdf5, only: hid_t, hsize_t, h5screate_f, h5screate_simple_f, h5sclose_f, h5acreate_f, h5aclose_f, &
                     h5awrite_f, h5aexists_f, h5adelete_f, h5tcopy_f, h5tclose_f, h5tset_cset_f, &
                     H5S_SCALAR_F, H5S_NULL_F, H5T_STRING, H5T_CSET_UTF8_F, H5T_IEEE_F64LE, H5T_STD_I32LE, &
@@ -90,14 +91,16 @@ contains
         character(len=*), intent(in) :: value
         character(len=:), allocatable, intent(out) :: failed
         integer(hid_t) :: type_id, space_id, attr_id
-        integer :: hdferr, i
+        integer :: hdferr, i, stat
+        character(len=256) :: message
         character(kind=c_char), allocatable, target :: chars(:)
         type(c_ptr), target :: str_ptr(1)
         type(c_ptr) :: buf_ptr
 
         failed = ''
         ! a variable-length string is written as a pointer to a NUL-terminated C string
-        allocate (chars(len(value) + 1))
+        allocate (chars(len(value) + 1), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the attribute '''//name//'''')
         do i = 1, len(value)
             chars(i) = value(i:i)
         end do

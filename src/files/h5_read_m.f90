@@ -1,14 +1,16 @@
-!> Small reader for rodcontact HDF5 files (SPEC section 4): whole datasets and root
+!> Small reader for rodcontact HDF5 files (docs/output.md): whole datasets and root
 !> attributes, one call each (the file is opened and closed every time). Used by the tests,
 !> and by restart and summary tools. Also owns the once-only HDF5 library start-up shared
-!> with the writer (output_m).
+!> with the writer (output_m). Every file it reads is an input of the run (a checkpoint to
+!> restart from, a file to summarise): a file it cannot read stops the run with exit 2
+!> (EXIT_INPUT), naming the file and what is missing.
 !>
 !> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) comes back as
 !> values(s+1, n_snap), i.e. values(:, k) is snapshot k.
 module h5_read_m
     use iso_c_binding, only: c_ptr, c_char, c_int, c_size_t, c_loc, c_f_pointer, c_associated
     use kinds_m, only: dp
-    use errors_m, only: fatal, EXIT_OUTPUT
+    use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists
     use strings_m, only: from_c_chars
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
@@ -76,9 +78,12 @@ contains
         integer(hid_t) :: file_id, dset_id
         integer(hsize_t) :: dims(1)
         integer :: hdferr
+        integer :: stat
+        character(len=256) :: message
 
         call open_dataset(file, dset, 1, file_id, dset_id, dims)
-        allocate (values(dims(1)))
+        allocate (values(dims(1)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         if (dims(1) > 0) then
             call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
             if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
@@ -95,9 +100,12 @@ contains
         integer(hid_t) :: file_id, dset_id
         integer(hsize_t) :: dims(2)
         integer :: hdferr
+        integer :: stat
+        character(len=256) :: message
 
         call open_dataset(file, dset, 2, file_id, dset_id, dims)
-        allocate (values(dims(1), dims(2)))
+        allocate (values(dims(1), dims(2)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         if (size(values) > 0) then
             call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
             if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
@@ -114,9 +122,12 @@ contains
         integer(hid_t) :: file_id, dset_id
         integer(hsize_t) :: dims(1)
         integer :: hdferr
+        integer :: stat
+        character(len=256) :: message
 
         call open_dataset(file, dset, 1, file_id, dset_id, dims)
-        allocate (values(dims(1)))
+        allocate (values(dims(1)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         if (dims(1) > 0) then
             call h5dread_f(dset_id, H5T_NATIVE_INTEGER, values, dims, hdferr)
             if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
@@ -198,6 +209,8 @@ contains
         integer(hid_t) :: file_id, attr_id, file_type, mem_type
         integer(size_t) :: type_size
         integer :: hdferr, type_class, n
+        integer :: stat
+        character(len=256) :: message
         logical :: is_variable
         type(c_ptr), target :: vl_ptr(1)
         type(c_ptr) :: buf_ptr   ! h5aread_f wants a variable, not an expression
@@ -233,7 +246,8 @@ contains
         else
             call h5tget_size_f(file_type, type_size, hdferr)
             if (hdferr < 0) call fail(file, what, 'h5tget_size_f failed')
-            allocate (fixed(max(1_size_t, type_size)))
+            allocate (fixed(max(1_size_t, type_size)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
             fixed = c_char_' '
             buf_ptr = c_loc(fixed)
             call h5aread_f(attr_id, mem_type, buf_ptr, hdferr)
@@ -293,6 +307,8 @@ contains
         integer(hid_t) :: file_id, attr_id, space_id
         integer(hsize_t) :: dims(1), npoints
         integer :: hdferr
+        integer :: stat
+        character(len=256) :: message
 
         call open_attr(file, name, -1_hsize_t, file_id, attr_id)
         call h5aget_space_f(attr_id, space_id, hdferr)
@@ -301,7 +317,8 @@ contains
         if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sget_simple_extent_npoints_f failed')
         call h5sclose_f(space_id, hdferr)
         if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sclose_f failed')
-        allocate (values(npoints))
+        allocate (values(npoints), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         if (npoints > 0) then
             dims = npoints
             call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
@@ -318,7 +335,7 @@ contains
         character(len=*), intent(in) :: what
         character(len=*), intent(in) :: reason
 
-        call fatal(EXIT_OUTPUT, 'h5_read', "cannot read '"//trim(what)//"' from '"//trim(file)//"': "//reason)
+        call fatal(EXIT_INPUT, 'h5_read', "cannot read '"//trim(what)//"' from '"//trim(file)//"': "//reason)
     end subroutine fail
 
     function open_file(file, what) result(file_id)

@@ -1,4 +1,4 @@
-!> The contact events of a run (/events, SPEC section 4): a submodule of output_m, so that
+!> The contact events of a run (/events, docs/output.md): a submodule of output_m, so that
 !> it reaches the writer's open file.
 submodule (output_m) output_events_s
     implicit none

@@ -1,5 +1,5 @@
-!> The snapshots of an adaptive mesh on their own meshes (/snapshots/native, SPEC section
-!> 4): a submodule of output_m, so that it reaches the writer's open file.
+!> The snapshots of an adaptive mesh on their own meshes (/snapshots/native, docs/output.md):
+!> a submodule of output_m, so that it reaches the writer's open file.
 !>
 !>     /snapshots/native/x, /snapshots/native/<field>   (sum of counts,)  float64
 !>     /snapshots/native/offset, /snapshots/native/count (n_snap,)        int64

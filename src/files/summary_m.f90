@@ -1,4 +1,4 @@
-!> One-line summary of a rodcontact HDF5 file (SPEC section 4) for parameter scans: whether
+!> One-line summary of a rodcontact HDF5 file (docs/output.md) for parameter scans: whether
 !> and when the rod touched the obstacle, how far it went, how the energy decayed, and what
 !> the run cost. `rodcontact --summary file.h5` prints summary_row(summarise_file(file));
 !> scripts/scan.sh joins the rows of all points of a scan (docs/scans.md).
@@ -191,7 +191,8 @@ contains
 
     !> Why `file` cannot be summarised ('' when it can): it does not exist, is not a readable
     !> HDF5 file, or is not a rodcontact output file (no /series datasets the summary reads, or
-    !> no root attribute 'status'). Tested before any read, which would stop with exit 4.
+    !> no root attribute 'status'). Tested before any read, which would stop the whole summary
+    !> (exit 2) at the first file it cannot read.
     function summary_problem(file) result(reason)
         character(len=*), intent(in) :: file
         character(len=:), allocatable :: reason

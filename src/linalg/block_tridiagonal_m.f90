@@ -22,6 +22,8 @@
 !> scaling of scheme_m), and stepper_m checks the solver against the band LU once per run.
 module block_tridiagonal_m
     use kinds_m, only: dp
+    use errors_m, only: check_allocation
+    use reals_m, only: is_zero
     use banded_m, only: band_t
     implicit none
     private
@@ -69,7 +71,8 @@ contains
         integer, intent(out) :: info
         logical, intent(in), optional :: inline_inverse
         real(dp) :: f(nb, nb), work(nb * nb)
-        integer :: i, ipiv(nb), lapack_info
+        integer :: i, ipiv(nb), lapack_info, stat
+        character(len=256) :: message
         logical :: inline
 
         inline = .false.
@@ -81,15 +84,15 @@ contains
         self%last = a%n / nb - 1
         if (allocated(self%g)) deallocate (self%g, self%l, self%e, self%h)
         allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%e(nb, nb, 0:self%last - 1), &
-                  self%h(nb, nb, 0:self%last - 1), stat=lapack_info)
-        if (lapack_info /= 0) return
+                  self%h(nb, nb, 0:self%last - 1), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the block LU factors')
         info = 0
         do i = 0, self%last
             self%g(:, :, i) = block(a, i, i)
             if (i > 0) then
                 f = block(a, i, i - 1)
-                self%l(:, :, i) = product(f, self%g(:, :, i - 1), nb)
-                self%g(:, :, i) = self%g(:, :, i) - product(self%l(:, :, i), self%e(:, :, i - 1), nb)
+                self%l(:, :, i) = block_product(f, self%g(:, :, i - 1), nb)
+                self%g(:, :, i) = self%g(:, :, i) - block_product(self%l(:, :, i), self%e(:, :, i - 1), nb)
             end if
             if (i < self%last) self%e(:, :, i) = block(a, i, i + 1)
             if (inline) then
@@ -104,7 +107,7 @@ contains
             end if
         end do
         do i = 0, self%last - 1
-            self%h(:, :, i) = product(self%g(:, :, i), self%e(:, :, i), nb)
+            self%h(:, :, i) = block_product(self%g(:, :, i), self%e(:, :, i), nb)
         end do
     contains
         pure function block(a, row_node, col_node) result(blk)
@@ -134,7 +137,7 @@ contains
         info = 0
         do k = 1, n
             p = k - 1 + maxloc(abs(a(k:n, k)), dim=1)
-            if (a(p, k) == 0.0_dp) then
+            if (is_zero(a(p, k))) then
                 info = k
                 return
             end if
@@ -210,24 +213,17 @@ contains
         integer :: i, r, k
 
         before(1:nb) = b(:, 0)
-        do i = 0, last
-            if (i > 0) then
-                do r = 1, nb
-                    acc = b(r, i)
-                    do k = 1, nb
-                        acc = acc - l(r, k, i) * before(k)
-                    end do
-                    now(r) = acc
-                end do
-                before(1:nb) = now(1:nb)
-            end if
+        call apply_pivot(0)
+        do i = 1, last
             do r = 1, nb
-                acc = 0.0_dp
+                acc = b(r, i)
                 do k = 1, nb
-                    acc = acc + g(r, k, i) * before(k)
+                    acc = acc - l(r, k, i) * before(k)
                 end do
-                b(r, i) = acc
+                now(r) = acc
             end do
+            before(1:nb) = now(1:nb)
+            call apply_pivot(i)
         end do
         do i = last - 1, 0, -1
             do r = 1, nb
@@ -238,12 +234,27 @@ contains
                 b(r, i) = acc
             end do
         end do
+
+    contains
+
+        !> b(:, j) = g_j before: the inverted pivot block of node j applied.
+        subroutine apply_pivot(j)
+            integer, intent(in) :: j
+
+            do r = 1, nb
+                acc = 0.0_dp
+                do k = 1, nb
+                    acc = acc + g(r, k, j) * before(k)
+                end do
+                b(r, j) = acc
+            end do
+        end subroutine apply_pivot
     end subroutine solve_reduced
 
     !> a b for nb x nb blocks: matmul, with the loops of constant length for nb = 5 (every
     !> field in the system), which the compiler unrolls (matmul with a run-time size was a
     !> quarter of an adaptive-mesh run). The same sums in the same order as matmul's.
-    pure function product(a, b, nb) result(c)
+    pure function block_product(a, b, nb) result(c)
         integer, intent(in) :: nb
         real(dp), intent(in) :: a(nb, nb), b(nb, nb)
         real(dp) :: c(nb, nb)
@@ -253,9 +264,9 @@ contains
         else
             c = matmul(a, b)
         end if
-    end function product
+    end function block_product
 
-    !> a b for 5 x 5 blocks (product).
+    !> a b for 5 x 5 blocks (block_product).
     pure function product5(a, b) result(c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
         real(dp) :: c(NB_MAX, NB_MAX)

@@ -7,6 +7,7 @@
 !>       no energy term.
 module contact_law_m
     use kinds_m, only: dp
+    use reals_m, only: is_zero
     implicit none
     private
     public :: contact_law_t, contact_law
@@ -137,7 +138,7 @@ contains
         side = 0
         lambda = hi
         do k = 1, 200
-            if (f_hi == 0.0_dp) then
+            if (is_zero(f_hi)) then
                 lambda = hi
                 exit
             end if
@@ -155,7 +156,7 @@ contains
                 if (side == -1) f_hi = 0.5_dp * f_hi
                 side = -1
             end if
-            if (f == 0.0_dp .or. hi - lo <= 4.0_dp * epsilon(1.0_dp) * hi) exit
+            if (is_zero(f) .or. hi - lo <= 4.0_dp * epsilon(1.0_dp) * hi) exit
         end do
         impulse = dt * lambda
     end function law_midpoint_impulse

@@ -29,7 +29,7 @@ module fields_m
         character(len=24) :: scale       !< which scale of (2.10): root attribute scale.<scale> (&material)
     end type field_t
 
-    !> Indexed by F_*; names as in the output file (SPEC section 4).
+    !> Indexed by F_*; names as in the output file (docs/output.md).
     type(field_t), parameter :: FIELDS(F_U:N_FIELDS) = [ &
         field_t('u', 'S_h', 'displacement', 'alpha u_x^2', '1', 'displacement'), &
         field_t('q', 'S_h', 'heat flux', 'tau0 q^2', '1', 'heat_flux'), &
@@ -42,7 +42,7 @@ module fields_m
     integer, parameter :: N_OUTPUT_FIELDS = N_FIELDS + 1
     integer, parameter :: OUTPUT_ORDER(N_OUTPUT_FIELDS) = [F_U, F_V, F_THETA, F_P, F_Q, F_ETA]
 
-    !> One /series dataset (SPEC section 4): one value per stored time level.
+    !> One /series dataset (docs/output.md): one value per stored time level.
     type :: series_t
         character(len=16) :: name
         character(len=48) :: long_name

@@ -8,6 +8,7 @@ module energy_m
     use time_scheme_m, only: time_scheme_t, energy_law_t, LAW_G_ENERGY
     use state_m, only: state_t
     use errors_m, only: check_allocation
+    use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
     implicit none
     private
     public :: discrete_energy, linear_energy, bdf2_energy, energy_monitor_t
@@ -15,6 +16,7 @@ module energy_m
     !> The discrete energy of every level and the largest relative rise of the energy the
     !> scheme's law is stated for (time_scheme_m's energy_law: E^n, or BDF2's G-energy).
     type :: energy_monitor_t
+        private
         type(model_t) :: model
         type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
         type(contact_law_t) :: law
@@ -36,6 +38,10 @@ module energy_m
         procedure :: observe => monitor_observe
         procedure :: resize => monitor_resize
         procedure :: remeshed => monitor_remeshed
+        procedure :: save_checkpoint => monitor_save_checkpoint
+        procedure :: restore_checkpoint => monitor_restore_checkpoint
+        procedure :: current_energy => monitor_current_energy
+        procedure :: rises => monitor_rises
     end type energy_monitor_t
 
 contains
@@ -228,6 +234,55 @@ contains
         allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the energy monitor''s work arrays')
     end subroutine monitor_resize
+
+    !> E^n of the level observed last.
+    pure real(dp) function monitor_current_energy(self) result(energy)
+        class(energy_monitor_t), intent(in) :: self
+
+        energy = self%energy
+    end function monitor_current_energy
+
+    !> The largest relative rises of the law energy so far (the root attributes
+    !> energy_max_relative_rise*): at steps of the step size before, at steps of another
+    !> size (BDF2), across remeshes; and the number of remeshes.
+    pure subroutine monitor_rises(self, max_rise, max_rise_step_change, max_rise_remesh, n_remeshes)
+        class(energy_monitor_t), intent(in) :: self
+        real(dp), intent(out) :: max_rise, max_rise_step_change, max_rise_remesh
+        integer, intent(out) :: n_remeshes
+
+        max_rise = self%max_rise
+        max_rise_step_change = self%max_rise_step_change
+        max_rise_remesh = self%max_rise_remesh
+        n_remeshes = self%n_remeshes
+    end subroutine monitor_rises
+
+    !> The energies and the largest rises so far into a checkpoint.
+    subroutine monitor_save_checkpoint(self, ckpt)
+        class(energy_monitor_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%counters(COUNTER_ENERGY) = self%energy
+        ckpt%counters(COUNTER_LAW_ENERGY) = self%law_energy
+        ckpt%counters(COUNTER_HAVE_LAW) = merge(1.0_dp, 0.0_dp, self%have_law)
+        ckpt%counters(COUNTER_MAX_RISE) = self%max_rise
+        ckpt%max_rise_step_change = self%max_rise_step_change
+        ckpt%max_rise_remesh = self%max_rise_remesh
+        ckpt%n_remeshes = self%n_remeshes
+    end subroutine monitor_save_checkpoint
+
+    !> The inverse of save_checkpoint (on a monitor initialised for this run).
+    subroutine monitor_restore_checkpoint(self, ckpt)
+        class(energy_monitor_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%energy = ckpt%counters(COUNTER_ENERGY)
+        self%law_energy = ckpt%counters(COUNTER_LAW_ENERGY)
+        self%have_law = ckpt%counters(COUNTER_HAVE_LAW) > 0.0_dp
+        self%max_rise = ckpt%counters(COUNTER_MAX_RISE)
+        self%max_rise_step_change = ckpt%max_rise_step_change
+        self%max_rise_remesh = ckpt%max_rise_remesh
+        self%n_remeshes = ckpt%n_remeshes
+    end subroutine monitor_restore_checkpoint
 
     !> 6/h times the integrand of 2 E_lin without the strain term on one element whose
     !> end nodes hold the fields w0, w1 (fields_m's F_*).

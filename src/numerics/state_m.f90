@@ -8,6 +8,7 @@ module state_m
     use initial_data_m, only: profile
     use errors_m, only: check_allocation
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use checkpoint_m, only: checkpoint_t, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR
     implicit none
     private
     public :: state_t, initial_state, set_mesh, state_nodes, field_values, advance_time, accept_step, land_on, &
@@ -28,6 +29,9 @@ module state_m
                                                           !< only; allocated by the stepper)
         real(dp), allocatable :: x(:)   !< graded mesh only: the nodes x_i, i = 0..s
         real(dp), allocatable :: h(:)   !< graded mesh only: element sizes h_e = x_e - x_{e-1}, e = 1..s
+    contains
+        procedure :: save_checkpoint => state_save_checkpoint
+        procedure :: restore_checkpoint => state_restore_checkpoint
     end type state_t
 
 contains
@@ -212,5 +216,59 @@ contains
         u_copy = u
         w_copy = w
     end subroutine keep_copy
+
+    !> The level, the level before (multistep schemes) and the time counters into a checkpoint.
+    subroutine state_save_checkpoint(self, ckpt)
+        class(state_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%state = pack_level(self%u, self%w)
+        if (allocated(self%u_prev)) ckpt%previous = pack_level(self%u_prev, self%w_prev)
+        ckpt%counters(COUNTER_STEP) = real(self%step, dp)
+        ckpt%counters(COUNTER_T) = self%t
+        ckpt%counters(COUNTER_DT_LAST) = self%dt_last
+        ckpt%counters(COUNTER_T_ANCHOR) = self%t_anchor
+        ckpt%counters(COUNTER_STEP_ANCHOR) = real(self%step_anchor, dp)
+    end subroutine state_save_checkpoint
+
+    !> The inverse of save_checkpoint; the arrays take the checkpoint's number of elements
+    !> (its mesh is set afterwards: set_mesh).
+    subroutine state_restore_checkpoint(self, ckpt)
+        class(state_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+        integer :: s, stat
+        character(len=256) :: message
+
+        s = size(ckpt%state, 1) - 1
+        if (size(self%u) /= s + 1) then
+            deallocate (self%u, self%w)
+            allocate (self%u(0:s), self%w(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the state')
+            self%s = s
+        end if
+        self%u = ckpt%state(:, 1)
+        self%w = ckpt%state(:, 2:)
+        if (allocated(ckpt%previous)) then
+            if (allocated(self%u_prev)) deallocate (self%u_prev, self%w_prev)
+            allocate (self%u_prev(0:s), self%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the previous level')
+            self%u_prev = ckpt%previous(:, 1)
+            self%w_prev = ckpt%previous(:, 2:)
+        end if
+        self%step = nint(ckpt%counters(COUNTER_STEP))
+        self%t = ckpt%counters(COUNTER_T)
+        self%dt_last = ckpt%counters(COUNTER_DT_LAST)
+        self%t_anchor = ckpt%counters(COUNTER_T_ANCHOR)
+        self%step_anchor = nint(ckpt%counters(COUNTER_STEP_ANCHOR))
+    end subroutine state_restore_checkpoint
+
+    !> (s+1, 1+N_FIELDS) array with the columns u and fields_m's F_* (the layout of a checkpoint's state).
+    pure function pack_level(u, w) result(packed)
+        real(dp), intent(in) :: u(0:), w(0:, :)
+        real(dp) :: packed(size(u), 1 + N_FIELDS)
+
+        packed(:, 1) = u
+        packed(:, 2:) = w
+    end function pack_level
 
 end module state_m

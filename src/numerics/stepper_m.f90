@@ -1,4 +1,4 @@
-!> One time step of (6.1) by either solution method of SPEC section 1.
+!> One time step of (6.1) by either solution method of docs/scheme.md.
 !>
 !> 'monolithic': all five fields in one band (nodes interleaved, kl = ku = 7), factored once
 !>   with dgbtrf; the per-step solve uses the block-tridiagonal LU of the same matrix
@@ -33,6 +33,7 @@ module stepper_m
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
     use sources_m, only: source_t, add_source_terms
+    use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
     implicit none
     private
     public :: stepper_t, step_result_t
@@ -96,6 +97,10 @@ module stepper_m
         procedure :: uses_block_solver => stepper_uses_block_solver
         procedure :: n_unknowns_per_node => stepper_n_unknowns_per_node
         procedure :: remesh => stepper_remesh
+        procedure :: take_back => stepper_take_back
+        procedure :: initial_result => stepper_initial_result
+        procedure :: save_checkpoint => stepper_save_checkpoint
+        procedure :: restore_checkpoint => stepper_restore_checkpoint
     end type stepper_t
 
 contains
@@ -560,5 +565,43 @@ contains
         result%ok = .false.
         result%message = message
     end subroutine fail
+
+    !> A step that result reports was rejected (its state restored by the caller): its
+    !> contact count is taken back.
+    subroutine stepper_take_back(self, result)
+        class(stepper_t), intent(inout) :: self
+        type(step_result_t), intent(in) :: result
+
+        if (result%in_contact) self%n_contact_steps = self%n_contact_steps - 1
+    end subroutine stepper_take_back
+
+    !> result for the level in state reached without a step (the initial data): the contact
+    !> force of its end position (the rest of result is left as it is).
+    subroutine stepper_initial_result(self, state, result)
+        class(stepper_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        type(step_result_t), intent(inout) :: result
+
+        result%contact_force = self%law%force(state%u(state%s))
+    end subroutine stepper_initial_result
+
+    !> The counters of the output attributes solver.* into a checkpoint.
+    subroutine stepper_save_checkpoint(self, ckpt)
+        class(stepper_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%counters(COUNTER_SOLVES) = real(self%n_solves, dp)
+        ckpt%counters(COUNTER_CONTACT_STEPS) = real(self%n_contact_steps, dp)
+    end subroutine stepper_save_checkpoint
+
+    !> The inverse of save_checkpoint.
+    subroutine stepper_restore_checkpoint(self, ckpt)
+        use iso_fortran_env, only: int64
+        class(stepper_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%n_solves = nint(ckpt%counters(COUNTER_SOLVES), int64)
+        self%n_contact_steps = nint(ckpt%counters(COUNTER_CONTACT_STEPS), int64)
+    end subroutine stepper_restore_checkpoint
 
 end module stepper_m

@@ -1,4 +1,4 @@
-!> The shipped experiments of SPEC section 5, loaded the way the program loads them
+!> The shipped experiments of docs/reproduction.md, loaded the way the program loads them
 !> (read_config + validate_config), with the output redirected into a test's scratch dir.
 module shipped_inputs_m
     use config_m, only: config_t

@@ -46,6 +46,8 @@ def scan(src):
                     if m and this is None:
                         this = m.group(m.lastindex).lower()
                         owner[this] = layer
+                        if m.re is SUBMODULE:   # a submodule uses its parent's scope
+                            uses.append((this, m.group(1).lower(), path, number))
                         continue
                     u = USE.match(line)
                     if u and this is not None and u.group(1) is None:
@@ -73,14 +75,20 @@ def check(src):
 
 
 def dot(src):
+    """The use graph, one box per layer (drawn top to bottom from the driver). Uses of the
+    first layer (base: kinds, errors, strings, files) are left out: every layer may use it,
+    and its edges would hide the rest."""
     layers, owner, uses = scan(src)
-    print("digraph uses {\n  rankdir=BT; node [shape=box, fontsize=10];")
-    for i, layer in enumerate(layers):
-        print(f'  subgraph cluster_{i} {{ label="{i + 1}. {layer}"; style=rounded;')
+    print("digraph uses {")
+    print('  rankdir=TB; newrank=true; ranksep=0.35; nodesep=0.15;')
+    print('  node [shape=box, fontsize=10, height=0.25]; edge [arrowsize=0.5, color="#555555"];')
+    print(f'  label="use graph of src/ (tests/tools/layers.py dot src); uses of {layers[0]}/ left out"; fontsize=10;')
+    for i, layer in reversed(list(enumerate(layers))):
+        print(f'  subgraph cluster_{i} {{ label="{i + 1}. {layer}"; style=rounded; fontsize=10;')
         for module in sorted(m for m, l in owner.items() if l == layer):
             print(f"    {module};")
         print("  }")
-    edges = sorted({(a, b) for a, b, _, _ in uses if b in owner and a != b})
+    edges = sorted({(a, b) for a, b, _, _ in uses if b in owner and a != b and owner[b] != layers[0]})
     for a, b in edges:
         print(f"  {a} -> {b};")
     print("}")

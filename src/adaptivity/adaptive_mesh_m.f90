@@ -37,7 +37,7 @@ module adaptive_mesh_m
     !> bisection halves the detail only about 4-fold, so the new node is not removed again).
     real(dp), parameter :: COARSEN_MARGIN = 4.0_dp
     !> With adaptive time steps a step moves a front at most this many of the smallest
-    !> elements (run_m), so that it stays on the fine elements kept around it.
+    !> elements (step_driver_m), so that it stays on the fine elements kept around it.
     real(dp), parameter :: FRONT_CFL = 1.0_dp
     !> Fields are measured relative to their present L2 norm, but at least this fraction
     !> of the largest they have had.

@@ -42,7 +42,7 @@ contains
     !> How many elements around a large indicator are kept fine (adaptive_mesh_t's buffer):
     !> the finest elements the fastest front (front_speed) can cross in remesh_every steps,
     !> plus one. A step moves it v dt, so v dt n_fine of the finest elements with fixed
-    !> steps (&time dt), and at most FRONT_CFL elements with adaptive steps (run_m limits
+    !> steps (&time dt), and at most FRONT_CFL elements with adaptive steps (step_driver_m limits
     !> them so); 1 when there is no front (Fourier's and Fick's laws).
     integer function front_buffer(cfg) result(buffer)
         type(config_t), intent(in) :: cfg

@@ -123,8 +123,7 @@ contains
             call copy_history(run%writer, trim(cfg%time%restart_from), run%state%t)
             call run%writer%attr_int('restart_step', run%state%step)
         else
-            call run%stepper%initial_result(run%state, run%result)
-            call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
+            call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
             call write_snapshot(run%writer, run%state, run%x_out)
         end if
         call run%writer%flush()

@@ -20,7 +20,8 @@ module restart_m
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, KIND_REAL, KIND_INTEGER, &
                             KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
-    use errors_m, only: fatal, EXIT_INPUT, check_allocation
+    use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
+    use reals_m, only: equal
     use checkpoint_m, only: checkpoint_t, N_COUNTERS, COUNTER_STEP, COUNTER_T
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file
@@ -41,21 +42,41 @@ module restart_m
 contains
 
     !> Write the checkpoint ckpt into the writer's file (the layout of the module header);
-    !> note says which state it is ('step 250 (t = ...)').
+    !> note says which state it is ('step 250 (t = ...)'). ckpt holds the step control (a
+    !> run always saves it).
     subroutine write_checkpoint(writer, ckpt, note)
         type(h5_writer_t), intent(inout) :: writer
         type(checkpoint_t), intent(in) :: ckpt
         character(len=*), intent(in) :: note
-        real(dp), allocatable :: control(:), mesh(:)   !< left unallocated (absent) when not held
 
-        if (allocated(ckpt%control)) control = [ckpt%control, merge(1.0_dp, 0.0_dp, ckpt%in_contact), &
-                                                ckpt%max_rise_step_change]
-        if (ckpt%has_mesh) mesh = [ckpt%mesh_scale, ckpt%max_rise_remesh, real(ckpt%n_remeshes, dp), &
-                                   real(ckpt%mesh_keys, dp)]
-        ! an unallocated actual argument is an absent optional one
-        call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control, &
-                                     history=ckpt%history, events=ckpt%events, mesh=mesh)
+        if (.not. allocated(ckpt%control)) call fatal(EXIT_OUTPUT, 'output', &
+                                                      'internal error: a checkpoint without the step control')
+        ! an unallocated actual argument (previous: single-step schemes) is an absent optional one
+        if (ckpt%has_mesh) then
+            call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
+                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt))
+        else
+            call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
+                                         history=ckpt%history, events=ckpt%events)
+        end if
     end subroutine write_checkpoint
+
+    !> /checkpoint/slotN/control: the step control's scalars, the contact state, the energy
+    !> monitor's rise at step changes.
+    pure function control_values(ckpt) result(values)
+        type(checkpoint_t), intent(in) :: ckpt
+        real(dp) :: values(size(ckpt%control) + CONTROL_TAIL)
+
+        values = [ckpt%control, merge(1.0_dp, 0.0_dp, ckpt%in_contact), ckpt%max_rise_step_change]
+    end function control_values
+
+    !> /checkpoint/slotN/mesh: the field scales, the remesh counters, the node keys.
+    pure function mesh_values(ckpt) result(values)
+        type(checkpoint_t), intent(in) :: ckpt
+        real(dp) :: values(MESH_HEADER + size(ckpt%mesh_keys))
+
+        values = [ckpt%mesh_scale, ckpt%max_rise_remesh, real(ckpt%n_remeshes, dp), real(ckpt%mesh_keys, dp)]
+    end function mesh_values
 
     !> Read the checkpoint of `file` into ckpt, after checking that this run may continue
     !> it: `file` is not the file this run writes, every input that changes the computed
@@ -193,7 +214,7 @@ contains
                 call read_attr_real_1d(file, item%name, xs)
                 if (size(xs) /= size(item%reals)) then
                     call refuse(file, item%name, real_list(xs), real_list(item%reals))
-                else if (any(xs /= item%reals)) then
+                else if (.not. all(equal(xs, item%reals))) then
                     call refuse(file, item%name, real_list(xs), real_list(item%reals))
                 end if
             end select
@@ -309,13 +330,13 @@ contains
     pure integer function rows_to_copy(times, t_last)
         real(dp), intent(in) :: times(:), t_last
         integer :: k
+        real(dp) :: t_before
 
         rows_to_copy = 0
+        t_before = -huge(1.0_dp)
         do k = 1, size(times)
-            if (times(k) > t_last) exit
-            if (k > 1) then
-                if (times(k) <= times(k - 1)) exit
-            end if
+            if (times(k) > t_last .or. times(k) <= t_before) exit
+            t_before = times(k)
             rows_to_copy = k
         end do
     end function rows_to_copy

@@ -24,10 +24,16 @@ contains
     subroutine record_inputs(writer, cfg)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
-        type(input_item_t), allocatable :: items(:)
+
+        call record_items(writer, input_items(cfg))
+    end subroutine record_inputs
+
+    !> Each item as a root attribute of its kind.
+    subroutine record_items(writer, items)
+        type(h5_writer_t), intent(inout) :: writer
+        type(input_item_t), intent(in) :: items(:)
         integer :: k
 
-        items = input_items(cfg)
         do k = 1, size(items)
             associate (item => items(k))
                 select case (item%kind)
@@ -44,7 +50,7 @@ contains
                 end select
             end associate
         end do
-    end subroutine record_inputs
+    end subroutine record_items
 
     !> With &material: the groups of (2.10) (root attributes derived.*), each scale of the
     !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units) and, on

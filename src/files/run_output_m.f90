@@ -31,13 +31,15 @@ contains
     end function output_grid
 
     !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
-    !> (normal compliance (3.4), or the Signorini multiplier).
-    subroutine write_series(writer, stepper, state, monitor, result)
+    !> (normal compliance (3.4), or the Signorini multiplier). initial: the level is the
+    !> initial data, reached without a step (its lambda is the law's force at its u(1)).
+    subroutine write_series(writer, stepper, state, monitor, result, initial)
         type(h5_writer_t), intent(inout) :: writer
         type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
         type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
         type(step_result_t), intent(in) :: result
+        logical, intent(in), optional :: initial
         real(dp) :: values(N_SERIES)
 
         values(S_T) = state%t
@@ -45,6 +47,9 @@ contains
         values(S_U_END) = state%u(state%s)
         values(S_PENETRATION) = stepper%law%penetration(state%u(state%s))
         values(S_CONTACT_STRESS) = -result%contact_force
+        if (present(initial)) then
+            if (initial) values(S_CONTACT_STRESS) = -stepper%law%force(state%u(state%s))
+        end if
         values(S_ITERATIONS) = real(result%iterations, dp)
         values(S_DT) = state%dt_last
         values(S_N_ELEMENTS) = real(state%s, dp)

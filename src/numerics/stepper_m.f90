@@ -98,7 +98,6 @@ module stepper_m
         procedure :: n_unknowns_per_node => stepper_n_unknowns_per_node
         procedure :: remesh => stepper_remesh
         procedure :: take_back => stepper_take_back
-        procedure :: initial_result => stepper_initial_result
         procedure :: save_checkpoint => stepper_save_checkpoint
         procedure :: restore_checkpoint => stepper_restore_checkpoint
     end type stepper_t
@@ -566,24 +565,13 @@ contains
         result%message = message
     end subroutine fail
 
-    !> A step that result reports was rejected (its state restored by the caller): its
-    !> contact count is taken back.
+    !> The step of result was rejected (the caller restores the state): its contact count is taken back.
     subroutine stepper_take_back(self, result)
         class(stepper_t), intent(inout) :: self
         type(step_result_t), intent(in) :: result
 
         if (result%in_contact) self%n_contact_steps = self%n_contact_steps - 1
     end subroutine stepper_take_back
-
-    !> result for the level in state reached without a step (the initial data): the contact
-    !> force of its end position (the rest of result is left as it is).
-    subroutine stepper_initial_result(self, state, result)
-        class(stepper_t), intent(in) :: self
-        type(state_t), intent(in) :: state
-        type(step_result_t), intent(inout) :: result
-
-        result%contact_force = self%law%force(state%u(state%s))
-    end subroutine stepper_initial_result
 
     !> The counters of the output attributes solver.* into a checkpoint.
     subroutine stepper_save_checkpoint(self, ckpt)

@@ -74,7 +74,6 @@ module step_control_m
         procedure :: reject => controller_reject
         procedure :: retry => controller_retry
         procedure :: proposal => controller_proposal
-        procedure :: max_growth => controller_max_growth
         procedure :: add_estimate => controller_add_estimate
         procedure :: count_forced => controller_count_forced
         procedure :: observe_size => controller_observe_size
@@ -196,8 +195,8 @@ contains
 
     ! ------------------------------------------------------------------ controller
 
-    !> A controller for `scheme` (its order and step-ratio bound) with error_tol tol, whose
-    !> first proposal is dt_first; scale: S of the first level (default 0).
+    !> A controller for `scheme` (its order p and step-ratio bound) whose first proposal is
+    !> dt_first; scale: S of the first level (default 0).
     subroutine controller_init(self, tol, dt_min, dt_max, scheme, dt_first, scale)
         class(step_controller_t), intent(out) :: self
         real(dp), intent(in) :: tol, dt_min, dt_max, dt_first
@@ -213,18 +212,16 @@ contains
         if (present(scale)) self%scale = scale
     end subroutine controller_init
 
-    !> The largest dt_n / dt_{n-1} of adaptive steps (the scheme's max_step_ratio).
-    pure real(dp) function controller_max_growth(self) result(ratio)
+    !> The step the controller proposes next; after a last step of size dt_last > 0, at most
+    !> growth_max dt_last (the scheme's step-ratio bound).
+    pure real(dp) function controller_proposal(self, dt_last) result(dt)
         class(step_controller_t), intent(in) :: self
-
-        ratio = self%growth_max
-    end function controller_max_growth
-
-    !> The step the controller proposes next.
-    pure real(dp) function controller_proposal(self) result(dt)
-        class(step_controller_t), intent(in) :: self
+        real(dp), intent(in), optional :: dt_last
 
         dt = self%dt_next
+        if (present(dt_last)) then
+            if (dt_last > 0.0_dp) dt = min(dt, self%growth_max * dt_last)
+        end if
     end function controller_proposal
 
     !> The step of size dt is retried with size dt_retry (a contact event), without growth

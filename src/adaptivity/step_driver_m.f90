@@ -202,8 +202,8 @@ contains
         call self%control%observe_size(energy_norm(monitor%current_energy()))
     end subroutine driver_take_step
 
-    !> The next step: &time dt or the controller's proposal (at most max_growth times the
-    !> last step; on an adaptive mesh at most FRONT_CFL of its smallest elements for the
+    !> The next step: &time dt or the controller's proposal (at most the scheme's step-ratio
+    !> bound times the last step; on an adaptive mesh at most FRONT_CFL of its smallest elements for the
     !> fastest front), shortened to end on the next snapshot time or t_stop (target; lands).
     !> Adaptive steps that would leave less than a step to the target take half the
     !> distance instead, so no tiny step follows.
@@ -217,8 +217,7 @@ contains
         real(dp) :: remaining, slack
 
         if (self%adaptive) then
-            dt_try = self%control%proposal()
-            if (state%dt_last > 0.0_dp) dt_try = min(dt_try, self%control%max_growth() * state%dt_last)
+            dt_try = self%control%proposal(state%dt_last)
             dt_try = min(max(dt_try, self%dt_min), self%dt_max)
             if (self%mesh_adaptive .and. self%v_front > 0.0_dp) &
                 dt_try = max(min(dt_try, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)

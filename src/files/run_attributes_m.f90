@@ -95,7 +95,7 @@ contains
         real(dp), intent(in) :: wall_seconds
         integer, intent(in) :: n_elements_max
         type(event_log_t) :: events
-        type(energy_law_t) :: law
+        type(energy_law_t) :: scheme_law
         real(dp) :: max_rise, max_rise_step_change
 
         events = driver%events_log()
@@ -104,11 +104,11 @@ contains
         call writer%attr_real('t_final', state%t)
         call writer%attr_real('wall_seconds', wall_seconds)
         call monitor%rises(max_rise, max_rise_step_change)
-        law = stepper%scheme%energy_law()
         call writer%attr_real('energy_max_relative_rise', max_rise)
-        if (law%constant_steps .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
+        scheme_law = stepper%scheme%energy_law()
+        if (scheme_law%constant_steps .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
             call writer%attr_real('energy_max_relative_rise_step_change', max_rise_step_change)
-        call writer%attr_str('energy_law', trim(law%text))
+        call writer%attr_str('energy_law', trim(scheme_law%text))
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())

@@ -1,6 +1,6 @@
-!> Run configuration: one derived type per namelist group, with the defaults built into the
-!> types (the paper's values (7.1) and discretisation), and the rules that belong to the
-!> settings themselves (the number of time steps).
+!> Run configuration: one derived type per namelist group (docs/input.md), with the
+!> defaults built into the types (the paper's values (7.1) and discretisation), and the
+!> rules that belong to the settings themselves (the number of time steps).
 !>
 !> These types are the one list of input variables: every component of config_t of a
 !> derived type is a namelist group, every component of that type an input variable, in

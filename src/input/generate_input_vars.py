@@ -265,7 +265,7 @@ def access(groups, variables):
     return "\n".join(out) + "\n"
 
 
-def wrap(names, indent, width=90):
+def wrap(names, indent, width=80):
     lines, line = [], ""
     for name in names:
         if line and len(line) + len(name) + 2 > width:

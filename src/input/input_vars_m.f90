@@ -75,9 +75,9 @@ contains
     end function find_input
 
     !> Whether input variable `var` changes the computed history, so that a restart must
-    !> keep it (docs/input.md, &time restart_from): every variable of the physics, contact, mesh, initial data,
-    !> solver and time-stepping groups, except the end time and the restart file itself.
-    !> &output (where and how often the history is written) may change.
+    !> keep it (docs/input.md, &time restart_from): every variable of the physics, contact,
+    !> mesh, initial data, solver and time-stepping groups, except the end time and the
+    !> restart file itself. &output (where and how often the history is written) may change.
     elemental logical function changes_history(var)
         type(input_var_t), intent(in) :: var
 

@@ -79,17 +79,18 @@ module time_scheme_m
         logical :: keeps_previous_level         !< multistep: X^{n-1} is kept (state_m's u_prev)
         real(dp) :: max_step_ratio              !< largest dt_n / dt_{n-1} of adaptive steps
         logical :: paper_iteration              !< solver.method = 'paper' (Section 7) runs it
+        logical :: stiff_limit                  !< negligible rho, tau0, tau taken as 0 (stiff_limit)
         type(energy_law_t) :: law
     end type scheme_row_t
 
     !> The schemes, indexed by SCHEME_*; validate_m lists their names in this order.
     type(scheme_row_t), parameter :: SCHEMES(3) = [ &
-        scheme_row_t('euler', 1, .false., BDF2_RATIO_MAX, .true., &
+        scheme_row_t('euler', 1, .false., BDF2_RATIO_MAX, .true., .false., &
                      energy_law_t(LAW_E, .false., .false., 'E^n of Corollary 6.2')), &
-        scheme_row_t('bdf2', 2, .true., BDF2_RATIO_MAX, .false., &
+        scheme_row_t('bdf2', 2, .true., BDF2_RATIO_MAX, .false., .false., &
                      energy_law_t(LAW_G_ENERGY, .true., .false., &
                                   'BDF2 G-energy (E_lin(X^n) + E_lin(2X^n - X^{n-1}))/2 + penalty(u^n)')), &
-        scheme_row_t('midpoint', 2, .false., BDF2_RATIO_MAX, .false., &
+        scheme_row_t('midpoint', 2, .false., BDF2_RATIO_MAX, .false., .true., &
                      energy_law_t(LAW_E, .false., .true., &
                                   'E^n of Corollary 6.2 with the time-derivative coefficients of the step''s ' // &
                                   'model (rho, tau0, tau taken as 0 where negligible: stiff_limit)'))]
@@ -235,13 +236,13 @@ contains
 
         step_model = model
         algebraic = .false.
-        if (self%kind /= SCHEME_MIDPOINT) return
-        if (model%rho / real(s, dp)**2 <= STIFF_RATIO * dt * (model%varpi + dt * model%alpha)) step_model%rho = 0.0_dp
-        if (model%tau0 <= STIFF_RATIO * dt) step_model%tau0 = 0.0_dp
-        if (model%tau <= STIFF_RATIO * dt) step_model%tau = 0.0_dp
-        algebraic(F_V) = step_model%rho == 0.0_dp
-        algebraic(F_Q) = step_model%tau0 == 0.0_dp
-        algebraic(F_ETA) = step_model%tau == 0.0_dp
+        if (.not. SCHEMES(self%kind)%stiff_limit) return
+        algebraic(F_V) = model%rho / real(s, dp)**2 <= STIFF_RATIO * dt * (model%varpi + dt * model%alpha)
+        algebraic(F_Q) = model%tau0 <= STIFF_RATIO * dt
+        algebraic(F_ETA) = model%tau <= STIFF_RATIO * dt
+        if (algebraic(F_V)) step_model%rho = 0.0_dp
+        if (algebraic(F_Q)) step_model%tau0 = 0.0_dp
+        if (algebraic(F_ETA)) step_model%tau = 0.0_dp
     end subroutine scheme_stiff_limit
 
 end module time_scheme_m

@@ -14,6 +14,7 @@ module remesh_m
     use stepper_m, only: stepper_t
     use step_control_m, only: error_estimator_t, MAX_LEVELS
     use energy_m, only: energy_monitor_t
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: initial_mesh, remesh, front_buffer
@@ -69,16 +70,19 @@ contains
         integer(int64), allocatable :: k_old(:)
         real(dp), allocatable :: levels_old(:, :, :)
         real(dp) :: rise
-        integer :: s, j
+        integer :: s, j, stat
+        character(len=256) :: message
 
-        k_old = mesh%k
+        allocate (k_old, source=mesh%k, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remesh')
         call mesh%adapt(state%mesh, state%u, state%w, changed)
         if (.not. changed) return
         s = mesh%s()
         call move(state%u, state%w)
         if (allocated(state%u_prev)) call move(state%u_prev, state%w_prev)
         call set_mesh(state, mesh%nodes())
-        levels_old = estimator%levels
+        allocate (levels_old, source=estimator%levels, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remesh')
         call estimator%resize(s)
         do j = 1, MAX_LEVELS
             call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j))
@@ -98,7 +102,8 @@ contains
             old(:, 1:) = w
             call transfer_level(k_old, mesh%k, mesh%n_fine, old, new)
             deallocate (u, w)
-            allocate (u(0:s), w(0:s, N_FIELDS))
+            allocate (u(0:s), w(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the remeshed state')
             u = new(:, 0)
             w = new(:, 1:)
         end subroutine move

@@ -113,7 +113,7 @@ contains
 
         ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
         call ignore_file_size_signal()
-        run%x_out = output_grid(cfg)
+        call output_grid(cfg, run%x_out)
         call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression)
         call record_inputs(run%writer, cfg)
         call record_provenance(run%writer, PROGRAM_VERSION, SOURCE_VERSION)

@@ -11,6 +11,7 @@ module run_output_m
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use output_m, only: h5_writer_t
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: output_grid, write_series, write_snapshot
@@ -19,16 +20,20 @@ contains
 
     !> The fixed grid of the snapshots (/mesh/x): &output n_points uniform points, by
     !> default the nodes of the coarsest mesh.
-    function output_grid(cfg) result(x)
+    subroutine output_grid(cfg, x)
         type(config_t), intent(in) :: cfg
-        real(dp), allocatable :: x(:)
+        real(dp), allocatable, intent(out) :: x(:)
+        integer :: n, stat
+        character(len=256) :: message
 
-        if (cfg%output%n_points > 0) then
-            x = mesh_nodes(cfg%output%n_points - 1)
-        else
-            x = mesh_nodes(cfg%mesh%n_elements)
-        end if
-    end function output_grid
+        n = cfg%mesh%n_elements
+        if (cfg%output%n_points > 0) n = cfg%output%n_points - 1
+        ! allocated before the assignment, whose reallocation test would read the bounds of
+        ! the unallocated x (valgrind: uninitialised values, gfortran -O0)
+        allocate (x(0:n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the output grid')
+        x = mesh_nodes(n)
+    end subroutine output_grid
 
     !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
     !> (normal compliance (3.4), or the Signorini multiplier). initial: the level is the

@@ -12,6 +12,7 @@ program rodcontact
     use config_m, only: config_t
     use config_reader_m, only: read_config
     use validate_m, only: validate_config
+    use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
     use summary_m, only: summary_header, summary_row, summarise_file, summary_problem
     use errors_m, only: fatal, EXIT_INPUT
@@ -48,7 +49,7 @@ program rodcontact
         end do
         call read_config(source, cfg, overrides)
     end block
-    call validate_config(cfg)
+    call validate_config(cfg, scheme_rules())
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
     if (check_only) stop
     call run_simulation(cfg)

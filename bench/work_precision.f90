@@ -292,7 +292,7 @@ contains
             stop 1
         end if
         u_end(0) = state%u(s)
-        if (with_energy) energy(0) = discrete_energy(cfg%model, stepper%law, state%u, state%w)
+        if (with_energy) energy(0) = discrete_energy(cfg%model, stepper%law, state%u, state%w, state%mesh)
         seconds = 0.0_dp
         do n = 1, n_steps
             t0 = wall_seconds()
@@ -303,7 +303,7 @@ contains
                 stop 1
             end if
             u_end(n) = state%u(s)
-            if (with_energy) energy(n) = discrete_energy(cfg%model, stepper%law, state%u, state%w)
+            if (with_energy) energy(n) = discrete_energy(cfg%model, stepper%law, state%u, state%w, state%mesh)
         end do
     end subroutine run_series
 

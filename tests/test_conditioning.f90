@@ -16,6 +16,7 @@ program test_conditioning
     use banded_m, only: band_t, lapack_info_message
     use block_tridiagonal_m, only: block_tridiagonal_t
     use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix
+    use mesh_m, only: uniform_mesh
     use fields_m, only: N_FIELDS, F_V
     use testing_m, only: check_true, test_summary
     use iso_fortran_env, only: output_unit
@@ -106,7 +107,7 @@ contains
         model%varpi = c%varpi
         model%tau0 = c%tau0
         model%tau = c%tau
-        call assemble_matrix(model, c%s, c%dt, MONOLITHIC_SLOTS, a)
+        call assemble_matrix(model, uniform_mesh(c%s), c%dt, MONOLITHIC_SLOTS, a)
         n = a%n
         kd = a%kl + a%ku + 1
         allocate (work(3 * n), iwork(n), r(n), col(n), b(n), x(n), y(n), ax(n))
@@ -153,7 +154,7 @@ contains
         x = ax
         call a%solve(x)
         ! A x with the unfactored matrix: rebuild it
-        call assemble_matrix(model, c%s, c%dt, MONOLITHIC_SLOTS, a_eq)
+        call assemble_matrix(model, uniform_mesh(c%s), c%dt, MONOLITHIC_SLOTS, a_eq)
         residual = maxval(abs(a_eq%matvec(x) - ax)) / (inf_norm * maxval(abs(x)))
 
         ! block LU against dgbtrf: contact response and the smooth right-hand side

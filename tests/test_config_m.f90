@@ -11,6 +11,7 @@ program test_config_m
     use material_m, only: nondim_t, nondim_groups, model_from_material
     use strings_m, only: format_real
     use validate_m, only: validate_config
+    use time_scheme_m, only: scheme_rules
     use initial_data_m, only: profile
     use testing_m, only: check_close, check_true, test_summary
     implicit none
@@ -58,7 +59,7 @@ contains
                          cfg%initial%u1_poly, cfg%initial%theta0_poly, cfg%initial%p0_poly, cfg%initial%q0_poly, &
                          cfg%initial%eta0_poly, cfg%initial%theta0_step, cfg%initial%p0_step])), 0.0_dp)
         ! the defaults must pass validation (validate_config stops with 2 otherwise)
-        call validate_config(cfg)
+        call validate_config(cfg, scheme_rules())
         ! and so must an empty input
         call write_file('empty.nml', [character(len=1) :: ''])
         call read_config(path('empty.nml'), cfg)
@@ -118,7 +119,7 @@ contains
         call check_close('contact.g', 0.2_dp, cfg%contact%g, 0.0_dp)
         call check_true('no &material', .not. cfg%material%present)
         ! exp1 data: theta0 = 40x(x-1)^2, P0 = 20x^2(x-1)^2 vanish at x=1, u1 = 10x at x=0: valid
-        call validate_config(cfg)
+        call validate_config(cfg, scheme_rules())
         ! the namelist array gives the paper's profile
         call check_close('theta0(0.25) = 40 x (x-1)^2', 40.0_dp * 0.25_dp * 0.75_dp**2, &
                          profile(poly=cfg%initial%theta0_poly, x=0.25_dp), 1.0e-13_dp)
@@ -232,7 +233,7 @@ contains
         call check_rel('&material -> tau0 = 0.02', 0.02_dp, cfg%model%tau0, 1.0e-12_dp)
         call check_rel('&material -> tau = 0.2', 0.2_dp, cfg%model%tau, 1.0e-12_dp)
         call check_rel('omega', 8886.729015544042_dp, nd%omega, 1.0e-13_dp)
-        call validate_config(cfg)
+        call validate_config(cfg, scheme_rules())
     end subroutine test_material_file
 
     !> The initial profile: polynomial (Horner) plus a step that includes its end point.

@@ -40,7 +40,7 @@ program test_decay
         call stepper%init(cfg, result)
         t(1) = 0.0_dp
         energy(1) = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                      state%u, state%w)
+                                      state%u, state%w, state%mesh)
         do n = 1, n_steps
             call stepper%advance(state, result)
             if (.not. result%ok) then
@@ -51,7 +51,7 @@ program test_decay
                 i = n / SAMPLE_EVERY + 1
                 t(i) = state%t
                 energy(i) = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                      state%u, state%w)
+                                      state%u, state%w, state%mesh)
             end if
         end do
         rate = -slope(t, log(energy), T_FIT_START)

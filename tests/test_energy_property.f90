@@ -47,7 +47,7 @@ program test_energy_property
         call stepper%init(cfg, result)
         call check_true('set-up', result%ok, result%message)
         energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                      state%u, state%w)
+                                      state%u, state%w, state%mesh)
         rise = -huge(1.0_dp)
         n_contact_steps = 0
         do n = 1, N_STEPS
@@ -55,7 +55,7 @@ program test_energy_property
             if (.not. result%ok) exit
             energy_old = energy
             energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                      state%u, state%w)
+                                      state%u, state%w, state%mesh)
             rise = max(rise, (energy - energy_old) / energy_old)
             if (result%in_contact) n_contact_steps = n_contact_steps + 1
         end do
@@ -103,7 +103,7 @@ contains
                 contact = contact .or. result%in_contact
                 law_old = law
                 call bdf2_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                 state%u, state%w, state%u_prev, state%w_prev, u_work, w_work, law)
+                                 state%u, state%w, state%u_prev, state%w_prev, state%mesh, u_work, w_work, law)
                 if (n >= 2) rise = max(rise, (law - law_old) / law_old)
             end do
             call check_true('bdf2 steps succeed', result%ok, result%message)
@@ -138,7 +138,7 @@ contains
             call stepper%init(cfg, result)
             call check_true('midpoint set-up', result%ok, result%message)
             law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
-            e_new = discrete_energy(stepper%step_model, law, state%u, state%w)
+            e_new = discrete_energy(stepper%step_model, law, state%u, state%w, state%mesh)
             rise = 0.0_dp
             contact_seen: block
                 logical :: contact
@@ -148,7 +148,7 @@ contains
                     call stepper%advance(state, result)
                     if (.not. result%ok) exit
                     contact = contact .or. result%in_contact
-                    e_new = discrete_energy(stepper%step_model, law, state%u, state%w)
+                    e_new = discrete_energy(stepper%step_model, law, state%u, state%w, state%mesh)
                     if (n <= 2) then     ! the damped Euler start-up steps: E^n <= E^{n-1}
                         residual = e_new - e_old
                     else

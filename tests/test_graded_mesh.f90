@@ -16,6 +16,7 @@ program test_graded_mesh
     use energy_m, only: linear_energy
     use transfer_m, only: transfer_level
     use adaptive_mesh_m, only: adaptive_mesh_t, nodes_of_keys
+    use mesh_m, only: graded_mesh
     use mms_m, only: mms_t, mms_linear_in_t, N_EXACT, U_FIELD
     use convergence_m, only: mms_errors, observed_orders, ERROR_NAMES
     use testing_m, only: check_true, test_summary
@@ -95,7 +96,7 @@ contains
                 call random_number(r)
                 u(i) = merge(1.0_dp, 0.0_dp, r < 0.3_dp)
             end do
-            call mesh%adapt(x, u, w, changed)
+            call mesh%adapt(graded_mesh(x), u, w, changed)
             deallocate (u, w)
         end do
         k = 2_int64 * mesh%k
@@ -175,7 +176,7 @@ contains
         real(dp) :: x(0:size(k) - 1)
 
         x = nodes_of_keys(k, int(N_COARSE, int64) * 2_int64**(MAX_LEVEL + 1))
-        energy = linear_energy(unit_model, level(:, 0), level(:, 1:), x(1:) - x(:ubound(x, 1) - 1))
+        energy = linear_energy(unit_model, level(:, 0), level(:, 1:), graded_mesh(x))
     end function energy
 
     !> The sorted union of two increasing key lists.

@@ -6,6 +6,7 @@ program test_output_layout
     use kinds_m, only: dp
     use config_m, only: config_t
     use validate_m, only: validate_config
+    use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_str, read_attr_real, &
                          read_attr_int, dataset_exists
@@ -39,7 +40,7 @@ program test_output_layout
     cfg%initial%p0_poly(0:1) = [1.0_dp, -1.0_dp]             ! + (1 - x)
     cfg%initial%q0_poly(0:2) = [0.0_dp, 0.3_dp, 0.2_dp]      ! 0.3 x + 0.2 x^2
     cfg%initial%eta0_poly(0:2) = [0.0_dp, 1.0_dp, -1.0_dp]   ! x (1 - x)
-    call validate_config(cfg)
+    call validate_config(cfg, scheme_rules())
     call run_simulation(cfg)
 
     file = trim(cfg%output%prefix)//'.h5'

@@ -82,7 +82,7 @@ contains
         call initial_state(cfg, state)
         call stepper%init(cfg, result)
         energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                      state%u, state%w)
+                                      state%u, state%w, state%mesh)
         max_rise = -huge(1.0_dp)
         n_contact = 0
         do n = 1, n_steps
@@ -90,7 +90,7 @@ contains
             if (.not. result%ok) error stop 'test_signorini: a step failed'
             energy_old = energy
             energy = discrete_energy(cfg%model, contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps), &
-                                      state%u, state%w)
+                                      state%u, state%w, state%mesh)
             max_rise = max(max_rise, (energy - energy_old) / energy_old)
             if (result%in_contact) n_contact = n_contact + 1
             u_end(n) = state%u(state%s)

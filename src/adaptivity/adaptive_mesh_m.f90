@@ -1,7 +1,9 @@
 !> The adaptive mesh of &mesh adaptive = .true.: bisection of the n_elements coarse
 !> elements up to max_level times, refined where the error indicator is large and
 !> coarsened back where the solution is smooth (run_m remeshes every &mesh remesh_every
-!> steps; transfer_m moves the solution).
+!> steps; remesh_m moves the solution with transfer_m). This type holds the refinement's
+!> own data (the node keys, the field scales); the geometry the solver uses is the state's
+!> mesh_t (numerics/mesh_m), which adapt reads and remesh_m sets from nodes().
 !>
 !> Nodes are kept as integers k_i in units of the finest possible element,
 !> 1 / n_fine with n_fine = n_elements 2^max_level: x_i = k_i / n_fine is the same number
@@ -28,6 +30,8 @@ module adaptive_mesh_m
     use fields_m, only: N_FIELDS
     use config_m, only: model_t
     use errors_m, only: check_allocation
+    use mesh_m, only: mesh_t
+    use checkpoint_m, only: checkpoint_t
     implicit none
     private
     public :: adaptive_mesh_t, COARSEN_MARGIN, FRONT_CFL, front_speed, nodes_of_keys
@@ -36,7 +40,7 @@ module adaptive_mesh_m
     !> bisection halves the detail only about 4-fold, so the new node is not removed again).
     real(dp), parameter :: COARSEN_MARGIN = 4.0_dp
     !> With adaptive time steps a step moves a front at most this many of the smallest
-    !> elements (run_m), so that it stays on the fine elements kept around it.
+    !> elements (step_driver_m), so that it stays on the fine elements kept around it.
     real(dp), parameter :: FRONT_CFL = 1.0_dp
     !> Fields are measured relative to their present L2 norm, but at least this fraction
     !> of the largest they have had.
@@ -59,6 +63,8 @@ module adaptive_mesh_m
         procedure :: observe_scales => mesh_observe_scales
         procedure :: adapt => mesh_adapt
         procedure :: set_keys => mesh_set_keys
+        procedure :: save_checkpoint => mesh_save_checkpoint
+        procedure :: restore_checkpoint => mesh_restore_checkpoint
     end type adaptive_mesh_t
 
 contains
@@ -90,6 +96,25 @@ contains
         call check_allocation(stat, message, 'the adaptive mesh')
         self%k = k
     end subroutine mesh_set_keys
+
+    !> The node keys and the field scales into a checkpoint.
+    subroutine mesh_save_checkpoint(self, ckpt)
+        class(adaptive_mesh_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%has_mesh = .true.
+        ckpt%mesh_scale = self%scale
+        ckpt%mesh_keys = self%k
+    end subroutine mesh_save_checkpoint
+
+    !> The mesh of a checkpoint (save_checkpoint), on a mesh initialised for this run.
+    subroutine mesh_restore_checkpoint(self, ckpt)
+        class(adaptive_mesh_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%scale = ckpt%mesh_scale
+        call self%set_keys(ckpt%mesh_keys)
+    end subroutine mesh_restore_checkpoint
 
     !> Number of elements.
     pure integer function mesh_s(self)
@@ -124,24 +149,26 @@ contains
         mesh_level = self%max_level - trailz(self%k(e) - self%k(e - 1))
     end function mesh_level
 
-    !> scale_f = max(scale_f, |f|_L2) for the level (u, w) on nodes x.
-    subroutine mesh_observe_scales(self, x, u, w)
+    !> scale_f = max(scale_f, |f|_L2) for the level (u, w) on mesh.
+    subroutine mesh_observe_scales(self, mesh, u, w)
         class(adaptive_mesh_t), intent(inout) :: self
-        real(dp), intent(in) :: x(0:), u(0:), w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(in) :: u(0:), w(0:, :)
         integer :: f
 
-        self%norm(0) = l2_norm(x, u)
+        self%norm(0) = l2_norm(mesh%x, u)
         do f = 1, N_FIELDS
-            self%norm(f) = l2_norm(x, w(:, f))
+            self%norm(f) = l2_norm(mesh%x, w(:, f))
         end do
         self%scale = max(self%scale, self%norm)
     end subroutine mesh_observe_scales
 
-    !> The next mesh for the level (u, w) on the current nodes x (module header); changed:
-    !> it differs from the current one (then self%k holds it).
-    subroutine mesh_adapt(self, x, u, w, changed)
+    !> The next mesh for the level (u, w) on the current mesh (the nodes of self%k; module
+    !> header); changed: it differs from the current one (then self%k holds it).
+    subroutine mesh_adapt(self, mesh, u, w, changed)
         class(adaptive_mesh_t), intent(inout) :: self
-        real(dp), intent(in) :: x(0:), u(0:), w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(in) :: u(0:), w(0:, :)
         logical, intent(out) :: changed
         real(dp), allocatable :: refine_ind(:), coarsen_ind(:)
         logical, allocatable :: hot(:), keep(:), bisect(:), remove(:)
@@ -150,9 +177,9 @@ contains
         integer(int64) :: length
 
         s = self%s()
-        call self%observe_scales(x, u, w)
+        call self%observe_scales(mesh, u, w)
         allocate (refine_ind(s), coarsen_ind(0:s), hot(s), keep(s), bisect(s), remove(0:s))
-        call indicators(self, x, u, w, refine_ind, coarsen_ind)
+        call indicators(self, mesh%x, u, w, refine_ind, coarsen_ind)
         hot = refine_ind > self%tol
         ! keep: within `buffer` elements of a hot one (refined up to max_level, never coarsened)
         keep = hot

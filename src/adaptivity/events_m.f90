@@ -11,6 +11,7 @@ module events_m
 
     !> The events of a run, in order.
     type :: event_log_t
+        private
         integer :: n = 0
         real(dp), allocatable :: t(:)
         integer, allocatable :: kind(:)

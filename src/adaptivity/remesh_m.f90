@@ -1,8 +1,8 @@
 !> Remeshing a run (&mesh adaptive = .true.): the first mesh, fitted to the initial data,
 !> and the remesh between two steps, which moves every time level the run holds (the
 !> state, the level before of a multistep scheme, the error estimator's levels) with
-!> transfer_m, hands the new mesh to the stepper and lets the energy monitor check that
-!> the law energy did not rise.
+!> transfer_m, hands the new mesh to the stepper, lets the energy monitor measure the law
+!> energy across the move and counts the remesh on the state's mesh (mesh_m).
 module remesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -14,6 +14,7 @@ module remesh_m
     use stepper_m, only: stepper_t
     use step_control_m, only: error_estimator_t, MAX_LEVELS
     use energy_m, only: energy_monitor_t
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: initial_mesh, remesh, front_buffer
@@ -33,7 +34,7 @@ contains
         call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, front_buffer(cfg))
         do pass = 1, cfg%mesh%max_level + 2
             call initial_state(cfg, state, mesh%nodes())
-            call mesh%adapt(state%x, state%u, state%w, changed)
+            call mesh%adapt(state%mesh, state%u, state%w, changed)
             if (.not. changed) exit
         end do
         if (changed) call initial_state(cfg, state, mesh%nodes())
@@ -42,7 +43,7 @@ contains
     !> How many elements around a large indicator are kept fine (adaptive_mesh_t's buffer):
     !> the finest elements the fastest front (front_speed) can cross in remesh_every steps,
     !> plus one. A step moves it v dt, so v dt n_fine of the finest elements with fixed
-    !> steps (&time dt), and at most FRONT_CFL elements with adaptive steps (run_m limits
+    !> steps (&time dt), and at most FRONT_CFL elements with adaptive steps (step_driver_m limits
     !> them so); 1 when there is no front (Fourier's and Fick's laws).
     integer function front_buffer(cfg) result(buffer)
         type(config_t), intent(in) :: cfg
@@ -68,22 +69,27 @@ contains
         logical, intent(out) :: changed
         integer(int64), allocatable :: k_old(:)
         real(dp), allocatable :: levels_old(:, :, :)
-        integer :: s, j
+        real(dp) :: rise
+        integer :: s, j, stat
+        character(len=256) :: message
 
-        k_old = mesh%k
-        call mesh%adapt(state%x, state%u, state%w, changed)
+        allocate (k_old, source=mesh%k, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remesh')
+        call mesh%adapt(state%mesh, state%u, state%w, changed)
         if (.not. changed) return
         s = mesh%s()
         call move(state%u, state%w)
         if (allocated(state%u_prev)) call move(state%u_prev, state%w_prev)
         call set_mesh(state, mesh%nodes())
-        levels_old = estimator%levels
+        allocate (levels_old, source=estimator%levels, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remesh')
         call estimator%resize(s)
         do j = 1, MAX_LEVELS
             call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j))
         end do
         call stepper%remesh(state)
-        call monitor%remeshed(state)
+        call monitor%remeshed(state, rise)
+        call state%mesh%record_remesh(rise)
 
     contains
 
@@ -96,7 +102,8 @@ contains
             old(:, 1:) = w
             call transfer_level(k_old, mesh%k, mesh%n_fine, old, new)
             deallocate (u, w)
-            allocate (u(0:s), w(0:s, N_FIELDS))
+            allocate (u(0:s), w(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the remeshed state')
             u = new(:, 0)
             w = new(:, 1:)
         end subroutine move

@@ -5,37 +5,39 @@
 !> in the BDF codes (DASSL, CVODE). P^n is the polynomial of degree p (the scheme's order)
 !> through the last p+1 accepted levels, extrapolated to t_n; for smooth solutions
 !>   X^n - P^n = X^(p+1) / (p+1)! * d_1 ... d_{p+1} + h.o.t.,  d_j = t_n - t_{n-j},
-!> while the local error of the step is C X^(p+1) h_n^(p+1) (C and the exact factor per
-!> scheme in local_error_factor), so
+!> while the local error of the step is C X^(p+1) h_n^(p+1) (C, p and the exact factor
+!> are the scheme's: time_scheme_m's order and error_factor), so
 !>   est_n = factor * |X^n - P^n|_E,   |X|_E = sqrt(2 E_lin(X))   (Corollary 6.2's energy),
 !> over all fields at once. It costs no solve: one extrapolation and one energy per step.
 !> A step is accepted when est_n <= error_tol * S, S the largest |X^k|_E so far (k <= n);
 !> error_tol is thus relative to the size the solution has had. The controller is the
 !> standard one, dt_new = dt * safety * (error_tol S / est)^(1/(p+1)), limited to
-!> [SHRINK_MIN, GROWTH_MAX] (GROWTH_MAX = 2 < 1 + sqrt(2), the step-ratio bound under which
-!> variable-step BDF2 is zero-stable) and to [dt_min, dt_max]; a growth below
+!> [SHRINK_MIN, growth_max] (growth_max: the scheme's max_step_ratio, for BDF2 below the
+!> step-ratio bound of its zero-stability) and to [dt_min, dt_max]; a growth below
 !> GROWTH_MIN is not taken, because every new step size costs a factorisation.
 module step_control_m
     use kinds_m, only: dp
     use config_m, only: model_t
     use fields_m, only: N_FIELDS
     use energy_m, only: linear_energy
+    use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
+    use time_scheme_m, only: time_scheme_t
+    use checkpoint_m, only: checkpoint_t
     implicit none
     private
-    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX
-    public :: pack_control, unpack_control, energy_norm
+    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS
+    public :: energy_norm
 
     integer, parameter :: MAX_LEVELS = 3       !< past levels kept (p + 1 for p <= 2)
     real(dp), parameter :: SAFETY = 0.9_dp
-    real(dp), parameter :: GROWTH_MAX = 2.0_dp  !< largest dt_n / dt_{n-1}
     real(dp), parameter :: GROWTH_MIN = 1.25_dp !< smaller growths are not taken
     real(dp), parameter :: SHRINK_MIN = 0.2_dp  !< smallest dt_new / dt after a rejection
 
     !> The last accepted levels, most recent first, with the steps that reached them.
     type :: error_estimator_t
-        integer :: order = 1               !< p: 1 (Euler) or 2 (BDF2, midpoint)
-        character(len=8) :: scheme = 'euler'
+        type(time_scheme_t) :: scheme
+        integer :: order = 1               !< p: the scheme's order
         integer :: n_levels = 0            !< levels held (0..order+1)
         integer :: head = 1                !< slot of the most recent level
         real(dp) :: steps(MAX_LEVELS) = 0.0_dp   !< steps(slot): the step that reached that level
@@ -48,12 +50,16 @@ module step_control_m
         procedure :: push => estimator_push
         procedure :: ready => estimator_ready
         procedure :: estimate => estimator_estimate
+        procedure :: save_checkpoint => estimator_save_checkpoint
+        procedure :: restore_checkpoint => estimator_restore_checkpoint
     end type error_estimator_t
 
     !> The controller's state between steps.
     type :: step_controller_t
+        private
         real(dp) :: tol = 1.0e-5_dp, dt_min = 0.0_dp, dt_max = huge(1.0_dp)
-        integer :: order = 1
+        integer :: order = 1               !< p: the scheme's order
+        real(dp) :: growth_max = 2.0_dp    !< largest dt_n / dt_{n-1}: the scheme's max_step_ratio
         real(dp) :: dt_next = 0.0_dp       !< the step the controller proposes next
         logical :: no_growth = .false.     !< after a rejection: no growth on the next step
         real(dp) :: scale = 0.0_dp         !< S: the largest |X^k|_E so far
@@ -66,29 +72,37 @@ module step_control_m
         procedure :: ratio => controller_ratio
         procedure :: accept => controller_accept
         procedure :: reject => controller_reject
+        procedure :: retry => controller_retry
+        procedure :: proposal => controller_proposal
+        procedure :: add_estimate => controller_add_estimate
+        procedure :: count_forced => controller_count_forced
+        procedure :: observe_size => controller_observe_size
+        procedure :: counts => controller_counts
+        procedure :: save_checkpoint => controller_save_checkpoint
+        procedure :: restore_checkpoint => controller_restore_checkpoint
     end type step_controller_t
 
-    !> Scalars of a controller and an estimator in a checkpoint (pack_control).
-    integer, parameter :: N_CONTROL_VALUES = 8 + MAX_LEVELS
+    !> Scalars of a controller (CONTROLLER_VALUES) and an estimator in a checkpoint's control.
+    integer, parameter :: CONTROLLER_VALUES = 7
+    integer, parameter :: N_CONTROL_VALUES = CONTROLLER_VALUES + 1 + MAX_LEVELS
 
 contains
 
     ! ------------------------------------------------------------------ estimator
 
-    !> An estimator for the scheme named by &time scheme on s elements.
+    !> An estimator for `scheme` on s elements.
     subroutine estimator_init(self, scheme, s)
         class(error_estimator_t), intent(out) :: self
-        character(len=*), intent(in) :: scheme
+        type(time_scheme_t), intent(in) :: scheme
         integer, intent(in) :: s
 
         self%scheme = scheme
-        self%order = 2
-        if (scheme == 'euler') self%order = 1
+        self%order = scheme%order()
         call self%resize(s)
     end subroutine estimator_init
 
     !> Arrays for a mesh of s elements (the levels held are lost: a remesh moves them
-    !> first, run_m).
+    !> first, remesh_m).
     subroutine estimator_resize(self, s)
         class(error_estimator_t), intent(inout) :: self
         integer, intent(in) :: s
@@ -130,13 +144,13 @@ contains
     end function estimator_ready
 
     !> est_n = factor |X^n - P^n|_E for the new level (u, w) reached by a step of size dt
-    !> (the module's header); needs ready().
-    function estimator_estimate(self, model, u, w, dt, h) result(est)
+    !> on mesh (the module's header); needs ready().
+    function estimator_estimate(self, model, u, w, dt, mesh) result(est)
         class(error_estimator_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp), intent(in) :: dt
-        real(dp), intent(in), optional :: h(:)   !< element sizes of a graded mesh
+        type(mesh_t), intent(in) :: mesh
         real(dp) :: est
         real(dp) :: d(MAX_LEVELS), weight(MAX_LEVELS)
         integer :: j, k, n, slot
@@ -161,8 +175,8 @@ contains
             self%u_diff = self%u_diff - weight(j) * self%levels(:, 0, slot)
             self%w_diff = self%w_diff - weight(j) * self%levels(:, 1:, slot)
         end do
-        est = local_error_factor(self%scheme, d(1:n), self%steps(level_slot(self%head, 1))) * &
-              energy_norm(linear_energy(model, self%u_diff, self%w_diff, h))
+        est = self%scheme%error_factor(d(1:n), self%steps(level_slot(self%head, 1))) * &
+              energy_norm(linear_energy(model, self%u_diff, self%w_diff, mesh))
     end function estimator_estimate
 
     !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).
@@ -179,43 +193,84 @@ contains
         level_slot = modulo(head - j, MAX_LEVELS) + 1
     end function level_slot
 
-    !> Local error of the step / (X^n - P^n), from the leading terms (h = h_n = d_1,
-    !> h_prev = h_{n-1}, w = h / h_prev):
-    !>   Euler     h^2 X''/2                                      -> h / d_2
-    !>   BDF2      h^2 (h + h_prev) (1+w)/(1+2w) X'''/6           -> h (1+w) / ((1+2w) d_3)
-    !>   midpoint  h^3 X'''/12 (linear problems)                  -> h^2 / (2 d_2 d_3)
-    !> (constant steps: 1/2, 2/9 and 1/12 of the p+1-st difference).
-    pure real(dp) function local_error_factor(scheme, d, h_prev) result(factor)
-        character(len=*), intent(in) :: scheme
-        real(dp), intent(in) :: d(:)
-        real(dp), intent(in) :: h_prev
-        real(dp) :: h, w
-
-        h = d(1)
-        select case (scheme)
-        case ('bdf2')
-            w = h / h_prev
-            factor = h * (1.0_dp + w) / ((1.0_dp + 2.0_dp * w) * d(3))
-        case ('midpoint')
-            factor = h**2 / (2.0_dp * d(2) * d(3))
-        case default
-            factor = h / d(2)
-        end select
-    end function local_error_factor
-
     ! ------------------------------------------------------------------ controller
 
-    subroutine controller_init(self, tol, dt_min, dt_max, order, dt_first)
+    !> A controller for `scheme` (its order p and step-ratio bound) whose first proposal is
+    !> dt_first; scale: S of the first level (default 0).
+    subroutine controller_init(self, tol, dt_min, dt_max, scheme, dt_first, scale)
         class(step_controller_t), intent(out) :: self
         real(dp), intent(in) :: tol, dt_min, dt_max, dt_first
-        integer, intent(in) :: order
+        type(time_scheme_t), intent(in) :: scheme
+        real(dp), intent(in), optional :: scale
 
         self%tol = tol
         self%dt_min = dt_min
         self%dt_max = dt_max
-        self%order = order
+        self%order = scheme%order()
+        self%growth_max = scheme%max_step_ratio()
         self%dt_next = dt_first
+        if (present(scale)) self%scale = scale
     end subroutine controller_init
+
+    !> The step the controller proposes next; after a last step of size dt_last > 0, at most
+    !> growth_max dt_last (the scheme's step-ratio bound).
+    pure real(dp) function controller_proposal(self, dt_last) result(dt)
+        class(step_controller_t), intent(in) :: self
+        real(dp), intent(in), optional :: dt_last
+
+        dt = self%dt_next
+        if (present(dt_last)) then
+            if (dt_last > 0.0_dp) dt = min(dt, self%growth_max * dt_last)
+        end if
+    end function controller_proposal
+
+    !> The step of size dt is retried with size dt_retry (a contact event), without growth
+    !> on the step after it.
+    subroutine controller_retry(self, dt_retry)
+        class(step_controller_t), intent(inout) :: self
+        real(dp), intent(in) :: dt_retry
+
+        self%dt_next = dt_retry
+        self%no_growth = .true.
+    end subroutine controller_retry
+
+    !> An accepted step had the estimate est: into the run's time error (error_sum).
+    subroutine controller_add_estimate(self, est)
+        class(step_controller_t), intent(inout) :: self
+        real(dp), intent(in) :: est
+
+        self%error_sum = self%error_sum + est
+        self%n_estimated = self%n_estimated + 1
+    end subroutine controller_add_estimate
+
+    !> A step was accepted at dt_min although its estimate exceeded the tolerance.
+    subroutine controller_count_forced(self)
+        class(step_controller_t), intent(inout) :: self
+
+        self%n_forced = self%n_forced + 1
+    end subroutine controller_count_forced
+
+    !> The accepted level has the energy norm |X^n|_E: S = max(S, |X^n|_E).
+    subroutine controller_observe_size(self, norm)
+        class(step_controller_t), intent(inout) :: self
+        real(dp), intent(in) :: norm
+
+        self%scale = max(self%scale, norm)
+    end subroutine controller_observe_size
+
+    !> The time error of the run and the counts of the step control (the root attributes
+    !> time_error_estimate*, time_steps_*).
+    pure subroutine controller_counts(self, error_sum, scale, n_estimated, n_rejected, n_forced)
+        class(step_controller_t), intent(in) :: self
+        real(dp), intent(out) :: error_sum, scale
+        integer, intent(out) :: n_estimated, n_rejected, n_forced
+
+        error_sum = self%error_sum
+        scale = self%scale
+        n_estimated = self%n_estimated
+        n_rejected = self%n_rejected
+        n_forced = self%n_forced
+    end subroutine controller_counts
 
     !> est / (error_tol S): a step is accepted when this is <= 1.
     pure real(dp) function controller_ratio(self, est) result(ratio)
@@ -226,20 +281,26 @@ contains
     end function controller_ratio
 
     !> A step of size dt was accepted with error ratio err (negative: no estimate, the step
-    !> size is kept): the next proposal.
-    subroutine controller_accept(self, dt, err)
+    !> size is kept): the next proposal. shortened: the step was shortened to land on an
+    !> output time, which says nothing against the proposal it was shortened from.
+    subroutine controller_accept(self, dt, err, shortened)
         class(step_controller_t), intent(inout) :: self
         real(dp), intent(in) :: dt, err
-        real(dp) :: factor
+        logical, intent(in), optional :: shortened
+        real(dp) :: factor, proposal
 
+        proposal = self%dt_next
         self%dt_next = dt
         if (err >= 0.0_dp .and. .not. self%no_growth) then
-            factor = GROWTH_MAX
-            if (err > 0.0_dp) factor = min(GROWTH_MAX, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))
+            factor = self%growth_max
+            if (err > 0.0_dp) factor = min(self%growth_max, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))
             if (factor >= GROWTH_MIN) self%dt_next = min(dt * factor, self%dt_max)
         end if
         self%dt_next = max(self%dt_next, self%dt_min)
         self%no_growth = .false.
+        if (present(shortened)) then
+            if (shortened) self%dt_next = max(self%dt_next, min(proposal, self%dt_max))
+        end if
     end subroutine controller_accept
 
     !> A step of size dt was rejected with error ratio err > 1: the retry.
@@ -255,51 +316,83 @@ contains
 
     ! ------------------------------------------------------------------ checkpoint
 
-    !> Everything controller and estimator need to continue exactly: scalars into values
-    !> (N_CONTROL_VALUES) and the estimator's levels, most recent first, into history
+    !> The controller's scalars into control(1:CONTROLLER_VALUES) of a checkpoint.
+    subroutine controller_save_checkpoint(self, ckpt)
+        class(step_controller_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        call require_control(ckpt)
+        ckpt%control(1:CONTROLLER_VALUES) = [self%dt_next, merge(1.0_dp, 0.0_dp, self%no_growth), self%scale, &
+                                             self%error_sum, real(self%n_estimated, dp), real(self%n_rejected, dp), &
+                                             real(self%n_forced, dp)]
+    end subroutine controller_save_checkpoint
+
+    !> The inverse of save_checkpoint (on a controller initialised for this run).
+    subroutine controller_restore_checkpoint(self, ckpt)
+        class(step_controller_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%dt_next = ckpt%control(1)
+        self%no_growth = ckpt%control(2) > 0.0_dp
+        self%scale = ckpt%control(3)
+        self%error_sum = ckpt%control(4)
+        self%n_estimated = nint(ckpt%control(5))
+        self%n_rejected = nint(ckpt%control(6))
+        self%n_forced = nint(ckpt%control(7))
+    end subroutine controller_restore_checkpoint
+
+    !> The estimator's levels into a checkpoint: their number and steps after the
+    !> controller's scalars in control, the levels, most recent first, in history
     !> (s+1, (1+N_FIELDS) MAX_LEVELS).
-    subroutine pack_control(control, estimator, values, history)
-        type(step_controller_t), intent(in) :: control
-        type(error_estimator_t), intent(in) :: estimator
-        real(dp), intent(out) :: values(N_CONTROL_VALUES)
-        real(dp), intent(out) :: history(:, :)
-        integer :: j, slot, width
+    subroutine estimator_save_checkpoint(self, ckpt)
+        class(error_estimator_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+        integer :: j, slot, width, stat
+        character(len=256) :: message
 
-        values = 0.0_dp
-        values(1:7) = [control%dt_next, merge(1.0_dp, 0.0_dp, control%no_growth), control%scale, &
-                       control%error_sum, real(control%n_estimated, dp), real(control%n_rejected, dp), &
-                       real(control%n_forced, dp)]
-        values(8) = real(estimator%n_levels, dp)
+        call require_control(ckpt)
         width = 1 + N_FIELDS
-        history = 0.0_dp
-        do j = 1, estimator%n_levels
-            slot = level_slot(estimator%head, j)
-            values(8 + j) = estimator%steps(slot)
-            history(:, (j - 1) * width + 1:j * width) = estimator%levels(:, :, slot)
+        if (allocated(ckpt%history)) deallocate (ckpt%history)
+        allocate (ckpt%history(size(self%levels, 1), width * MAX_LEVELS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the checkpoint of the error estimator')
+        ckpt%control(CONTROLLER_VALUES + 1:) = 0.0_dp
+        ckpt%control(CONTROLLER_VALUES + 1) = real(self%n_levels, dp)
+        ckpt%history = 0.0_dp
+        do j = 1, self%n_levels
+            slot = level_slot(self%head, j)
+            ckpt%control(CONTROLLER_VALUES + 1 + j) = self%steps(slot)
+            ckpt%history(:, (j - 1) * width + 1:j * width) = self%levels(:, :, slot)
         end do
-    end subroutine pack_control
+    end subroutine estimator_save_checkpoint
 
-    !> The inverse of pack_control (control and estimator initialised for this run).
-    subroutine unpack_control(values, history, control, estimator)
-        real(dp), intent(in) :: values(N_CONTROL_VALUES)
-        real(dp), intent(in) :: history(:, :)
-        type(step_controller_t), intent(inout) :: control
-        type(error_estimator_t), intent(inout) :: estimator
+    !> The inverse of save_checkpoint (on an estimator initialised for this run, on the
+    !> checkpoint's mesh).
+    subroutine estimator_restore_checkpoint(self, ckpt)
+        class(error_estimator_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
         integer :: j, width
 
-        control%dt_next = values(1)
-        control%no_growth = values(2) > 0.0_dp
-        control%scale = values(3)
-        control%error_sum = values(4)
-        control%n_estimated = nint(values(5))
-        control%n_rejected = nint(values(6))
-        control%n_forced = nint(values(7))
         width = 1 + N_FIELDS
-        call estimator%reset()
-        do j = nint(values(8)), 1, -1
-            call estimator%push(history(:, (j - 1) * width + 1), history(:, (j - 1) * width + 2:j * width), &
-                                values(8 + j))
+        call self%reset()
+        do j = nint(ckpt%control(CONTROLLER_VALUES + 1)), 1, -1
+            call self%push(ckpt%history(:, (j - 1) * width + 1), ckpt%history(:, (j - 1) * width + 2:j * width), &
+                           ckpt%control(CONTROLLER_VALUES + 1 + j))
         end do
-    end subroutine unpack_control
+    end subroutine estimator_restore_checkpoint
+
+    !> ckpt%control allocated with N_CONTROL_VALUES entries (its owners fill their parts).
+    subroutine require_control(ckpt)
+        type(checkpoint_t), intent(inout) :: ckpt
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(ckpt%control)) then
+            if (size(ckpt%control) == N_CONTROL_VALUES) return
+            deallocate (ckpt%control)
+        end if
+        allocate (ckpt%control(N_CONTROL_VALUES), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the checkpoint of the step control')
+        ckpt%control = 0.0_dp
+    end subroutine require_control
 
 end module step_control_m

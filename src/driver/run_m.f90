@@ -1,36 +1,28 @@
-!> One simulation run: initial state, time loop, diagnostics and output. The time loop
-!> (stepper_m) knows nothing of HDF5; the writer (output_m) knows nothing of the scheme;
-!> this module wires them together.
+!> One simulation run: the time loop from the initial state (or a checkpoint) to the end,
+!> with its output. It wires the parts together and owns none of their work: the step
+!> driver (step_driver_m) takes each accepted step, the types that are saved pack and
+!> restore their checkpoints (checkpoint_m), the files layer writes (run_output_m,
+!> run_attributes_m, provenance_m, restart_m); this module says when.
 module run_m
     use kinds_m, only: dp
-    use iso_fortran_env, only: int64
-    use ieee_arithmetic, only: ieee_is_finite
+    use iso_fortran_env, only: int64, error_unit
     use config_m, only: config_t, number_of_steps
-    use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
-    use iso_fortran_env, only: error_unit
     use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
-    use fe_m, only: mesh_nodes, evaluate_p1
-    use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
-                        S_N_ELEMENTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_FIELDS
-    use state_m, only: state_t, initial_state, field_values, advance_time, land_on, copy_state, set_mesh, &
-                       state_nodes
-    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
-    use remesh_m, only: initial_mesh, remesh
-    use step_control_m, only: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS, GROWTH_MAX, &
-                              pack_control, unpack_control, energy_norm
-    use contact_law_m, only: contact_law_t
-    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
+    use state_m, only: state_t, initial_state, set_mesh
+    use adaptive_mesh_m, only: adaptive_mesh_t
+    use remesh_m, only: initial_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
-    use restart_m, only: N_COUNTERS, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, COUNTER_LAW_ENERGY, &
-                         COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, &
-                         COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR, MESH_HEADER, pack_state, read_checkpoint, copy_history
+    use checkpoint_m, only: checkpoint_t
+    use step_driver_m, only: step_driver_t, step_failure
     use output_m, only: h5_writer_t
+    use restart_m, only: read_checkpoint, write_checkpoint, copy_history
+    use run_output_m, only: output_grid, write_series, write_snapshot
+    use run_attributes_m, only: record_inputs, record_scales, record_results
+    use provenance_m, only: record_provenance
     use progress_m, only: progress_t
     use version_m, only: PROGRAM_VERSION, SOURCE_VERSION
-    use provenance_m, only: utc_now, host_name, command_line, hdf5_version, fortran_compiler
-    use material_m, only: nondim_t, nondim_groups, si_scale_t, si_scales
     implicit none
     private
     public :: run_simulation
@@ -38,630 +30,258 @@ module run_m
     !> The progress report of an adaptive run counts t / t_end in these units.
     integer, parameter :: PROGRESS_UNITS = 1000
 
+    !> Everything one run holds.
+    type :: run_t
+        type(state_t) :: state
+        type(stepper_t) :: stepper
+        type(step_result_t) :: result
+        type(energy_monitor_t) :: monitor
+        type(step_driver_t) :: driver
+        type(adaptive_mesh_t) :: mesh          !< &mesh adaptive only
+        type(h5_writer_t) :: writer
+        real(dp), allocatable :: x_out(:)      !< the fixed output grid
+        integer :: n_steps = 0                 !< fixed steps: number_of_steps
+        integer :: n_snapshot_next = 0         !< with snapshot_dt: the next snapshot is at n snapshot_dt
+        integer :: n_elements_max = 0
+        integer :: last_written = 0            !< the last step whose output was written
+        integer(int64) :: clock_start = 0, clock_rate = 1
+    end type run_t
+
 contains
 
     !> Run the validated configuration cfg and write <prefix>.h5. A numerical failure
-    !> finishes the file with status 'failed: ...' and stops with EXIT_NUMERIC.
-    !>
-    !> The time loop takes steps of &time dt (fixed) or of the size step_control_m's
-    !> controller proposes (adaptive). Adaptive steps are tried: a step whose local error
-    !> estimate exceeds the tolerance is rejected (the state restored) and retried smaller,
-    !> and so is a step that changes the contact state while longer than the event tolerance
-    !> (max(error_tol, dt_min)), retried to end just before the crossing, so that the step
-    !> across a contact event is at most that long. Steps are shortened to land on the
-    !> snapshot times (&output snapshot_dt) and on t_end.
+    !> finishes the file with status 'failed: ...' and stops with EXIT_NUMERIC; a stop
+    !> signal writes a checkpoint, leaves <prefix>.h5.part and stops with EXIT_INTERRUPTED.
     subroutine run_simulation(cfg)
         type(config_t), intent(in) :: cfg
-        type(state_t) :: state, saved
-        type(stepper_t) :: stepper
-        type(step_result_t) :: result
-        type(h5_writer_t) :: writer
-        type(progress_t) :: progress
-        type(energy_monitor_t) :: monitor
-        type(error_estimator_t) :: estimator
-        type(step_controller_t) :: control
-        type(event_log_t) :: events
-        type(adaptive_mesh_t) :: mesh
-        integer :: n_steps, last_written, n_snapshot_next, n_elements_max
-        integer(int64) :: clock_start, clock_rate
-        real(dp) :: v_front
-        real(dp) :: counters(N_COUNTERS), dt_try, target, t_before, gap_start, gap_end, est, err, proposal, event_tol, &
-                    saved_dt_last
-        logical :: adaptive, lands, at_snapshot, in_contact, contact_now, flipped, last, warned_forced, remeshed
-        real(dp), allocatable :: control_values(:), history(:, :), event_table(:, :), mesh_data(:), x_out(:)
+        type(run_t) :: run
         character(len=320) :: failure
         character(len=:), allocatable :: interrupted
 
-        call system_clock(clock_start, clock_rate)
-        adaptive = cfg%time%adaptive
-        n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
-        v_front = front_speed(cfg%model)
+        call system_clock(run%clock_start, run%clock_rate)
+        call set_up(run, cfg)
+        call open_output(run, cfg)
+        failure = ''
+        if (.not. run%result%ok) failure = 'setting up the solver: '//trim(run%result%message)
+        call time_loop(run, cfg, failure, interrupted)
+        call close_output(run, cfg, failure, interrupted)
+    end subroutine run_simulation
+
+    !> The initial state (on the first adaptive mesh, with &mesh adaptive), the stepper, the
+    !> energy monitor and the step driver on it; with &time restart_from, all of them as the
+    !> checkpoint left them (read and checked before the new file exists).
+    subroutine set_up(run, cfg)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+        type(checkpoint_t) :: ckpt
+
+        run%n_steps = number_of_steps(cfg%time%dt, cfg%time%t_end)
         if (cfg%mesh%adaptive) then
-            call initial_mesh(cfg, mesh, state)
+            call initial_mesh(cfg, run%mesh, run%state)
         else
-            call initial_state(cfg, state)
+            call initial_state(cfg, run%state)
         end if
-        call stepper%init(cfg, result)
-        if (cfg%mesh%adaptive) call stepper%remesh(state)
-        if (stepper%scheme%is_midpoint()) then
-            call monitor%init(cfg%model, stepper%law, stepper%scheme, state, law_model=stepper%step_model)
-        else
-            call monitor%init(cfg%model, stepper%law, stepper%scheme, state)
-        end if
-        call estimator%init(trim(cfg%time%scheme), state%s)
-        call control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, estimator%order, cfg%time%dt)
-        event_tol = max(cfg%time%error_tol, cfg%time%dt_min)
-        control%scale = energy_norm(monitor%energy)
-        call estimator%push(state%u, state%w, 0.0_dp)
-        in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
+        call run%stepper%init(cfg, run%result)
+        if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
+        call run%monitor%init(cfg%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
+        call run%driver%init(cfg, run%state, run%stepper, run%monitor)
         if (cfg%time%restart_from /= '') then
-            ! everything the restart needs is read and checked before the new file exists
-            call read_checkpoint(trim(cfg%time%restart_from), cfg, state, counters, control_values, history, &
-                                 event_table, mesh_data)
+            call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
+            call run%state%restore_checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
-                call restore_mesh(mesh, mesh_data, monitor)
-                call set_mesh(state, mesh%nodes())
-                call stepper%remesh(state)
-                call estimator%resize(state%s)
-                call monitor%resize(state)
+                call run%mesh%restore_checkpoint(ckpt)
+                call set_mesh(run%state, run%mesh%nodes())
+                call run%stepper%remesh(run%state)
+                call run%monitor%resize(run%state)
             end if
-            monitor%energy = counters(COUNTER_ENERGY)
-            monitor%law_energy = counters(COUNTER_LAW_ENERGY)
-            monitor%have_law = counters(COUNTER_HAVE_LAW) > 0.0_dp
-            monitor%max_rise = counters(COUNTER_MAX_RISE)
-            stepper%n_solves = nint(counters(COUNTER_SOLVES), int64)
-            stepper%n_contact_steps = nint(counters(COUNTER_CONTACT_STEPS), int64)
-            call estimator%reset()
-            call estimator%push(state%u, state%w, state%dt_last)
-            in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
-            if (allocated(control_values) .and. allocated(history)) then
-                call unpack_control(control_values(:N_CONTROL_VALUES), history, control, estimator)
-                in_contact = control_values(N_CONTROL_VALUES + 1) > 0.0_dp
-                monitor%max_rise_step_change = control_values(N_CONTROL_VALUES + 2)
-            end if
-            call events%restore(event_table)
+            call run%monitor%restore_checkpoint(ckpt)
+            call run%stepper%restore_checkpoint(ckpt)
+            call run%driver%restore_checkpoint(ckpt, run%state, run%stepper)
         end if
-        n_snapshot_next = 0
-        if (cfg%output%snapshot_dt > 0.0_dp) n_snapshot_next = floor(state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
+        if (cfg%output%snapshot_dt > 0.0_dp) &
+            run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
+        run%n_elements_max = run%state%s
+    end subroutine set_up
+
+    !> Create <prefix>.h5.part with the inputs, the provenance and the initial state (or the
+    !> history up to the checkpoint restarted from), and flush it: from here on the .part
+    !> is a valid file, also if the run is killed or the disk fills up before its first
+    !> checkpoint.
+    subroutine open_output(run, cfg)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+
         ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
         call ignore_file_size_signal()
-        x_out = output_grid(cfg)
-        call writer%create(trim(cfg%output%prefix), x_out, cfg%output%compression)
-        call record_inputs(writer, cfg)
-        call writer%attr_str('version', PROGRAM_VERSION)
-        call record_provenance(writer)
-        if (cfg%material%present) call record_scales(writer, cfg)
-        if (.not. adaptive) call writer%attr_int('steps_planned', n_steps)
+        call output_grid(cfg, run%x_out)
+        call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression)
+        call record_inputs(run%writer, cfg)
+        call record_provenance(run%writer, PROGRAM_VERSION, SOURCE_VERSION)
+        if (cfg%material%present) call record_scales(run%writer, cfg)
+        if (.not. cfg%time%adaptive) call run%writer%attr_int('steps_planned', run%n_steps)
         if (cfg%time%restart_from /= '') then
-            call copy_history(writer, trim(cfg%time%restart_from), state%t)
-            call writer%attr_int('restart_step', state%step)
+            call copy_history(run%writer, trim(cfg%time%restart_from), run%state%t)
+            call run%writer%attr_int('restart_step', run%state%step)
         else
-            result%contact_force = stepper%law%force(state%u(state%s))
-            call write_series(writer, stepper, state, monitor%energy, result)
-            call write_snapshot(writer, state, x_out)
+            call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
+            call write_snapshot(run%writer, run%state, run%x_out)
         end if
-        n_elements_max = state%s
+        call run%writer%flush()
+    end subroutine open_output
 
-        ! from here on the .part is a valid file (inputs, provenance, the initial state), also
-        ! if the run is killed or the disk fills up before its first checkpoint
-        call writer%flush()
-        failure = ''
-        if (.not. result%ok) failure = 'setting up the solver: '//trim(result%message)
-        last_written = 0
+    !> The time loop: accepted steps (the step driver) with their output, remeshes and
+    !> checkpoints, until the end, a numerical failure or a stop signal (interrupted: its
+    !> name; the run stops after the step in progress).
+    subroutine time_loop(run, cfg, failure, interrupted)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+        character(len=*), intent(inout) :: failure
+        character(len=:), allocatable, intent(out) :: interrupted
+        type(progress_t) :: progress
+        logical :: at_snapshot, last, remeshed
+
         interrupted = ''
-        warned_forced = .false.
         call install_stop_handlers()
-        if (adaptive) then
-            call progress%start(PROGRESS_UNITS, cfg%output%quiet)
-        else
-            call progress%start(n_steps, cfg%output%quiet)
-        end if
+        call progress%start(merge(PROGRESS_UNITS, run%n_steps, cfg%time%adaptive), cfg%output%quiet)
         do
             if (failure /= '' .or. interrupted /= '') exit
-            if (finished(state)) exit
-            call choose_step(state, dt_try, target, lands, at_snapshot)
-            t_before = state%t
-            saved_dt_last = state%dt_last
-            gap_start = state%u(state%s) - stepper%law%g
-            if (adaptive) call copy_state(state, saved)
-            call stepper%advance(state, result, dt_try)
-            if (.not. result%ok) then
-                failure = step_failure(state%step + 1, advance_time(state, dt_try), trim(result%message))
-                exit
-            end if
-            call contact_state(stepper%law, state, result, contact_now, gap_end)
-            flipped = contact_now .neqv. in_contact
-            est = 0.0_dp
-            err = -1.0_dp
-            if (estimator%ready() .and. .not. flipped) then
-                est = estimator%estimate(cfg%model, state%u, state%w, dt_try, state%h)
-                err = control%ratio(est)
-            end if
-            if (adaptive) then
-                if (flipped .and. dt_try > event_tol) then
-                    ! retry to end just before the crossing (or, close to it, across it
-                    ! within event_tol)
-                    call undo_step(stepper, result, saved, state)
-                    control%dt_next = retry_before_event(dt_try, gap_start, gap_end, event_tol)
-                    control%no_growth = .true.
-                    cycle
+            if (finished(run, cfg)) exit
+            associate (state => run%state)
+                if (cfg%output%snapshot_dt > 0.0_dp) then
+                    call run%driver%take_step(state, run%stepper, run%monitor, run%result, t_stop(run, cfg), &
+                                              at_snapshot, failure, real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt)
+                else
+                    call run%driver%take_step(state, run%stepper, run%monitor, run%result, t_stop(run, cfg), &
+                                              at_snapshot, failure)
                 end if
-                if (err > 1.0_dp .and. dt_try > cfg%time%dt_min) then
-                    call undo_step(stepper, result, saved, state)
-                    call control%reject(dt_try, err)
-                    cycle
+                if (failure /= '') exit
+                if (at_snapshot) run%n_snapshot_next = run%n_snapshot_next + 1
+                last = finished(run, cfg)
+                if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
+                    call write_series(run%writer, run%stepper, state, run%monitor, run%result)
+                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) call write_snapshot(run%writer, state, run%x_out)
+                run%last_written = state%step
+                if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
+                    call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
+                    run%n_elements_max = max(run%n_elements_max, state%s)
                 end if
-                if (err > 1.0_dp) then
-                    control%n_forced = control%n_forced + 1
-                    if (.not. warned_forced) call warn_forced(state%t, cfg%time%dt_min)
-                    warned_forced = .true.
+                if (cfg%output%checkpoint_every > 0) then
+                    if (mod(state%step, cfg%output%checkpoint_every) == 0) call checkpoint(run, cfg)
                 end if
-            end if
-            ! the step is accepted
-            if (lands .and. adaptive) call land_on(state, target)
-            if (flipped) then
-                call events%add(crossing_time(t_before, dt_try, gap_start, gap_end), &
-                                merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
-                if (adaptive) call estimator%reset()
-            end if
-            in_contact = contact_now
-            call estimator%push(state%u, state%w, dt_try)
-            if (err >= 0.0_dp) then
-                control%error_sum = control%error_sum + est
-                control%n_estimated = control%n_estimated + 1
-            end if
-            if (adaptive) then
-                proposal = control%dt_next
-                call control%accept(dt_try, err)
-                ! a step shortened to land on an output time says nothing against the proposal
-                if (lands) control%dt_next = max(control%dt_next, min(proposal, cfg%time%dt_max))
-            end if
-            call monitor%observe(state, step_changed=dt_try /= saved_dt_last)
-            if (.not. ieee_is_finite(monitor%energy)) then
-                failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
-                exit
-            end if
-            control%scale = max(control%scale, energy_norm(monitor%energy))
-            if (at_snapshot) n_snapshot_next = n_snapshot_next + 1
-            last = finished(state)
-            if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
-                call write_series(writer, stepper, state, monitor%energy, result)
-            if (snapshot_due(state%step, at_snapshot) .or. last) call write_snapshot(writer, state, x_out)
-            last_written = state%step
-            if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
-                call remesh(mesh, state, stepper, estimator, monitor, remeshed)
-                n_elements_max = max(n_elements_max, state%s)
-            end if
-            if (cfg%output%checkpoint_every > 0) then
-                if (mod(state%step, cfg%output%checkpoint_every) == 0) call write_checkpoint(writer, state, stepper, &
-                    monitor, control, estimator, events, in_contact, mesh)
-            end if
-            if (adaptive) then
-                call progress%update(progress_position(state%t), state%t, result%in_contact)
-            else
-                call progress%update(state%step, state%t, result%in_contact)
-            end if
-            ! a signal stops the run after this step, with a checkpoint of it (below)
-            if (.not. last) interrupted = stop_signal_name()
+                if (cfg%time%adaptive) then
+                    call progress%update(progress_position(cfg, state%t), state%t, run%result%in_contact)
+                else
+                    call progress%update(state%step, state%t, run%result%in_contact)
+                end if
+                ! a signal stops the run after this step, with a checkpoint of it (close_output)
+                if (.not. last) interrupted = stop_signal_name()
+            end associate
         end do
         call progress%finish()
+    end subroutine time_loop
+
+    !> Finish the file: after a stop signal a checkpoint of the last step (status
+    !> 'interrupted'), after a failure the last good step if series_every or the snapshots
+    !> skipped it (status 'failed'); then the results and the status.
+    subroutine close_output(run, cfg, failure, interrupted)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+        character(len=*), intent(in) :: failure, interrupted
+        integer(int64) :: clock_now
+
         if (interrupted /= '') then
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
             ! checkpoint, so the file must hold exactly those an uninterrupted run has
             if (cfg%output%checkpoint_every == 0) then
-                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact, mesh)
-            else if (mod(state%step, cfg%output%checkpoint_every) /= 0) then
-                call write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact, mesh)
+                call checkpoint(run, cfg)
+            else if (mod(run%state%step, cfg%output%checkpoint_every) /= 0) then
+                call checkpoint(run, cfg)
             end if
         end if
-        if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
-            mod(last_written, cfg%output%series_every) /= 0) then
-            ! the last good step was skipped by series_every: keep it in the failed file
-            call write_series(writer, stepper, state, monitor%energy, result)
+        if (failure /= '' .and. run%last_written > 0 .and. run%last_written == run%state%step) then
+            ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
+            if (mod(run%last_written, cfg%output%series_every) /= 0) &
+                call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
+            if (.not. snapshot_due(cfg, run%last_written, .false.)) call write_snapshot(run%writer, run%state, run%x_out)
         end if
-        if (failure /= '' .and. last_written > 0 .and. last_written == state%step .and. &
-            .not. snapshot_due(last_written, .false.)) call write_snapshot(writer, state, x_out)
-
-        call writer%write_events(events%times(), events%kinds())
-        call writer%attr_int('steps', state%step)
-        call writer%attr_real('t_final', state%t)
-        call writer%attr_real('wall_seconds', seconds_since(clock_start, clock_rate))
-        call writer%attr_real('energy_max_relative_rise', monitor%max_rise)
-        if (stepper%scheme%is_bdf2() .and. (adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
-            call writer%attr_real('energy_max_relative_rise_step_change', monitor%max_rise_step_change)
-        call writer%attr_str('energy_law', stepper%scheme%law())
-        call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
-        call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
-        call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
-        call record_time_error(writer, control, adaptive)
-        if (cfg%mesh%adaptive) then
-            call writer%attr_int('mesh.remeshes', monitor%n_remeshes)
-            call writer%attr_int('mesh.n_elements_max', n_elements_max)
-            call writer%attr_real('energy_max_relative_rise_remesh', monitor%max_rise_remesh)
-        end if
+        call system_clock(clock_now)
+        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, &
+                            real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp), run%n_elements_max)
         if (interrupted /= '') then
-            call writer%finish('interrupted: '//interrupted, keep_part=.true.)
+            call run%writer%finish('interrupted: '//interrupted, keep_part=.true.)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
-                trim(step_failure(state%step, state%t, 'checkpoint written'))//"; continue with "// &
+                step_failure(run%state%step, run%state%t, 'checkpoint written')//"; continue with "// &
                 "--set time.restart_from='"//trim(cfg%output%prefix)//".h5.part' and another output.prefix"
             flush (error_unit)
             stop EXIT_INTERRUPTED, quiet=.true.
         end if
         if (failure /= '') then
-            call writer%finish('failed: '//trim(failure))
+            call run%writer%finish('failed: '//trim(failure))
             call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &
                        trim(cfg%output%prefix)//'.h5 (status attribute: failed)')
         end if
-        call writer%finish('complete')
+        call run%writer%finish('complete')
+    end subroutine close_output
 
-    contains
+    !> /checkpoint: every type that the run continues from saves itself (checkpoint_m), so
+    !> that a restart continues exactly.
+    subroutine checkpoint(run, cfg)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+        type(checkpoint_t) :: ckpt
 
-        !> Has the run reached its end? Fixed steps without snapshot_dt: n_steps steps (as
-        !> always, t_N = N dt); otherwise t_end (adaptive) or N dt (fixed), to round-off.
-        logical function finished(state)
-            type(state_t), intent(in) :: state
+        call run%state%save_checkpoint(ckpt)
+        call run%stepper%save_checkpoint(ckpt)
+        call run%monitor%save_checkpoint(ckpt)
+        call run%driver%save_checkpoint(ckpt)
+        if (cfg%mesh%adaptive) call run%mesh%save_checkpoint(ckpt)
+        call write_checkpoint(run%writer, ckpt, step_failure(run%state%step, run%state%t, ''))
+    end subroutine checkpoint
 
-            if (.not. adaptive .and. cfg%output%snapshot_dt <= 0.0_dp) then
-                finished = state%step >= n_steps
-            else
-                finished = state%t >= t_stop() - 1.0e-9_dp * merge(cfg%time%dt_min, cfg%time%dt, adaptive)
-            end if
-        end function finished
+    !> Has the run reached its end? Fixed steps without snapshot_dt: n_steps steps (as
+    !> always, t_N = N dt); otherwise t_end (adaptive) or N dt (fixed), to round-off.
+    logical function finished(run, cfg)
+        type(run_t), intent(in) :: run
+        type(config_t), intent(in) :: cfg
 
-        !> The end time: t_end (adaptive), N dt (fixed: number_of_steps).
-        real(dp) function t_stop()
-            if (adaptive) then
-                t_stop = cfg%time%t_end
-            else
-                t_stop = real(n_steps, dp) * cfg%time%dt
-            end if
-        end function t_stop
-
-        !> The next step: &time dt or the controller's proposal (at most GROWTH_MAX times the
-        !> last step), shortened to end on the next snapshot time or the end (target; lands).
-        !> Adaptive steps that would leave less than a step to the target take half the
-        !> distance instead, so no tiny step follows.
-        subroutine choose_step(state, dt_try, target, lands, at_snapshot)
-            type(state_t), intent(in) :: state
-            real(dp), intent(out) :: dt_try, target
-            logical, intent(out) :: lands, at_snapshot
-            real(dp) :: remaining, slack
-
-            if (adaptive) then
-                dt_try = control%dt_next
-                if (state%dt_last > 0.0_dp) dt_try = min(dt_try, GROWTH_MAX * state%dt_last)
-                dt_try = min(max(dt_try, cfg%time%dt_min), cfg%time%dt_max)
-                if (cfg%mesh%adaptive .and. v_front > 0.0_dp) &
-                    dt_try = max(min(dt_try, FRONT_CFL * minval(state%h) / v_front), cfg%time%dt_min)
-                slack = 1.0e-9_dp * dt_try
-            else
-                dt_try = cfg%time%dt
-                slack = 1.0e-9_dp * cfg%time%dt
-            end if
-            target = t_stop()
-            at_snapshot = .false.
-            if (cfg%output%snapshot_dt > 0.0_dp) then
-                ! a snapshot time that is t_end to round-off is the target (not t_end): so
-                ! a run to t_end takes the steps a longer run takes up to there
-                if (real(n_snapshot_next, dp) * cfg%output%snapshot_dt <= target + slack) then
-                    target = real(n_snapshot_next, dp) * cfg%output%snapshot_dt
-                    at_snapshot = .true.
-                end if
-            end if
-            remaining = target - state%t
-            lands = dt_try >= remaining - slack
-            if (lands) then
-                if (adaptive .or. dt_try > remaining + slack) dt_try = remaining
-            else if (adaptive .and. dt_try > 0.5_dp * remaining) then
-                dt_try = 0.5_dp * remaining
-            end if
-            at_snapshot = at_snapshot .and. lands
-        end subroutine choose_step
-
-        !> Snapshot after step n: at the snapshot times (snapshot_dt), else every snapshot_every steps.
-        logical function snapshot_due(n, at_snapshot)
-            integer, intent(in) :: n
-            logical, intent(in) :: at_snapshot
-
-            if (cfg%output%snapshot_dt > 0.0_dp) then
-                snapshot_due = at_snapshot
-            else
-                snapshot_due = mod(n, cfg%output%snapshot_every) == 0
-            end if
-        end function snapshot_due
-
-        !> Where the progress report stands in an adaptive run: t / t_end in PROGRESS_UNITS.
-        integer function progress_position(t)
-            real(dp), intent(in) :: t
-
-            progress_position = max(1, min(PROGRESS_UNITS, nint(real(PROGRESS_UNITS, dp) * t / cfg%time%t_end)))
-        end function progress_position
-
-    end subroutine run_simulation
-
-    !> The contact state after a step, as events are counted: penalty, u^n(1) > g (the end
-    !> position; the midpoint rule's force may act a step longer); Signorini, an active
-    !> multiplier. gap: the gap at the step's end the crossing time is interpolated to,
-    !> u^n(1) - g (penalty) or the trial gap (Signorini, whose u^n(1) stops at g).
-    subroutine contact_state(law, state, result, in_contact, gap)
-        type(contact_law_t), intent(in) :: law
-        type(state_t), intent(in) :: state
-        type(step_result_t), intent(in) :: result
-        logical, intent(out) :: in_contact
-        real(dp), intent(out) :: gap
-
-        if (law%is_signorini()) then
-            in_contact = result%in_contact
-            gap = result%trial_gap
+        if (.not. cfg%time%adaptive .and. cfg%output%snapshot_dt <= 0.0_dp) then
+            finished = run%state%step >= run%n_steps
         else
-            gap = state%u(state%s) - law%g
-            in_contact = gap > 0.0_dp
+            finished = run%state%t >= t_stop(run, cfg) - 1.0e-9_dp * merge(cfg%time%dt_min, cfg%time%dt, cfg%time%adaptive)
         end if
-    end subroutine contact_state
+    end function finished
 
-    !> A rejected step: the state as before it, and the step's contact count taken back.
-    subroutine undo_step(stepper, result, saved, state)
-        type(stepper_t), intent(inout) :: stepper
-        type(step_result_t), intent(in) :: result
-        type(state_t), intent(in) :: saved
-        type(state_t), intent(inout) :: state
+    !> The end time: t_end (adaptive), N dt (fixed: number_of_steps).
+    real(dp) function t_stop(run, cfg)
+        type(run_t), intent(in) :: run
+        type(config_t), intent(in) :: cfg
 
-        if (result%in_contact) stepper%n_contact_steps = stepper%n_contact_steps - 1
-        call copy_state(saved, state)
-    end subroutine undo_step
+        if (cfg%time%adaptive) then
+            t_stop = cfg%time%t_end
+        else
+            t_stop = real(run%n_steps, dp) * cfg%time%dt
+        end if
+    end function t_stop
 
-    !> The retry of a step of size dt that changed the contact state: the trial gap went
-    !> from gap_start to gap_end; end event_tol/2 before the interpolated crossing, or take
-    !> a step of event_tol across it when the crossing is that close (events_m's crossing_time;
-    !> a release from a zero gap (Signorini) halves the step).
-    pure real(dp) function retry_before_event(dt, gap_start, gap_end, event_tol) result(dt_new)
-        real(dp), intent(in) :: dt, gap_start, gap_end, event_tol
-        real(dp) :: to_crossing
-
-        to_crossing = crossing_time(0.0_dp, dt, gap_start, gap_end)
-        if (to_crossing >= dt) to_crossing = 0.5_dp * dt
-        dt_new = to_crossing - 0.5_dp * event_tol
-        if (to_crossing <= event_tol) dt_new = event_tol
-        dt_new = min(dt_new, dt - 0.5_dp * event_tol)
-    end function retry_before_event
-
-    !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
-    subroutine warn_forced(t, dt_min)
-        real(dp), intent(in) :: t, dt_min
-
-        write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', t, &
-            ' a step of dt_min = ', dt_min, ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
-            '(the count is in the root attribute time_steps_at_dt_min)'
-        flush (error_unit)
-    end subroutine warn_forced
-
-    !> The time error of the run (root attributes): the sum of the local error estimates of
-    !> the accepted steps (step_control_m), absolute (energy norm) and relative to the largest
-    !> energy norm of the solution; with it the counts of the step control.
-    subroutine record_time_error(writer, control, adaptive)
-        type(h5_writer_t), intent(inout) :: writer
-        type(step_controller_t), intent(in) :: control
-        logical, intent(in) :: adaptive
-
-        call writer%attr_real('time_error_estimate', control%error_sum)
-        call writer%attr_real('time_error_estimate_relative', control%error_sum / max(control%scale, tiny(1.0_dp)))
-        call writer%attr_int('time_steps_estimated', control%n_estimated)
-        if (.not. adaptive) return
-        call writer%attr_int('time_steps_rejected', control%n_rejected)
-        call writer%attr_int('time_steps_at_dt_min', control%n_forced)
-    end subroutine record_time_error
-
-
-    !> 'step n (t = ...): reason' for the failure message and the status attribute.
-    function step_failure(n, t, reason) result(text)
+    !> Snapshot after step n: at the snapshot times (snapshot_dt), else every snapshot_every steps.
+    logical function snapshot_due(cfg, n, at_snapshot)
+        type(config_t), intent(in) :: cfg
         integer, intent(in) :: n
-        real(dp), intent(in) :: t
-        character(len=*), intent(in) :: reason
-        character(len=:), allocatable :: text
-        character(len=40) :: buf
+        logical, intent(in) :: at_snapshot
 
-        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', t, ')'
-        text = trim(buf)//': '//reason
-    end function step_failure
-
-    !> /checkpoint: the state, the level before (BDF2), the counters, the step control
-    !> (step_control_m, with the contact state in_contact appended) and the events, so that
-    !> the run continues exactly.
-    subroutine write_checkpoint(writer, state, stepper, monitor, control, estimator, events, in_contact, mesh)
-        type(h5_writer_t), intent(inout) :: writer
-        type(state_t), intent(in) :: state
-        type(stepper_t), intent(in) :: stepper
-        type(energy_monitor_t), intent(in) :: monitor
-        type(step_controller_t), intent(in) :: control
-        type(error_estimator_t), intent(in) :: estimator
-        type(event_log_t), intent(in) :: events
-        logical, intent(in) :: in_contact
-        type(adaptive_mesh_t), intent(in) :: mesh    !< (used when allocated: &mesh adaptive)
-        real(dp) :: counters(N_COUNTERS), values(N_CONTROL_VALUES + 2)
-        real(dp) :: history(0:state%s, (1 + N_FIELDS) * MAX_LEVELS)
-        real(dp), allocatable :: previous(:, :), mesh_values(:)   !< left unallocated (absent) when not held
-        character(len=:), allocatable :: note
-
-        counters(COUNTER_STEP) = real(state%step, dp)
-        counters(COUNTER_T) = state%t
-        counters(COUNTER_SOLVES) = real(stepper%n_solves, dp)
-        counters(COUNTER_CONTACT_STEPS) = real(stepper%n_contact_steps, dp)
-        counters(COUNTER_ENERGY) = monitor%energy
-        counters(COUNTER_LAW_ENERGY) = monitor%law_energy
-        counters(COUNTER_HAVE_LAW) = merge(1.0_dp, 0.0_dp, monitor%have_law)
-        counters(COUNTER_MAX_RISE) = monitor%max_rise
-        counters(COUNTER_DT_LAST) = state%dt_last
-        counters(COUNTER_T_ANCHOR) = state%t_anchor
-        counters(COUNTER_STEP_ANCHOR) = real(state%step_anchor, dp)
-        call pack_control(control, estimator, values(:N_CONTROL_VALUES), history)
-        values(N_CONTROL_VALUES + 1) = merge(1.0_dp, 0.0_dp, in_contact)
-        values(N_CONTROL_VALUES + 2) = monitor%max_rise_step_change
-        note = step_failure(state%step, state%t, '')
-        note = note(1:len(note) - 2)   ! 'step n (t = ...)'
-        ! an unallocated actual argument is an absent optional one (the level before: multistep
-        ! schemes; the mesh: &mesh adaptive)
-        if (allocated(state%u_prev)) previous = pack_state(state%u_prev, state%w_prev)
-        if (allocated(mesh%k)) mesh_values = pack_mesh(mesh, monitor)
-        call writer%write_checkpoint(pack_state(state%u, state%w), counters, note, previous, control=values, &
-                                     history=history, events=events%packed(), mesh=mesh_values)
-    end subroutine write_checkpoint
-
-    !> The adaptive mesh in a checkpoint: the field scales (1 + N_FIELDS), the remesh
-    !> counters of the monitor (2), then the node keys (restore_mesh is the inverse).
-    function pack_mesh(mesh, monitor) result(values)
-        type(adaptive_mesh_t), intent(in) :: mesh
-        type(energy_monitor_t), intent(in) :: monitor
-        real(dp), allocatable :: values(:)
-
-        values = [mesh%scale, monitor%max_rise_remesh, real(monitor%n_remeshes, dp), real(mesh%k, dp)]
-    end function pack_mesh
-
-    !> The adaptive mesh of a checkpoint (pack_mesh), on mesh initialised for this run.
-    subroutine restore_mesh(mesh, values, monitor)
-        type(adaptive_mesh_t), intent(inout) :: mesh
-        real(dp), intent(in) :: values(:)
-        type(energy_monitor_t), intent(inout) :: monitor
-        integer :: n
-
-        n = 1 + N_FIELDS
-        mesh%scale = values(1:n)
-        monitor%max_rise_remesh = values(n + 1)
-        monitor%n_remeshes = nint(values(n + 2))
-        call mesh%set_keys(nint(values(MESH_HEADER + 1:), int64))
-    end subroutine restore_mesh
-
-    !> The fixed grid of the snapshots (/mesh/x): &output n_points uniform points, by
-    !> default the nodes of the coarsest mesh.
-    function output_grid(cfg) result(x)
-        type(config_t), intent(in) :: cfg
-        real(dp), allocatable :: x(:)
-
-        if (cfg%output%n_points > 0) then
-            x = mesh_nodes(cfg%output%n_points - 1)
+        if (cfg%output%snapshot_dt > 0.0_dp) then
+            snapshot_due = at_snapshot
         else
-            x = mesh_nodes(cfg%mesh%n_elements)
+            snapshot_due = mod(n, cfg%output%snapshot_every) == 0
         end if
-    end function output_grid
+    end function snapshot_due
 
-    !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
-    !> (normal compliance (3.4), or the Signorini multiplier).
-    subroutine write_series(writer, stepper, state, energy, result)
-        type(h5_writer_t), intent(inout) :: writer
-        type(stepper_t), intent(in) :: stepper
-        type(state_t), intent(in) :: state
-        real(dp), intent(in) :: energy
-        type(step_result_t), intent(in) :: result
-        real(dp) :: values(N_SERIES)
-
-        values(S_T) = state%t
-        values(S_ENERGY) = energy
-        values(S_U_END) = state%u(state%s)
-        values(S_PENETRATION) = stepper%law%penetration(state%u(state%s))
-        values(S_CONTACT_STRESS) = -result%contact_force
-        values(S_ITERATIONS) = real(result%iterations, dp)
-        values(S_DT) = state%dt_last
-        values(S_N_ELEMENTS) = real(state%s, dp)
-        call writer%append_series(values)
-    end subroutine write_series
-
-    !> One snapshot: every field of fields_m's OUTPUT_ORDER on the output grid x_out (the
-    !> P1 solution evaluated there, unless x_out are the nodes), and on a graded mesh its
-    !> nodal values in /snapshots/native.
-    subroutine write_snapshot(writer, state, x_out)
-        type(h5_writer_t), intent(inout) :: writer
-        type(state_t), intent(in) :: state
-        real(dp), intent(in) :: x_out(:)
-        real(dp) :: values(0:state%s, N_OUTPUT_FIELDS), on_grid(size(x_out), N_OUTPUT_FIELDS), x(0:state%s)
-        integer :: k
-
-        do k = 1, N_OUTPUT_FIELDS
-            values(:, k) = field_values(state, OUTPUT_ORDER(k))
-        end do
-        if (size(x_out) == state%s + 1 .and. .not. allocated(state%x)) then
-            call writer%append_snapshot(state%t, values)
-            return
-        end if
-        x = state_nodes(state)
-        do k = 1, N_OUTPUT_FIELDS
-            on_grid(:, k) = evaluate_p1(x, values(:, k), x_out)
-        end do
-        call writer%append_snapshot(state%t, on_grid)
-        if (allocated(state%x)) call writer%append_native(x, values)
-    end subroutine write_snapshot
-
-    !> Every input value as a root attribute named group.variable (SPEC section 4).
-    subroutine record_inputs(writer, cfg)
-        type(h5_writer_t), intent(inout) :: writer
+    !> Where the progress report stands in an adaptive run: t / t_end in PROGRESS_UNITS.
+    integer function progress_position(cfg, t)
         type(config_t), intent(in) :: cfg
-        type(input_item_t), allocatable :: items(:)
-        integer :: k
+        real(dp), intent(in) :: t
 
-        items = input_items(cfg)
-        do k = 1, size(items)
-            associate (item => items(k))
-                select case (item%kind)
-                case (KIND_REAL)
-                    call writer%attr_real(item%name, item%reals(1))
-                case (KIND_INTEGER)
-                    call writer%attr_int(item%name, item%int)
-                case (KIND_STRING)
-                    call writer%attr_str(item%name, item%text)
-                case (KIND_LOGICAL)
-                    call writer%attr_logical(item%name, item%flag)
-                case default   ! polynomial coefficients, (amplitude, x_end)
-                    call writer%attr_real_array(item%name, item%reals)
-                end select
-            end associate
-        end do
-    end subroutine record_inputs
-
-    !> Where the file came from (SPEC section 4): provenance_m's root attributes.
-    subroutine record_provenance(writer)
-        type(h5_writer_t), intent(inout) :: writer
-
-        call writer%attr_str('created', utc_now())
-        call writer%attr_str('source_version', SOURCE_VERSION)
-        call writer%attr_str('host', host_name())
-        call writer%attr_str('command_line', command_line())
-        call writer%attr_str('hdf5_version', hdf5_version())
-        call writer%attr_str('compiler_version', fortran_compiler())
-    end subroutine record_provenance
-
-    !> With &material: the groups of (2.10) (root attributes derived.*), each scale of the
-    !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units) and, on
-    !> every dataset measured in one, si_factor and si_units.
-    subroutine record_scales(writer, cfg)
-        type(h5_writer_t), intent(inout) :: writer
-        type(config_t), intent(in) :: cfg
-        type(nondim_t) :: nd
-        type(si_scale_t), allocatable :: scales(:)
-        integer :: k
-
-        nd = nondim_groups(cfg%material)
-        call writer%attr_real('derived.beta1', nd%beta1)
-        call writer%attr_real('derived.beta2', nd%beta2)
-        call writer%attr_real('derived.omega', nd%omega)
-        call writer%attr_real('derived.delta', nd%delta)
-        call writer%attr_real('derived.varsigma', nd%varsigma)
-        call writer%attr_real('derived.zeta', nd%zeta)
-        call writer%attr_real('derived.a_check', nd%a_check)
-        call writer%attr_real('derived.alpha1', nd%alpha1)
-        call writer%attr_real('derived.alpha2', nd%alpha2)
-        call writer%attr_real('derived.alpha3', nd%alpha3)
-        scales = si_scales(cfg%material)
-        do k = 1, size(scales)
-            call writer%attr_real('scale.'//trim(scales(k)%name), scales(k)%factor)
-            call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
-            call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
-        end do
-    end subroutine record_scales
-
-    real(dp) function seconds_since(clock_start, clock_rate)
-        integer(int64), intent(in) :: clock_start, clock_rate
-        integer(int64) :: clock_now
-
-        call system_clock(clock_now)
-        seconds_since = real(clock_now - clock_start, dp) / real(clock_rate, dp)
-    end function seconds_since
+        progress_position = max(1, min(PROGRESS_UNITS, nint(real(PROGRESS_UNITS, dp) * t / cfg%time%t_end)))
+    end function progress_position
 
 end module run_m

@@ -23,7 +23,7 @@ contains
         real(dp), intent(in), optional :: control(:)      !< step control's scalars (step_control_m)
         real(dp), intent(in), optional :: history(:, :)   !< the error estimator's past levels
         real(dp), intent(in), optional :: events(:, :)    !< (n_events, 2): t and kind of each event
-        !> adaptive mesh: the node keys of adaptive_mesh_m, then its field scales (restart_m)
+        !> adaptive mesh: its field scales, the remesh counters, then its node keys (restart_m)
         real(dp), intent(in), optional :: mesh(:)
 
         integer(hid_t) :: group_id

@@ -1,6 +1,6 @@
-!> Where a file came from (docs/output.md, "Provenance"): when, on which host, by which
-!> command, from which source, with which HDF5 library and compiler. Root attributes
-!> written by run_m; the time and host name come from src/files/provenance_c.c.
+!> Where a file came from (docs/output.md, "Root attributes"): when, on which host, by which
+!> command, from which source, with which HDF5 library and compiler, as root attributes
+!> (record_provenance); the time and host name come from src/files/provenance_c.c.
 module provenance_m
     use iso_c_binding, only: c_char, c_int, c_null_char
     use iso_fortran_env, only: compiler_version
@@ -8,9 +8,10 @@ module provenance_m
     use h5_read_m, only: h5_library_init
     use strings_m, only: int_str, from_c_chars
     use errors_m, only: check_allocation
+    use output_m, only: h5_writer_t
     implicit none
     private
-    public :: utc_now, host_name, command_line, hdf5_version, fortran_compiler
+    public :: record_provenance, utc_now, host_name, command_line, hdf5_version, fortran_compiler
 
     interface
         function c_utc_now(buf, n) bind(C, name='rc_utc_now') result(rc)
@@ -29,6 +30,21 @@ module provenance_m
     end interface
 
 contains
+
+    !> The root attributes version (program_version) and the provenance: created,
+    !> source_version, host, command_line, hdf5_version, compiler_version.
+    subroutine record_provenance(writer, program_version, source_version)
+        type(h5_writer_t), intent(inout) :: writer
+        character(len=*), intent(in) :: program_version, source_version
+
+        call writer%attr_str('version', program_version)
+        call writer%attr_str('created', utc_now())
+        call writer%attr_str('source_version', source_version)
+        call writer%attr_str('host', host_name())
+        call writer%attr_str('command_line', command_line())
+        call writer%attr_str('hdf5_version', hdf5_version())
+        call writer%attr_str('compiler_version', fortran_compiler())
+    end subroutine record_provenance
 
     !> The current time in UTC, ISO 8601: '2026-11-23T07:30:00Z' ('unknown' if the clock fails).
     function utc_now() result(text)

@@ -4,18 +4,25 @@
 !> (slot0, slot1; /checkpoint/current says which is complete, see output_m): `state`
 !> (s+1, 1+N_FIELDS) with the columns of fields_m (F_U+1.., i.e. u, q, theta, v, P, eta);
 !> `previous`, the same for the level before (multistep schemes only); `counters`, the
-!> scalars the run needs to continue exactly (COUNTER_*). A restart
+!> scalars the run needs to continue exactly (checkpoint_m's COUNTER_*); `control`, the
+!> step control's scalars followed by the contact state and the energy monitor's rise at
+!> step changes; `history`, the error estimator's levels; `events`; `mesh` (&mesh
+!> adaptive), the mesh's field scales, the energy monitor's remesh counters (2), then the
+!> node keys. checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
+!> read_checkpoint convert between the two. A restart
 !> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
 !> copies the series and snapshots up to it into the new file and continues the time loop
 !> from there, so the result is bit-for-bit that of an uninterrupted run.
 module restart_m
     use kinds_m, only: dp
+    use iso_fortran_env, only: int64
     use config_m, only: config_t, number_of_steps
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, KIND_REAL, KIND_INTEGER, &
                             KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
-    use errors_m, only: fatal, EXIT_INPUT, check_allocation
-    use state_m, only: state_t
+    use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
+    use reals_m, only: equal
+    use checkpoint_m, only: checkpoint_t, N_COUNTERS, COUNTER_STEP, COUNTER_T
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
@@ -23,49 +30,66 @@ module restart_m
     use output_m, only: h5_writer_t
     implicit none
     private
-    public :: N_COUNTERS, COUNTER_STEP, COUNTER_T, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, COUNTER_ENERGY, &
-              COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_DT_LAST, COUNTER_T_ANCHOR, &
-              COUNTER_STEP_ANCHOR, MESH_HEADER
-    public :: pack_state, read_checkpoint, copy_history
+    public :: write_checkpoint, read_checkpoint, copy_history
 
-    integer, parameter :: COUNTER_STEP = 1, COUNTER_T = 2, COUNTER_SOLVES = 3, COUNTER_CONTACT_STEPS = 4, &
-                          COUNTER_ENERGY = 5, COUNTER_LAW_ENERGY = 6, COUNTER_HAVE_LAW = 7, COUNTER_MAX_RISE = 8, &
-                          COUNTER_DT_LAST = 9, COUNTER_T_ANCHOR = 10, COUNTER_STEP_ANCHOR = 11
-    integer, parameter :: N_COUNTERS = 11
     !> /checkpoint/slotN/mesh (&mesh adaptive): the indicator's field scales (1 + N_FIELDS)
-    !> and the remesh counters (2) come before the node keys (run_m's pack_mesh)
+    !> and the remesh counters (2) come before the node keys
     integer, parameter :: MESH_HEADER = N_FIELDS + 3
+    !> /checkpoint/slotN/control: the step control's scalars, then these two
+    integer, parameter :: CONTROL_TAIL = 2
     character(len=*), parameter :: WHERE = 'time.restart_from'
 
 contains
 
-    !> (s+1, 1+N_FIELDS) array with the columns u and fields_m's F_* (the layout of /checkpoint/state).
-    pure function pack_state(u, w) result(packed)
-        real(dp), intent(in) :: u(0:), w(0:, :)
-        real(dp) :: packed(size(u), 1 + N_FIELDS)
+    !> Write the checkpoint ckpt into the writer's file (the layout of the module header);
+    !> note says which state it is ('step 250 (t = ...)'). ckpt holds the step control (a
+    !> run always saves it).
+    subroutine write_checkpoint(writer, ckpt, note)
+        type(h5_writer_t), intent(inout) :: writer
+        type(checkpoint_t), intent(in) :: ckpt
+        character(len=*), intent(in) :: note
 
-        packed(:, 1) = u
-        packed(:, 2:) = w
-    end function pack_state
+        if (.not. allocated(ckpt%control)) call fatal(EXIT_OUTPUT, 'output', &
+                                                      'internal error: a checkpoint without the step control')
+        ! an unallocated actual argument (previous: single-step schemes) is an absent optional one
+        if (ckpt%has_mesh) then
+            call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
+                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt))
+        else
+            call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
+                                         history=ckpt%history, events=ckpt%events)
+        end if
+    end subroutine write_checkpoint
 
-    !> Read the checkpoint of `file` into state and counters, after checking that this run
-    !> may continue it: `file` is not the file this run writes, every input that changes the
-    !> computed history equals the one recorded in `file`, and t_end is not before the
-    !> checkpoint. Any of these failing is an input error (exit 2) that leaves no output.
-    subroutine read_checkpoint(file, cfg, state, counters, control, history, events, mesh)
+    !> /checkpoint/slotN/control: the step control's scalars, the contact state, the energy
+    !> monitor's rise at step changes.
+    pure function control_values(ckpt) result(values)
+        type(checkpoint_t), intent(in) :: ckpt
+        real(dp) :: values(size(ckpt%control) + CONTROL_TAIL)
+
+        values = [ckpt%control, merge(1.0_dp, 0.0_dp, ckpt%in_contact), ckpt%max_rise_step_change]
+    end function control_values
+
+    !> /checkpoint/slotN/mesh: the field scales, the remesh counters, the node keys.
+    pure function mesh_values(ckpt) result(values)
+        type(checkpoint_t), intent(in) :: ckpt
+        real(dp) :: values(MESH_HEADER + size(ckpt%mesh_keys))
+
+        values = [ckpt%mesh_scale, ckpt%max_rise_remesh, real(ckpt%n_remeshes, dp), real(ckpt%mesh_keys, dp)]
+    end function mesh_values
+
+    !> Read the checkpoint of `file` into ckpt, after checking that this run may continue
+    !> it: `file` is not the file this run writes, every input that changes the computed
+    !> history equals the one recorded in `file`, and t_end is not before the checkpoint.
+    !> Any of these failing is an input error (exit 2) that leaves no output. Parts the
+    !> checkpoint does not hold are left unallocated (events: (0, 2)).
+    subroutine read_checkpoint(file, cfg, ckpt)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
-        type(state_t), intent(inout) :: state
-        real(dp), intent(out) :: counters(N_COUNTERS)
-        !> step control's scalars and past levels (absent in the checkpoint: not allocated)
-        real(dp), allocatable, intent(out) :: control(:), history(:, :)
-        real(dp), allocatable, intent(out) :: events(:, :)   !< (n_events, 2); (0, 2) if none
-        !> the adaptive mesh (run_m's pack_mesh; not allocated without &mesh adaptive)
-        real(dp), allocatable, intent(out) :: mesh(:)
-        real(dp), allocatable :: packed(:, :), values(:)
+        type(checkpoint_t), intent(out) :: ckpt
+        real(dp), allocatable :: values(:), mesh(:)
         character(len=:), allocatable :: slot
-        integer :: s, stat
-        character(len=256) :: message
+        integer :: s, n
 
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
@@ -83,57 +107,52 @@ contains
                 "': its checkpoint has no adaptive mesh")
             call read_real_1d(file, slot//'/mesh', mesh)
             s = size(mesh) - MESH_HEADER - 1
+            n = 1 + N_FIELDS
+            ckpt%has_mesh = .true.
+            ckpt%mesh_scale = mesh(1:n)
+            ckpt%max_rise_remesh = mesh(n + 1)
+            ckpt%n_remeshes = nint(mesh(n + 2))
+            ckpt%mesh_keys = nint(mesh(MESH_HEADER + 1:), int64)
         end if
-        call read_real_2d(file, slot//'/state', packed)
-        if (any(shape(packed) /= [s + 1, 1 + N_FIELDS])) &
+        call read_real_2d(file, slot//'/state', ckpt%state)
+        if (any(shape(ckpt%state) /= [s + 1, 1 + N_FIELDS])) &
             call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/state has the wrong shape")
-        if (size(state%u) /= s + 1) then
-            deallocate (state%u, state%w)
-            allocate (state%u(0:s), state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the state')
-            state%s = s
+        if (dataset_exists(file, slot//'/previous')) call read_real_2d(file, slot//'/previous', ckpt%previous)
+        if (dataset_exists(file, slot//'/control')) then
+            call read_real_1d(file, slot//'/control', values)
+            n = size(values) - CONTROL_TAIL
+            ckpt%control = values(:n)
+            ckpt%in_contact = values(n + 1) > 0.0_dp
+            ckpt%max_rise_step_change = values(n + 2)
         end if
-        state%u = packed(:, 1)
-        state%w = packed(:, 2:)
-        if (dataset_exists(file, slot//'/previous')) then
-            call read_real_2d(file, slot//'/previous', packed)
-            allocate (state%u_prev(0:s), state%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the previous level')
-            state%u_prev = packed(:, 1)
-            state%w_prev = packed(:, 2:)
-        end if
-        if (dataset_exists(file, slot//'/control')) call read_real_1d(file, slot//'/control', control)
-        if (dataset_exists(file, slot//'/history')) call read_real_2d(file, slot//'/history', history)
+        if (dataset_exists(file, slot//'/history')) call read_real_2d(file, slot//'/history', ckpt%history)
         if (dataset_exists(file, slot//'/events')) then
-            call read_real_2d(file, slot//'/events', events)
+            call read_real_2d(file, slot//'/events', ckpt%events)
         else
-            allocate (events(0, 2))
+            allocate (ckpt%events(0, 2))
         end if
         call read_real_1d(file, slot//'/counters', values)
         if (size(values) /= N_COUNTERS) call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/counters is not "// &
                                                    "from this version of rodcontact")
-        counters = values
-        state%step = nint(counters(COUNTER_STEP))
-        state%t = counters(COUNTER_T)
-        state%dt_last = counters(COUNTER_DT_LAST)
-        state%t_anchor = counters(COUNTER_T_ANCHOR)
-        state%step_anchor = nint(counters(COUNTER_STEP_ANCHOR))
-        if (ends_before(cfg, state)) call fatal(EXIT_INPUT, 'time.t_end', &
-            'got '//format_real(cfg%time%t_end)//"; the checkpoint in '"//file//"' is at t = "// &
-            format_real(state%t)//' (step '//int_str(state%step)//'): a restart continues a run up to t_end, '// &
-            'so t_end must be >= '//format_real(state%t))
+        ckpt%counters = values
+        if (ends_before(cfg, ckpt%counters(COUNTER_T), nint(ckpt%counters(COUNTER_STEP)))) &
+            call fatal(EXIT_INPUT, 'time.t_end', 'got '//format_real(cfg%time%t_end)//"; the checkpoint in '"//file// &
+                       "' is at t = "//format_real(ckpt%counters(COUNTER_T))//' (step '// &
+                       int_str(nint(ckpt%counters(COUNTER_STEP)))//'): a restart continues a run up to t_end, '// &
+                       'so t_end must be >= '//format_real(ckpt%counters(COUNTER_T)))
     end subroutine read_checkpoint
 
-    !> Does the run cfg end before the checkpoint's state? Fixed steps: its last step comes
-    !> before the checkpoint's; adaptive steps: t_end < t.
-    pure logical function ends_before(cfg, state)
+    !> Does the run cfg end before the checkpoint's level (time t, step n)? Fixed steps: its
+    !> last step comes before the checkpoint's; adaptive steps: t_end < t.
+    pure logical function ends_before(cfg, t, n)
         type(config_t), intent(in) :: cfg
-        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: t
+        integer, intent(in) :: n
 
         if (cfg%time%adaptive) then
-            ends_before = cfg%time%t_end < state%t
+            ends_before = cfg%time%t_end < t
         else
-            ends_before = number_of_steps(cfg%time%dt, cfg%time%t_end) < state%step
+            ends_before = number_of_steps(cfg%time%dt, cfg%time%t_end) < n
         end if
     end function ends_before
 
@@ -195,7 +214,7 @@ contains
                 call read_attr_real_1d(file, item%name, xs)
                 if (size(xs) /= size(item%reals)) then
                     call refuse(file, item%name, real_list(xs), real_list(item%reals))
-                else if (any(xs /= item%reals)) then
+                else if (.not. all(equal(xs, item%reals))) then
                     call refuse(file, item%name, real_list(xs), real_list(item%reals))
                 end if
             end select
@@ -311,13 +330,13 @@ contains
     pure integer function rows_to_copy(times, t_last)
         real(dp), intent(in) :: times(:), t_last
         integer :: k
+        real(dp) :: t_before
 
         rows_to_copy = 0
+        t_before = -huge(1.0_dp)
         do k = 1, size(times)
-            if (times(k) > t_last) exit
-            if (k > 1) then
-                if (times(k) <= times(k - 1)) exit
-            end if
+            if (times(k) > t_last .or. times(k) <= t_before) exit
+            t_before = times(k)
             rows_to_copy = k
         end do
     end function rows_to_copy

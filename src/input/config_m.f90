@@ -1,7 +1,16 @@
 !> Run configuration: one derived type per namelist group (docs/input.md), with the
 !> defaults built into the types (the paper's values (7.1) and discretisation), and the
-!> rules that belong to the settings themselves (the number of time steps). The list of
-!> input variables is input_vars_m; the reader is config_reader_m.
+!> rules that belong to the settings themselves (the number of time steps).
+!>
+!> These types are the one list of input variables: every component of config_t of a
+!> derived type is a namelist group, every component of that type an input variable, in
+!> the order of the messages, the &material echo and the output file. The build generates
+!> input_vars_m's table and namelist reads from them (src/input/generate_input_vars.py), so
+!> a new input variable is one line here (and its line in docs/input.md): one component per
+!> line, real(dp) (scalar, (0:MAX_POLY_DEGREE) coefficients or a (2) pair), integer,
+!> logical, or character(len=LEN_NAME) (a keyword, stored in lower case) or len=LEN_PATH.
+!> A trailing comment ending in [text] gives the unit column of the &material echo; one
+!> starting with 'not an input' leaves the component out. The reader is config_reader_m.
 module config_m
     use kinds_m, only: dp
     implicit none
@@ -26,8 +35,8 @@ module config_m
         real(dp) :: d = 0.00251_dp
         real(dp) :: r = 4.635e-4_dp
         real(dp) :: hbar = 0.03058_dp
-        real(dp) :: tau0 = 0.02_dp
-        real(dp) :: tau = 0.2_dp
+        real(dp) :: tau0 = 0.02_dp   !< tau0 of &material / omega, in the echo [(tau0/omega)]
+        real(dp) :: tau = 0.2_dp     !< tau of &material / omega, in the echo [(tau/omega)]
     end type model_t
 
     !> &contact: obstacle gap g and normal compliance (3.4) with penalty eps.
@@ -69,7 +78,7 @@ module config_m
         real(dp) :: p0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
         real(dp) :: q0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
         real(dp) :: eta0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
-        real(dp) :: theta0_step(2) = 0.0_dp   !< (amplitude, x_end): adds amplitude on [0, x_end]
+        real(dp) :: theta0_step(2) = 0.0_dp   !< (amplitude, x_end): adds amplitude where x <= x_end
         real(dp) :: p0_step(2) = 0.0_dp
     end type initial_t
 
@@ -99,7 +108,7 @@ module config_m
     !> &material (optional): physical quantities of Table 1 in SI units, from which the
     !> &model values are computed by (2.10)-(2.11) when the group is present.
     type :: material_t
-        logical :: present = .false.
+        logical :: present = .false.         !< not an input: the group was given
         real(dp) :: T0 = 293.0_dp            !< reference temperature [K]
         real(dp) :: rho0 = 8954.0_dp         !< mass density [kg/m^3]
         real(dp) :: cE = 383.1_dp            !< specific heat at constant strain [J/(kg K)]
@@ -114,8 +123,8 @@ module config_m
         real(dp) :: ell = 1.0_dp             !< rod length [m]
         real(dp) :: tau0 = 0.0_dp            !< thermal relaxation time [s]
         real(dp) :: tau = 0.0_dp             !< diffusion relaxation time [s]
-        real(dp) :: lambda_v = 0.0_dp        !< damping coefficient lambda' [kg/(m s)]
-        real(dp) :: mu_v = 0.0_dp            !< damping coefficient mu' [kg/(m s)]
+        real(dp) :: lambda_v = 0.0_dp        !< damping coefficient lambda' [kg/(m s)  (lambda')]
+        real(dp) :: mu_v = 0.0_dp            !< damping coefficient mu' [kg/(m s)  (mu')]
     end type material_t
 
     !> The whole run configuration.

@@ -1,7 +1,8 @@
-!> Input validation (docs/input.md), run before any allocation or output:
-!> the checks go through the groups in the order model, contact, mesh, time, initial,
-!> solver, output, and the first failure stops with EXIT_INPUT, naming group.variable,
-!> the value given and what is allowed.
+!> Input validation (the ranges and combinations of docs/input.md), run before any
+!> allocation or output: the checks go through the groups in the order model, contact,
+!> mesh, time, initial, solver, output, and the first failure stops with EXIT_INPUT, naming
+!> group.variable, the value given and what is allowed. The time schemes' rules come from
+!> time_scheme_m (a later layer) as an argument: scheme_rule_t.
 module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -9,12 +10,19 @@ module validate_m
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
-                        number_of_steps, MAX_COMPRESSION
+                        number_of_steps, MAX_COMPRESSION, LEN_NAME
     use strings_m, only: format_real, int_str
     use initial_data_m, only: profile
     implicit none
     private
-    public :: validate_config
+    public :: validate_config, scheme_rule_t
+
+    !> What validation needs of one time scheme. The schemes are time_scheme_m's (a later
+    !> layer): its scheme_rules() is passed to validate_config.
+    type :: scheme_rule_t
+        character(len=LEN_NAME) :: name = ''       !< a value of &time scheme
+        logical :: paper_iteration = .false.       !< solver.method = 'paper' runs this scheme
+    end type scheme_rule_t
 
     real(dp), parameter :: GIB = 1024.0_dp**3
     !> Working memory per mesh node: ~60 reals of field and work arrays plus the band
@@ -40,19 +48,21 @@ module validate_m
 
 contains
 
-    !> Apply every check of docs/input.md to cfg; stop with EXIT_INPUT at the first failure.
-    !> A large (but allowed) output size gives a warning on stderr.
-    subroutine validate_config(cfg)
+    !> Apply every check to cfg; stop with EXIT_INPUT at the first failure.
+    !> A large (but allowed) output size gives a warning on stderr. schemes: the time
+    !> schemes and their rules (time_scheme_m's scheme_rules()).
+    subroutine validate_config(cfg, schemes)
         type(config_t), intent(in) :: cfg
+        type(scheme_rule_t), intent(in) :: schemes(:)
         real(dp) :: n_steps
 
         call validate_model(cfg%model, cfg%material%present)
         call validate_contact(cfg%contact)
         call validate_mesh(cfg%mesh)
-        call validate_time(cfg%time, n_steps)
+        call validate_time(cfg%time, schemes, n_steps)
         call validate_initial(cfg%initial, cfg%contact%g)
         call validate_solver(cfg%solver)
-        call validate_combination(cfg)
+        call validate_combination(cfg, schemes)
         call validate_output(cfg%output, cfg%mesh%n_elements, n_steps, cfg%time%t_end)
     end subroutine validate_config
 
@@ -111,8 +121,9 @@ contains
     end subroutine validate_mesh
 
     !> n_steps: the number of time steps, about t_end/dt (for the output size estimate).
-    subroutine validate_time(time, n_steps)
+    subroutine validate_time(time, schemes, n_steps)
         type(time_t), intent(in) :: time
+        type(scheme_rule_t), intent(in) :: schemes(:)
         real(dp), intent(out) :: n_steps
 
         call require_positive(time%dt, 'time.dt', scaled=.true.)
@@ -124,7 +135,7 @@ contains
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
         n_steps = real(number_of_steps(time%dt, time%t_end), dp)
-        call require_one_of(time%scheme, [character(len=8) :: 'euler', 'bdf2', 'midpoint'], 'time.scheme')
+        call require_one_of(time%scheme, schemes%name, 'time.scheme')
         if (time%adaptive) call validate_step_control(time)
     end subroutine validate_time
 
@@ -173,9 +184,11 @@ contains
     end subroutine validate_initial
 
     !> The paper's Section 7 iteration is implicit Euler with a lagged penalty: it has no
-    !> Signorini form and no BDF2 form.
-    subroutine validate_combination(cfg)
+    !> Signorini form and runs one time scheme (implicit Euler).
+    subroutine validate_combination(cfg, schemes)
         type(config_t), intent(in) :: cfg
+        type(scheme_rule_t), intent(in) :: schemes(:)
+        integer :: k
 
         if (cfg%solver%method /= 'paper') return
         if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with mesh.adaptive = " // &
@@ -187,7 +200,8 @@ contains
         if (cfg%contact%law /= 'penalty') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the penalty term and " // &
             "has no Signorini form; method must be 'monolithic' with this law")
-        if (cfg%time%scheme /= 'euler') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
+        k = findloc(schemes%name, cfg%time%scheme, dim=1)   ! > 0: validate_time has checked the name
+        if (.not. schemes(k)%paper_iteration) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "time.scheme = '" // trim(cfg%time%scheme) // "': the paper's iteration is implicit Euler; " // &
             "method must be 'monolithic' with this scheme")
     end subroutine validate_combination

@@ -5,29 +5,29 @@ module energy_m
     use config_m, only: model_t
     use fields_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
     use contact_law_m, only: contact_law_t
-    use time_scheme_m, only: time_scheme_t
+    use time_scheme_m, only: time_scheme_t, energy_law_t, LAW_G_ENERGY
     use state_m, only: state_t
+    use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
+    use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
     implicit none
     private
     public :: discrete_energy, linear_energy, bdf2_energy, energy_monitor_t
 
     !> The discrete energy of every level and the largest relative rise of the energy the
-    !> scheme's law is stated for (time_scheme_m: E^n for Euler, the G-energy for BDF2).
+    !> scheme's law is stated for (time_scheme_m's energy_law: E^n, or BDF2's G-energy).
     type :: energy_monitor_t
+        private
         type(model_t) :: model
         type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
         type(contact_law_t) :: law
-        logical :: bdf2 = .false.
+        type(energy_law_t) :: scheme_law   !< the law the time scheme guarantees
         logical :: own_law_model = .false.   !< law_model differs from model
         real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
-        !> BDF2 only: the largest relative rise at steps whose size differs from the step
-        !> before (w /= 1), where its law is not stated (not in max_rise)
+        !> a law stated for constant steps only (BDF2): the largest relative rise at steps
+        !> whose size differs from the step before (w /= 1), where the law is not stated (not
+        !> in max_rise)
         real(dp) :: max_rise_step_change = 0.0_dp
-        !> adaptive mesh: the largest relative rise of the law energy across a remesh
-        !> (transfer_m's projections cannot raise it: round-off only), and the remeshes
-        real(dp) :: max_rise_remesh = 0.0_dp
-        integer :: n_remeshes = 0
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
     contains
@@ -35,31 +35,35 @@ module energy_m
         procedure :: observe => monitor_observe
         procedure :: resize => monitor_resize
         procedure :: remeshed => monitor_remeshed
+        procedure :: save_checkpoint => monitor_save_checkpoint
+        procedure :: restore_checkpoint => monitor_restore_checkpoint
+        procedure :: current_energy => monitor_current_energy
+        procedure :: rises => monitor_rises
     end type energy_monitor_t
 
 contains
 
-    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini).
-    !> h: element sizes of a graded mesh (absent: uniform).
-    pure function discrete_energy(model, law, u, w, h) result(energy)
+    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini)
+    !> of the level (u, w) on mesh.
+    pure function discrete_energy(model, law, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
-        real(dp), intent(in), optional :: h(:)
+        type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
 
-        energy = linear_energy(model, u, w, h) + law%energy(u(ubound(u, 1)))
+        energy = linear_energy(model, u, w, mesh) + law%energy(u(ubound(u, 1)))
     end function discrete_energy
 
     !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
     !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions.
-    !> h(1:s): the element sizes of a graded mesh (absent: the uniform mesh, h = 1/s).
-    pure function linear_energy(model, u, w, h) result(energy)
+    !> On a uniform mesh the sums over the elements are scaled by h = 1/s once, at the end.
+    pure function linear_energy(model, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
-        real(dp), intent(in), optional :: h(:)
+        type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
         real(dp) :: mass_terms, strain_terms, h_e
         integer :: e, s
@@ -70,9 +74,9 @@ contains
         s = ubound(u, 1)
         mass_terms = 0.0_dp
         strain_terms = 0.0_dp
-        if (present(h)) then
+        if (.not. mesh%is_uniform()) then
             do e = 1, s
-                h_e = h(e)
+                h_e = mesh%h(e)
                 mass_terms = mass_terms + h_e * element_energy_density(model, w(e - 1, :), w(e, :))
                 strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
             end do
@@ -100,49 +104,51 @@ contains
     !> penalty BDF2 has no such law (the nonlinear term is not G-stable).
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
     !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
-    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, u_work, w_work, energy, lin_now, h)
+    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, energy, lin_now)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
+        type(mesh_t), intent(in) :: mesh           !< the mesh of both levels
         real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
         real(dp), intent(out) :: energy
         real(dp), intent(in), optional :: lin_now
-        real(dp), intent(in), optional :: h(:)     !< element sizes of a graded mesh
         real(dp) :: lin
 
         if (present(lin_now)) then
             lin = lin_now
         else
-            lin = linear_energy(model, u, w, h)
+            lin = linear_energy(model, u, w, mesh)
         end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
-        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, h)) + law%energy(u(ubound(u, 1)))
+        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, mesh)) + law%energy(u(ubound(u, 1)))
     end subroutine bdf2_energy
 
-    !> The energy of the first level and the law it must obey from then on.
-    subroutine monitor_init(self, model, law, scheme, state, law_model)
+    !> The energy of the first level and the law of `scheme` it must obey from then on;
+    !> step_model: the model of the steps (time_scheme_m's stiff_limit), the model of the law
+    !> if the scheme's law says so.
+    subroutine monitor_init(self, model, step_model, law, scheme, state)
         class(energy_monitor_t), intent(inout) :: self
-        type(model_t), intent(in) :: model
+        type(model_t), intent(in) :: model, step_model
         type(contact_law_t), intent(in) :: law
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
-        type(model_t), intent(in), optional :: law_model   !< default: model
         integer :: stat
         character(len=256) :: message
 
+        self%scheme_law = scheme%energy_law()
         self%model = model
         self%law_model = model
-        if (present(law_model)) self%law_model = law_model
-        self%own_law_model = present(law_model)
+        self%own_law_model = self%scheme_law%step_model
+        if (self%own_law_model) self%law_model = step_model
         self%law = law
-        self%bdf2 = scheme%is_bdf2()
-        self%energy = discrete_energy(model, law, state%u, state%w, state%h)
+        self%energy = discrete_energy(model, law, state%u, state%w, state%mesh)
         self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%h)
-        self%have_law = .not. self%bdf2
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%mesh)
+        ! the G-energy needs the level before: it is defined from the second level on
+        self%have_law = self%scheme_law%energy /= LAW_G_ENERGY
         self%max_rise = 0.0_dp
-        if (self%bdf2) then
+        if (self%scheme_law%energy == LAW_G_ENERGY) then
             allocate (self%u_work, mold=state%u, stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the energy monitor''s work arrays')
             allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
@@ -150,10 +156,10 @@ contains
         end if
     end subroutine monitor_init
 
-    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2) for
-    !> Euler, the G-energy of bdf2_energy for BDF2 (defined once a previous level exists,
-    !> compared from the first BDF2 step on). BDF2's law is stated for constant steps: a
-    !> rise at a step of another size than the one before (step_changed) is kept apart in
+    !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2, with
+    !> the law's model), or the G-energy of bdf2_energy (defined once a previous level
+    !> exists, compared from the first BDF2 step on). A law stated for constant steps (BDF2's):
+    !> a rise at a step of another size than the one before (step_changed) is kept apart in
     !> max_rise_step_change.
     subroutine monitor_observe(self, state, step_changed)
         class(energy_monitor_t), intent(inout) :: self
@@ -168,7 +174,7 @@ contains
         if (.not. (had_law .and. self%have_law)) return
         rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
         changed = .false.
-        if (present(step_changed)) changed = step_changed .and. self%bdf2
+        if (present(step_changed)) changed = step_changed .and. self%scheme_law%constant_steps
         if (changed) then
             self%max_rise_step_change = max(self%max_rise_step_change, rise)
         else
@@ -182,34 +188,35 @@ contains
         type(state_t), intent(in) :: state
         real(dp) :: energy_lin
 
-        energy_lin = linear_energy(self%model, state%u, state%w, state%h)
+        energy_lin = linear_energy(self%model, state%u, state%w, state%mesh)
         self%energy = energy_lin + self%law%energy(state%u(state%s))
         self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%h)
-        if (self%bdf2) then
+        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%mesh)
+        if (self%scheme_law%energy == LAW_G_ENERGY) then
             self%have_law = allocated(state%u_prev)
             if (self%have_law) then
                 if (size(self%u_work) /= size(state%u)) call self%resize(state)
-                call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, &
-                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin, h=state%h)
+                call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
+                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin)
             end if
         end if
     end subroutine measure
 
     !> The level has moved to a new mesh (transfer_m): its energies on the new mesh, and
-    !> the relative rise of the law energy across the move in max_rise_remesh.
-    subroutine monitor_remeshed(self, state)
+    !> the relative rise of the law energy across the move (0 where the law energy is not
+    !> defined before and after it; mesh_m's record_remesh keeps the largest).
+    subroutine monitor_remeshed(self, state, rise)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
+        real(dp), intent(out) :: rise
         real(dp) :: law_old
         logical :: had_law
 
         law_old = self%law_energy
         had_law = self%have_law
         call measure(self, state)
-        self%n_remeshes = self%n_remeshes + 1
-        if (had_law .and. self%have_law) self%max_rise_remesh = &
-            max(self%max_rise_remesh, (self%law_energy - law_old) / max(law_old, tiny(1.0_dp)))
+        rise = 0.0_dp
+        if (had_law .and. self%have_law) rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
     end subroutine monitor_remeshed
 
     !> The work arrays shaped as the state's level (after a remesh).
@@ -225,6 +232,49 @@ contains
         allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the energy monitor''s work arrays')
     end subroutine monitor_resize
+
+    !> E^n of the level observed last.
+    pure real(dp) function monitor_current_energy(self) result(energy)
+        class(energy_monitor_t), intent(in) :: self
+
+        energy = self%energy
+    end function monitor_current_energy
+
+    !> The largest relative rises of the law energy so far (the root attributes
+    !> energy_max_relative_rise*): at steps of the step size before, and at steps of another
+    !> size (a law stated for constant steps only: BDF2). The rise across remeshes is kept
+    !> by the mesh (mesh_m).
+    pure subroutine monitor_rises(self, max_rise, max_rise_step_change)
+        class(energy_monitor_t), intent(in) :: self
+        real(dp), intent(out) :: max_rise, max_rise_step_change
+
+        max_rise = self%max_rise
+        max_rise_step_change = self%max_rise_step_change
+    end subroutine monitor_rises
+
+    !> The energies and the largest rises so far into a checkpoint.
+    subroutine monitor_save_checkpoint(self, ckpt)
+        class(energy_monitor_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%counters(COUNTER_ENERGY) = self%energy
+        ckpt%counters(COUNTER_LAW_ENERGY) = self%law_energy
+        ckpt%counters(COUNTER_HAVE_LAW) = merge(1.0_dp, 0.0_dp, self%have_law)
+        ckpt%counters(COUNTER_MAX_RISE) = self%max_rise
+        ckpt%max_rise_step_change = self%max_rise_step_change
+    end subroutine monitor_save_checkpoint
+
+    !> The inverse of save_checkpoint (on a monitor initialised for this run).
+    subroutine monitor_restore_checkpoint(self, ckpt)
+        class(energy_monitor_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%energy = ckpt%counters(COUNTER_ENERGY)
+        self%law_energy = ckpt%counters(COUNTER_LAW_ENERGY)
+        self%have_law = ckpt%counters(COUNTER_HAVE_LAW) > 0.0_dp
+        self%max_rise = ckpt%counters(COUNTER_MAX_RISE)
+        self%max_rise_step_change = ckpt%max_rise_step_change
+    end subroutine monitor_restore_checkpoint
 
     !> 6/h times the integrand of 2 E_lin without the strain term on one element whose
     !> end nodes hold the fields w0, w1 (fields_m's F_*).

@@ -1,5 +1,5 @@
-!> P1 finite elements on the mesh of Section 6: 0 = x_0 < ... < x_s = 1, uniform (h = 1/s)
-!> or graded (element sizes h_e = x_e - x_{e-1}, &mesh adaptive: mesh_m). Element kernels
+!> P1 finite elements on the mesh of Section 6 (mesh_m): 0 = x_0 < ... < x_s = 1, uniform
+!> (h = 1/s) or graded (element sizes h_e = x_e - x_{e-1}, &mesh adaptive). Element kernels
 !> are exact integrals of products of the two local hat functions phi_1 = (x_b - x)/h,
 !> phi_2 = (x - x_a)/h on one element [x_a, x_b]; a graded mesh uses the same kernels with
 !> each element's own h.

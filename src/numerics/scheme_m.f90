@@ -22,8 +22,8 @@
 module scheme_m
     use kinds_m, only: dp
     use config_m, only: model_t
-    use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled, apply_mass_graded, &
-                    apply_stiffness_graded
+    use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled
+    use mesh_m, only: mesh_t
     use banded_m, only: band_t
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     implicit none
@@ -170,27 +170,27 @@ contains
 
     !> Assemble the matrix of (6.1) restricted to the fields with slots(f) > 0, nodes
     !> interleaved: unknown (node i, field f) is row/column nf*i + slots(f), nf = count(slots>0).
-    !> Dirichlet unknowns get identity rows. The contact term is not included. h(1:s): the
-    !> element sizes of a graded mesh (absent: the uniform mesh, h = 1/s).
-    subroutine assemble_matrix(model, s, dt, slots, a, h)
+    !> Dirichlet unknowns get identity rows. The contact term is not included. The element
+    !> blocks are computed again only where the element size changes (a uniform mesh has
+    !> one size, a graded mesh a few, in runs).
+    subroutine assemble_matrix(model, mesh, dt, slots, a)
         type(model_t), intent(in) :: model
-        integer, intent(in) :: s
+        type(mesh_t), intent(in) :: mesh
         real(dp), intent(in) :: dt
         integer, intent(in) :: slots(N_FIELDS)
         type(band_t), intent(inout) :: a
-        real(dp), intent(in), optional :: h(:)
-        integer :: nf, kw, e, row, col, ia, ib
+        integer :: nf, kw, s, e, row, col, ia, ib
         real(dp) :: m(2, 2), h_e, h_blocks, blocks(2, 2, N_FIELDS, N_FIELDS)
 
+        s = mesh%s()
         nf = count(slots > 0)
         kw = band_width(slots)
-        h_e = 1.0_dp / real(s, dp)
         h_blocks = -1.0_dp
         call a%init(nf * (s + 1), kw, kw)
         do e = 1, s
-            if (present(h)) h_e = h(e)
+            h_e = mesh%h(e)
             if (h_e /= h_blocks) then
-                ! the element blocks of this element size (a graded mesh has a few sizes)
+                ! the element blocks of this element size
                 do row = 1, N_FIELDS
                     do col = 1, N_FIELDS
                         blocks(:, :, row, col) = element_block(model, h_e, dt, row, col)
@@ -222,9 +222,9 @@ contains
     !> Right-hand side of (6.1) from the previous time level (module header), field-major:
     !> b(:, f) is the right-hand side of the equation of field f. Dirichlet rows are zero.
     !> The contact term is not included. No allocation: called every time step. Fields with
-    !> active(f) = .false. (left out of the system, always zero) are skipped. h(1:s): the
-    !> element sizes of a graded mesh (absent: uniform).
-    subroutine old_state_rhs(model, dt, u_old, w_old, b, work, active, h)
+    !> active(f) = .false. (left out of the system, always zero) are skipped. mesh: the mesh
+    !> of the level (its mass and stiffness matrices).
+    subroutine old_state_rhs(model, dt, u_old, w_old, b, work, active, mesh)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt
         real(dp), intent(in) :: u_old(0:)          !< u^{n-1}
@@ -232,61 +232,39 @@ contains
         real(dp), intent(out) :: b(0:, :)
         real(dp), intent(inout) :: work(0:)        !< scratch of size s+1
         logical, intent(in) :: active(N_FIELDS)
-        real(dp), intent(in), optional :: h(:)
-        integer :: s, f
-        real(dp) :: h_u, me(2, 2), ke(2, 2)
+        type(mesh_t), intent(in) :: mesh
+        integer :: f
 
-        s = ubound(u_old, 1)
-        h_u = 1.0_dp / real(s, dp)
-        me = element_mass(h_u)
-        ke = element_stiffness(h_u)
         do f = 1, N_FIELDS
             if (.not. active(f)) b(:, f) = 0.0_dp
         end do
         ! (6.1)_1: rho Me v^{n-1} - dt alpha Ke u^{n-1}
-        call mass(w_old(:, F_V), b(:, F_V))
-        if (present(h)) then
-            call apply_stiffness_graded(h, u_old, work)
-        else
-            call apply_assembled(ke, u_old, work)
-        end if
+        call mesh%apply_mass(w_old(:, F_V), b(:, F_V))
+        call mesh%apply_stiffness(u_old, work)
         b(:, F_V) = model%rho * b(:, F_V) - dt * model%alpha * work
         if (active(F_THETA)) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})
             work = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
-            call mass(work, b(:, F_THETA))
+            call mesh%apply_mass(work, b(:, F_THETA))
         end if
         if (active(F_Q)) then       ! (6.1)_3: tau0 Me q^{n-1}
-            call mass(w_old(:, F_Q), b(:, F_Q))
+            call mesh%apply_mass(w_old(:, F_Q), b(:, F_Q))
             b(:, F_Q) = model%tau0 * b(:, F_Q)
         end if
         if (active(F_P)) then       ! (6.1)_4: Me (d theta^{n-1} + r P^{n-1})
             work = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
-            call mass(work, b(:, F_P))
+            call mesh%apply_mass(work, b(:, F_P))
         end if
         if (active(F_ETA)) then     ! (6.1)_5 times hbar: hbar tau Me eta^{n-1}
-            call mass(w_old(:, F_ETA), b(:, F_ETA))
+            call mesh%apply_mass(w_old(:, F_ETA), b(:, F_ETA))
             b(:, F_ETA) = model%hbar * model%tau * b(:, F_ETA)
         end if
         call zero_dirichlet_rows(b)
-
-    contains
-
-        !> y = M x on the uniform or the graded mesh.
-        subroutine mass(x, y)
-            real(dp), intent(in) :: x(0:)
-            real(dp), intent(out) :: y(0:)
-
-            if (present(h)) then
-                call apply_mass_graded(h, x, y)
-            else
-                call apply_assembled(me, x, y)
-            end if
-        end subroutine mass
     end subroutine old_state_rhs
 
     !> b(:, row) -= (block (row, col) of (6.1)) * w(:, col) for every coupling from a field
     !> in the system (slots > 0) to one outside it (slots == 0): the lagged terms of the
     !> paper's Section 7 splitting moved to the right-hand side. Dirichlet rows stay zero.
+    !> Uniform mesh only (validate_m refuses the paper's method on an adaptive mesh).
     subroutine add_lagged_coupling(model, dt, slots, w, b, work)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt

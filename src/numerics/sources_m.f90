@@ -15,6 +15,7 @@ module sources_m
     use kinds_m, only: dp
     use config_m, only: model_t
     use fields_m, only: N_FIELDS, F_ETA, F_V, is_dirichlet
+    use mesh_m, only: mesh_t
     implicit none
     private
     public :: source_t, add_source_terms
@@ -46,30 +47,25 @@ contains
     end function no_traction
 
     !> b(:, f) += dt int f_f(t, x) phi_i dx (times hbar for the eta law) and the traction on
-    !> the momentum row of x = 1; Dirichlet rows stay zero.
-    subroutine add_source_terms(source, model, t, dt, b, nodes)
+    !> the momentum row of x = 1; Dirichlet rows stay zero. b lives on mesh.
+    subroutine add_source_terms(source, model, t, dt, b, mesh)
         class(source_t), intent(in) :: source
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: t, dt
         real(dp), intent(inout) :: b(0:, :)
-        real(dp), intent(in), optional :: nodes(0:)   !< a graded mesh (absent: uniform)
+        type(mesh_t), intent(in) :: mesh
         real(dp), parameter :: gauss_x(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
         real(dp), parameter :: gauss_w(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
         real(dp) :: h, x, weight, phi_left, f(N_FIELDS), scale(N_FIELDS)
         integer :: s, e, k, field
 
         s = ubound(b, 1)
-        h = 1.0_dp / real(s, dp)
         scale = dt
         scale(F_ETA) = dt * model%hbar
         do e = 1, s
-            if (present(nodes)) h = nodes(e) - nodes(e - 1)
+            h = mesh%h(e)
             do k = 1, 3
-                if (present(nodes)) then
-                    x = 0.5_dp * (nodes(e - 1) + nodes(e)) + 0.5_dp * gauss_x(k) * h
-                else
-                    x = (real(e, dp) - 0.5_dp + 0.5_dp * gauss_x(k)) * h
-                end if
+                x = 0.5_dp * (mesh%x(e - 1) + mesh%x(e)) + 0.5_dp * gauss_x(k) * h
                 weight = 0.5_dp * h * gauss_w(k)
                 phi_left = 0.5_dp * (1.0_dp - gauss_x(k))      ! hat of node e-1 at x
                 f = scale * weight * source%evaluate(t, x)

@@ -1,20 +1,20 @@
 !> The discrete state at one time level: (u, v, theta, P, q, eta) at the nodes 0..s, and
-!> the mesh they live on when it is graded (&mesh adaptive: x and h allocated; absent, the
-!> uniform mesh x_i = i/s of fe_m's mesh_nodes).
+!> the mesh they live on (mesh_m: uniform, or graded with &mesh adaptive).
 module state_m
     use kinds_m, only: dp
     use config_m, only: config_t
-    use fe_m, only: mesh_nodes
+    use mesh_m, only: mesh_t, copy_mesh
     use initial_data_m, only: profile
     use errors_m, only: check_allocation
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use checkpoint_m, only: checkpoint_t, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR
     implicit none
     private
-    public :: state_t, initial_state, set_mesh, state_nodes, field_values, advance_time, accept_step, land_on, &
+    public :: state_t, initial_state, set_mesh, field_values, advance_time, accept_step, land_on, &
               copy_state, keep_copy
 
     type :: state_t
-        integer :: s = 0                !< number of elements
+        integer :: s = 0                !< number of elements (mesh%s())
         integer :: step = 0             !< n, the time level
         real(dp) :: t = 0.0_dp          !< t_n
         real(dp) :: dt_last = 0.0_dp    !< t_n - t_{n-1} (0 at t = 0)
@@ -26,8 +26,10 @@ module state_m
         real(dp), allocatable :: w(:, :)    !< w(i, f): field f (fields_m's F_*) at node i
         real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
                                                           !< only; allocated by the stepper)
-        real(dp), allocatable :: x(:)   !< graded mesh only: the nodes x_i, i = 0..s
-        real(dp), allocatable :: h(:)   !< graded mesh only: element sizes h_e = x_e - x_{e-1}, e = 1..s
+        type(mesh_t) :: mesh            !< the nodes x_i and element sizes h_e (set_mesh)
+    contains
+        procedure :: save_checkpoint => state_save_checkpoint
+        procedure :: restore_checkpoint => state_restore_checkpoint
     end type state_t
 
 contains
@@ -40,29 +42,28 @@ contains
         type(config_t), intent(in) :: cfg
         type(state_t), intent(out) :: state
         real(dp), intent(in), optional :: nodes(0:)
-        real(dp), allocatable :: x(:)
         integer :: s, i, f, stat
         character(len=256) :: message
 
-        s = cfg%mesh%n_elements
-        if (present(nodes)) s = ubound(nodes, 1)
-        state%s = s
-        allocate (state%u(0:s), state%w(0:s, N_FIELDS), x(0:s), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the state')
         if (present(nodes)) then
-            x = nodes
             call set_mesh(state, nodes)
         else
-            x = mesh_nodes(s)        ! x is allocated first so that it keeps the bounds 0:s
+            call state%mesh%set_uniform(cfg%mesh%n_elements)
+            state%s = cfg%mesh%n_elements
         end if
-        do i = 0, s
-            state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
-            state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
-            state%w(i, F_THETA) = profile(poly=cfg%initial%theta0_poly, step=cfg%initial%theta0_step, x=x(i))
-            state%w(i, F_P) = profile(poly=cfg%initial%p0_poly, step=cfg%initial%p0_step, x=x(i))
-            state%w(i, F_Q) = profile(poly=cfg%initial%q0_poly, x=x(i))
-            state%w(i, F_ETA) = profile(poly=cfg%initial%eta0_poly, x=x(i))
-        end do
+        s = state%s
+        allocate (state%u(0:s), state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the state')
+        associate (x => state%mesh%x)
+            do i = 0, s
+                state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
+                state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
+                state%w(i, F_THETA) = profile(poly=cfg%initial%theta0_poly, step=cfg%initial%theta0_step, x=x(i))
+                state%w(i, F_P) = profile(poly=cfg%initial%p0_poly, step=cfg%initial%p0_step, x=x(i))
+                state%w(i, F_Q) = profile(poly=cfg%initial%q0_poly, x=x(i))
+                state%w(i, F_ETA) = profile(poly=cfg%initial%eta0_poly, x=x(i))
+            end do
+        end associate
         state%u(0) = 0.0_dp
         do f = 1, N_FIELDS
             if (is_dirichlet(f, 0, s)) state%w(0, f) = 0.0_dp
@@ -70,33 +71,15 @@ contains
         end do
     end subroutine initial_state
 
-    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched).
+    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched; the
+    !> mesh's remesh counters are kept).
     subroutine set_mesh(state, x)
         type(state_t), intent(inout) :: state
         real(dp), intent(in) :: x(0:)
-        integer :: s, stat
-        character(len=256) :: message
 
-        s = ubound(x, 1)
-        if (allocated(state%x)) deallocate (state%x, state%h)
-        allocate (state%x(0:s), state%h(s), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the mesh')
-        state%x = x
-        state%h = x(1:s) - x(0:s - 1)
-        state%s = s
+        call state%mesh%set_nodes(x)
+        state%s = ubound(x, 1)
     end subroutine set_mesh
-
-    !> The nodes of the state's mesh.
-    pure function state_nodes(state) result(x)
-        type(state_t), intent(in) :: state
-        real(dp) :: x(0:state%s)
-
-        if (allocated(state%x)) then
-            x = state%x
-        else
-            x = mesh_nodes(state%s)
-        end if
-    end function state_nodes
 
     !> The nodal values of field f (fields_m's F_*, F_U the displacement).
     pure function field_values(state, f) result(values)
@@ -173,16 +156,7 @@ contains
         copy%dt_last = state%dt_last
         copy%t_anchor = state%t_anchor
         copy%step_anchor = state%step_anchor
-        if (allocated(state%x)) then
-            if (.not. allocated(copy%x)) then
-                call set_mesh(copy, state%x)
-            else if (any(shape(copy%x) /= shape(state%x))) then
-                call set_mesh(copy, state%x)
-            else
-                copy%x = state%x
-                copy%h = state%h
-            end if
-        end if
+        call copy_mesh(state%mesh, copy%mesh)
         call keep_copy(state%u, state%w, copy%u, copy%w, 'the saved state')
         if (allocated(state%u_prev)) then
             call keep_copy(state%u_prev, state%w_prev, copy%u_prev, copy%w_prev, 'the saved state')
@@ -212,5 +186,61 @@ contains
         u_copy = u
         w_copy = w
     end subroutine keep_copy
+
+    !> The level, the level before (multistep schemes) and the time counters into a checkpoint.
+    subroutine state_save_checkpoint(self, ckpt)
+        class(state_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%state = pack_level(self%u, self%w)
+        if (allocated(self%u_prev)) ckpt%previous = pack_level(self%u_prev, self%w_prev)
+        ckpt%counters(COUNTER_STEP) = real(self%step, dp)
+        ckpt%counters(COUNTER_T) = self%t
+        ckpt%counters(COUNTER_DT_LAST) = self%dt_last
+        ckpt%counters(COUNTER_T_ANCHOR) = self%t_anchor
+        ckpt%counters(COUNTER_STEP_ANCHOR) = real(self%step_anchor, dp)
+        call self%mesh%save_checkpoint(ckpt)
+    end subroutine state_save_checkpoint
+
+    !> The inverse of save_checkpoint; the arrays take the checkpoint's number of elements
+    !> (its mesh is set afterwards: set_mesh).
+    subroutine state_restore_checkpoint(self, ckpt)
+        class(state_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+        integer :: s, stat
+        character(len=256) :: message
+
+        s = size(ckpt%state, 1) - 1
+        if (size(self%u) /= s + 1) then
+            deallocate (self%u, self%w)
+            allocate (self%u(0:s), self%w(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the state')
+            self%s = s
+        end if
+        self%u = ckpt%state(:, 1)
+        self%w = ckpt%state(:, 2:)
+        if (allocated(ckpt%previous)) then
+            if (allocated(self%u_prev)) deallocate (self%u_prev, self%w_prev)
+            allocate (self%u_prev(0:s), self%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the previous level')
+            self%u_prev = ckpt%previous(:, 1)
+            self%w_prev = ckpt%previous(:, 2:)
+        end if
+        self%step = nint(ckpt%counters(COUNTER_STEP))
+        self%t = ckpt%counters(COUNTER_T)
+        self%dt_last = ckpt%counters(COUNTER_DT_LAST)
+        self%t_anchor = ckpt%counters(COUNTER_T_ANCHOR)
+        self%step_anchor = nint(ckpt%counters(COUNTER_STEP_ANCHOR))
+        call self%mesh%restore_checkpoint(ckpt)
+    end subroutine state_restore_checkpoint
+
+    !> (s+1, 1+N_FIELDS) array with the columns u and fields_m's F_* (the layout of a checkpoint's state).
+    pure function pack_level(u, w) result(packed)
+        real(dp), intent(in) :: u(0:), w(0:, :)
+        real(dp) :: packed(size(u), 1 + N_FIELDS)
+
+        packed(:, 1) = u
+        packed(:, 2:) = w
+    end function pack_level
 
 end module state_m

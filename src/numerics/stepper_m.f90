@@ -32,7 +32,9 @@ module stepper_m
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
+    use mesh_m, only: mesh_t, copy_mesh
     use sources_m, only: source_t, add_source_terms
+    use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
     implicit none
     private
     public :: stepper_t, step_result_t
@@ -73,8 +75,9 @@ module stepper_m
         real(dp) :: dt = 0.0_dp        !< the step size when advance() is given none (&time dt)
         real(dp) :: tol = 0.0_dp
         integer :: s = 0, method = METHOD_MONOLITHIC, max_iter = 0
-        !> graded mesh only (&mesh adaptive; see remesh): element sizes and nodes
-        real(dp), allocatable :: h(:), nodes(:)
+        !> the mesh the factored systems belong to (s = mesh%s()): the uniform mesh of &mesh
+        !> n_elements from init, a copy of the state's after remesh
+        type(mesh_t) :: mesh
         !> adaptive mesh: the block LU has passed blocks_agree on a system of this run
         logical :: blocks_trusted = .false.
         logical :: active(N_FIELDS) = .true.   !< fields in the system (others stay zero)
@@ -96,6 +99,9 @@ module stepper_m
         procedure :: uses_block_solver => stepper_uses_block_solver
         procedure :: n_unknowns_per_node => stepper_n_unknowns_per_node
         procedure :: remesh => stepper_remesh
+        procedure :: take_back => stepper_take_back
+        procedure :: save_checkpoint => stepper_save_checkpoint
+        procedure :: restore_checkpoint => stepper_restore_checkpoint
     end type stepper_t
 
 contains
@@ -120,6 +126,7 @@ contains
         call self%scheme%stiff_limit(self%model, self%dt, s_finest, self%step_model, self%algebraic)
         self%tol = cfg%solver%tol
         self%max_iter = cfg%solver%max_iter
+        call self%mesh%set_uniform(cfg%mesh%n_elements)
         self%s = cfg%mesh%n_elements
         if (present(source)) allocate (self%source, source=source)
         select case (trim(cfg%solver%method))
@@ -156,17 +163,16 @@ contains
         call check_allocation(stat, message, 'the system')
     end subroutine allocate_work
 
-    !> The state has moved to another mesh (graded: state%x, state%h; adaptive_mesh_m): the
-    !> work arrays take its size and every factored system is dropped (the next step
-    !> assembles and factors the matrix of (6.1) on the new mesh). Monolithic method only.
+    !> The state has moved to another mesh (state%mesh; adaptive_mesh_m): the work arrays
+    !> take its size and every factored system is dropped (the next step assembles and
+    !> factors the matrix of (6.1) on the new mesh). Monolithic method only.
     subroutine stepper_remesh(self, state)
         class(stepper_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         integer :: k
 
-        self%s = state%s
-        self%h = state%h
-        self%nodes = state%x
+        call copy_mesh(state%mesh, self%mesh)
+        self%s = self%mesh%s()
         call allocate_work(self)
         do k = 1, N_SYSTEMS
             self%systems(k)%dt_eff = 0.0_dp
@@ -195,10 +201,10 @@ contains
         character(len=256) :: message
 
         self%paper_dt = dt
-        call assemble_matrix(self%model, self%s, dt, THERMAL_SLOTS, self%thermal)
+        call assemble_matrix(self%model, self%mesh, dt, THERMAL_SLOTS, self%thermal)
         call self%thermal%factor(info)
         if (info /= 0) call fail(result, 'thermal block: '//lapack_info_message('dgbtrf', info))
-        call assemble_matrix(self%model, self%s, dt, MECHANICAL_SLOTS, self%mechanical)
+        call assemble_matrix(self%model, self%mesh, dt, MECHANICAL_SLOTS, self%mechanical)
         call self%mechanical%factor(info)
         if (info /= 0) call fail(result, 'mechanical block: '//lapack_info_message('dgbtrf', info))
         if (.not. allocated(self%xt)) then
@@ -228,10 +234,11 @@ contains
     end subroutine find_system
 
     !> Assemble (6.1) with step dt_eff, factor it (dgbtrf and block LU) and compute the
-    !> contact response z. On an adaptive mesh, once the block LU has passed blocks_agree
-    !> on one system of the run, later systems (other meshes and steps, same coefficients
-    !> and structure) are factored by the block LU alone: a remesh every few steps would
-    !> otherwise pay dgbtrf and the check each time (docs/performance.md).
+    !> contact response z. A graded (adaptive) mesh, factored at every remesh, inverts the
+    !> block LU's pivot blocks by the written-out kernel (LAPACK's call overhead on 5 x 5
+    !> blocks was half of such a run), and once the block LU has passed blocks_agree on one
+    !> system of the run, factors later systems by it alone (docs/performance.md). A uniform
+    !> mesh keeps LAPACK and the check (and its results bit for bit).
     subroutine setup_monolithic(self, dt_eff, sys, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
@@ -241,8 +248,8 @@ contains
         integer :: info, stat
         character(len=256) :: message
 
-        call assemble_matrix(self%step_model, self%s, dt_eff, self%slots, sys%a, self%h)
-        call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=allocated(self%h))
+        call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
+        call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=.not. self%mesh%is_uniform())
         sys%use_blocks = info == 0
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
         if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
@@ -254,7 +261,7 @@ contains
             end if
             call contact_response(sys, .false.)
             if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
-            self%blocks_trusted = sys%use_blocks .and. allocated(self%h)
+            self%blocks_trusted = sys%use_blocks .and. .not. self%mesh%is_uniform()
         end if
         ! once trusted, z from the block LU for every system (a restart, which checks the
         ! block LU anew, then repeats the run bit for bit)
@@ -357,8 +364,8 @@ contains
         real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(model, dt_eff, u_from, w_from, self%b_old, self%work, self%active, self%h)
-        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%b_old, self%nodes)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%b_old, self%work, self%active, self%mesh)
+        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%b_old, self%mesh)
     end subroutine start_rhs
 
     !> One monolithic step from the state itself (from_star = .false.) or from the level
@@ -560,5 +567,32 @@ contains
         result%ok = .false.
         result%message = message
     end subroutine fail
+
+    !> The step of result was rejected (the caller restores the state): its contact count is taken back.
+    subroutine stepper_take_back(self, result)
+        class(stepper_t), intent(inout) :: self
+        type(step_result_t), intent(in) :: result
+
+        if (result%in_contact) self%n_contact_steps = self%n_contact_steps - 1
+    end subroutine stepper_take_back
+
+    !> The counters of the output attributes solver.* into a checkpoint.
+    subroutine stepper_save_checkpoint(self, ckpt)
+        class(stepper_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%counters(COUNTER_SOLVES) = real(self%n_solves, dp)
+        ckpt%counters(COUNTER_CONTACT_STEPS) = real(self%n_contact_steps, dp)
+    end subroutine stepper_save_checkpoint
+
+    !> The inverse of save_checkpoint.
+    subroutine stepper_restore_checkpoint(self, ckpt)
+        use iso_fortran_env, only: int64
+        class(stepper_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%n_solves = nint(ckpt%counters(COUNTER_SOLVES), int64)
+        self%n_contact_steps = nint(ckpt%counters(COUNTER_CONTACT_STEPS), int64)
+    end subroutine stepper_restore_checkpoint
 
 end module stepper_m

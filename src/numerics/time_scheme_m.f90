@@ -28,13 +28,23 @@
 !>       not L-stable); they keep E^n <= E^{n-1}.
 !>       Law: E^n - E^{n-1} = -dt (varpi |v_x|^2 + |q|^2 + hbar |eta|^2)(X^{n-1/2}) <= 0 with
 !>       the penalty law, exactly (to round-off); Signorini: <= 0 (docs/scheme.md).
+!>
+!> Everything else the code needs to know of a scheme is here too, so that a new scheme is
+!> a row of SCHEMES, its branches in plan and error_factor, its energy law (a LAW_* energy
+!> that energy_m computes) and the docs: the order p and the factor of the local error
+!> estimate of adaptive steps (step_control_m), the largest step ratio dt_n / dt_{n-1} the
+!> step controller may take, the energy law the monitor checks (energy_m) and the output
+!> file records, and the input rules validate_m applies (scheme_rules: the names, and
+!> which scheme solver.method = 'paper' runs).
 module time_scheme_m
     use kinds_m, only: dp
-    use config_m, only: model_t
+    use config_m, only: model_t, LEN_NAME
     use fields_m, only: N_FIELDS, F_V, F_Q, F_ETA
+    use validate_m, only: scheme_rule_t
     implicit none
     private
-    public :: time_scheme_t, time_scheme, step_plan_t
+    public :: time_scheme_t, time_scheme, step_plan_t, energy_law_t, scheme_rules
+    public :: LAW_E, LAW_G_ENERGY
 
     integer, parameter :: SCHEME_EULER = 1, SCHEME_BDF2 = 2, SCHEME_MIDPOINT = 3
     !> Euler steps before the midpoint rule takes over.
@@ -42,6 +52,48 @@ module time_scheme_m
     !> A time-derivative coefficient this small relative to the step's other terms is taken
     !> as zero by the midpoint rule (stiff_limit).
     real(dp), parameter :: STIFF_RATIO = 1.0e-8_dp
+    !> Variable-step BDF2 is zero-stable for step ratios w = dt_n / dt_{n-1} < 1 + sqrt(2);
+    !> adaptive steps stay at 2. Euler and the midpoint rule are one-step methods without
+    !> such a bound; they keep the same limit on the controller's growth.
+    real(dp), parameter :: BDF2_RATIO_MAX = 2.0_dp
+
+    !> The energies a scheme's law can be stated for (energy_m computes them).
+    integer, parameter :: LAW_E = 1          !< E^n of Corollary 6.2 (energy_m's discrete_energy)
+    integer, parameter :: LAW_G_ENERGY = 2   !< BDF2's G-energy (energy_m's bdf2_energy)
+
+    !> The energy law a scheme guarantees: the energy that never rises from step to step.
+    type :: energy_law_t
+        integer :: energy = LAW_E
+        !> the law is stated for constant steps only: a rise at a step whose size differs
+        !> from the step before is recorded apart (energy_m)
+        logical :: constant_steps = .false.
+        !> the energy is that of the step's model (stiff_limit), not the paper's
+        logical :: step_model = .false.
+        character(len=160) :: text = ''   !< root attribute energy_law
+    end type energy_law_t
+
+    !> One row per scheme: what the rest of the code asks of it.
+    type :: scheme_row_t
+        character(len=LEN_NAME) :: name         !< &time scheme
+        integer :: order                        !< p: the local error is O(dt^(p+1))
+        logical :: keeps_previous_level         !< multistep: X^{n-1} is kept (state_m's u_prev)
+        real(dp) :: max_step_ratio              !< largest dt_n / dt_{n-1} of adaptive steps
+        logical :: paper_iteration              !< solver.method = 'paper' (Section 7) runs it
+        logical :: stiff_limit                  !< negligible rho, tau0, tau taken as 0 (stiff_limit)
+        type(energy_law_t) :: law
+    end type scheme_row_t
+
+    !> The schemes, indexed by SCHEME_*; validate_m lists their names in this order.
+    type(scheme_row_t), parameter :: SCHEMES(3) = [ &
+        scheme_row_t('euler', 1, .false., BDF2_RATIO_MAX, .true., .false., &
+                     energy_law_t(LAW_E, .false., .false., 'E^n of Corollary 6.2')), &
+        scheme_row_t('bdf2', 2, .true., BDF2_RATIO_MAX, .false., .false., &
+                     energy_law_t(LAW_G_ENERGY, .true., .false., &
+                                  'BDF2 G-energy (E_lin(X^n) + E_lin(2X^n - X^{n-1}))/2 + penalty(u^n)')), &
+        scheme_row_t('midpoint', 2, .false., BDF2_RATIO_MAX, .false., .true., &
+                     energy_law_t(LAW_E, .false., .true., &
+                                  'E^n of Corollary 6.2 with the time-derivative coefficients of the step''s ' // &
+                                  'model (rho, tau0, tau taken as 0 where negligible: stiff_limit)'))]
 
     !> One step: the matrix of (6.1) with dt_eff; the starting level X^{n-1} itself
     !> (from_history = .false.) or (a X^{n-1} - b X^{n-2}) / d; the solution Y is X^n, or
@@ -55,27 +107,37 @@ module time_scheme_m
     end type step_plan_t
 
     type :: time_scheme_t
-        integer :: kind = SCHEME_EULER
+        integer :: kind = SCHEME_EULER   !< the row of SCHEMES
     contains
         procedure :: plan => scheme_plan
         procedure :: keeps_previous_level => scheme_keeps_previous_level
-        procedure :: is_bdf2 => scheme_is_bdf2
-        procedure :: is_midpoint => scheme_is_midpoint
+        procedure :: order => scheme_order
+        procedure :: error_factor => scheme_error_factor
+        procedure :: max_step_ratio => scheme_max_step_ratio
+        procedure :: energy_law => scheme_energy_law
         procedure :: stiff_limit => scheme_stiff_limit
-        procedure :: law => scheme_law
     end type time_scheme_t
 
 contains
 
-    !> The scheme named by &time scheme ('euler', 'bdf2' or 'midpoint'; validate_m has checked it).
+    !> The scheme named by &time scheme (a name of SCHEMES; validate_m has checked it).
     pure function time_scheme(name) result(scheme)
         character(len=*), intent(in) :: name
         type(time_scheme_t) :: scheme
 
-        scheme%kind = SCHEME_EULER
-        if (trim(name) == 'bdf2') scheme%kind = SCHEME_BDF2
-        if (trim(name) == 'midpoint') scheme%kind = SCHEME_MIDPOINT
+        scheme%kind = max(findloc(SCHEMES%name, name, dim=1), SCHEME_EULER)
     end function time_scheme
+
+    !> What validate_m checks of &time scheme: the names, and which scheme solver.method =
+    !> 'paper' runs.
+    pure function scheme_rules() result(rules)
+        type(scheme_rule_t) :: rules(size(SCHEMES))
+        integer :: k
+
+        do k = 1, size(SCHEMES)
+            rules(k) = scheme_rule_t(SCHEMES(k)%name, SCHEMES(k)%paper_iteration)
+        end do
+    end function scheme_rules
 
     !> The plan of step n+1 (n = steps taken) of size dt from a state whose last step had
     !> size dt_last (0 at t = 0); have_previous: X^{n-1} of a multistep scheme is available.
@@ -108,35 +170,55 @@ contains
     pure logical function scheme_keeps_previous_level(self)
         class(time_scheme_t), intent(in) :: self
 
-        scheme_keeps_previous_level = self%kind == SCHEME_BDF2
+        scheme_keeps_previous_level = SCHEMES(self%kind)%keeps_previous_level
     end function scheme_keeps_previous_level
 
-    pure logical function scheme_is_bdf2(self)
+    !> p: the local error of a step of size h is C X^(p+1) h^(p+1).
+    pure integer function scheme_order(self)
         class(time_scheme_t), intent(in) :: self
 
-        scheme_is_bdf2 = self%kind == SCHEME_BDF2
-    end function scheme_is_bdf2
+        scheme_order = SCHEMES(self%kind)%order
+    end function scheme_order
 
-    pure logical function scheme_is_midpoint(self)
+    !> Local error of the step / (X^n - P^n), P^n the polynomial of degree p through the
+    !> last p+1 levels extrapolated to t_n (step_control_m), from the leading terms;
+    !> d(j) = t_n - t_{n-j}, h = h_n = d(1), h_prev = h_{n-1}, w = h / h_prev:
+    !>   Euler     h^2 X''/2                                      -> h / d_2
+    !>   BDF2      h^2 (h + h_prev) (1+w)/(1+2w) X'''/6           -> h (1+w) / ((1+2w) d_3)
+    !>   midpoint  h^3 X'''/12 (linear problems)                  -> h^2 / (2 d_2 d_3)
+    !> (constant steps: 1/2, 2/9 and 1/12 of the p+1-st difference).
+    pure real(dp) function scheme_error_factor(self, d, h_prev) result(factor)
+        class(time_scheme_t), intent(in) :: self
+        real(dp), intent(in) :: d(:)
+        real(dp), intent(in) :: h_prev
+        real(dp) :: h, w
+
+        h = d(1)
+        select case (self%kind)
+        case (SCHEME_BDF2)
+            w = h / h_prev
+            factor = h * (1.0_dp + w) / ((1.0_dp + 2.0_dp * w) * d(3))
+        case (SCHEME_MIDPOINT)
+            factor = h**2 / (2.0_dp * d(2) * d(3))
+        case default
+            factor = h / d(2)
+        end select
+    end function scheme_error_factor
+
+    !> The largest ratio dt_n / dt_{n-1} adaptive steps may take (step_control_m).
+    pure real(dp) function scheme_max_step_ratio(self)
         class(time_scheme_t), intent(in) :: self
 
-        scheme_is_midpoint = self%kind == SCHEME_MIDPOINT
-    end function scheme_is_midpoint
+        scheme_max_step_ratio = SCHEMES(self%kind)%max_step_ratio
+    end function scheme_max_step_ratio
 
-    !> The energy whose decrease the scheme guarantees (root attribute energy_law).
-    pure function scheme_law(self) result(text)
+    !> The energy law the scheme guarantees (energy_m checks it; root attribute energy_law).
+    pure function scheme_energy_law(self) result(law)
         class(time_scheme_t), intent(in) :: self
-        character(len=:), allocatable :: text
+        type(energy_law_t) :: law
 
-        if (self%kind == SCHEME_BDF2) then
-            text = 'BDF2 G-energy (E_lin(X^n) + E_lin(2X^n - X^{n-1}))/2 + penalty(u^n)'
-        else if (self%kind == SCHEME_MIDPOINT) then
-            text = 'E^n of Corollary 6.2 with the time-derivative coefficients of the step''s model ' // &
-                   '(rho, tau0, tau taken as 0 where negligible: stiff_limit)'
-        else
-            text = 'E^n of Corollary 6.2'
-        end if
-    end function scheme_law
+        law = SCHEMES(self%kind)%law
+    end function scheme_energy_law
 
     !> The model a step of size dt on s elements uses: the paper's, except that the
     !> midpoint rule takes a negligible time-derivative coefficient as zero, so that the
@@ -154,13 +236,13 @@ contains
 
         step_model = model
         algebraic = .false.
-        if (self%kind /= SCHEME_MIDPOINT) return
-        if (model%rho / real(s, dp)**2 <= STIFF_RATIO * dt * (model%varpi + dt * model%alpha)) step_model%rho = 0.0_dp
-        if (model%tau0 <= STIFF_RATIO * dt) step_model%tau0 = 0.0_dp
-        if (model%tau <= STIFF_RATIO * dt) step_model%tau = 0.0_dp
-        algebraic(F_V) = step_model%rho == 0.0_dp
-        algebraic(F_Q) = step_model%tau0 == 0.0_dp
-        algebraic(F_ETA) = step_model%tau == 0.0_dp
+        if (.not. SCHEMES(self%kind)%stiff_limit) return
+        algebraic(F_V) = model%rho / real(s, dp)**2 <= STIFF_RATIO * dt * (model%varpi + dt * model%alpha)
+        algebraic(F_Q) = model%tau0 <= STIFF_RATIO * dt
+        algebraic(F_ETA) = model%tau <= STIFF_RATIO * dt
+        if (algebraic(F_V)) step_model%rho = 0.0_dp
+        if (algebraic(F_Q)) step_model%tau0 = 0.0_dp
+        if (algebraic(F_ETA)) step_model%tau = 0.0_dp
     end subroutine scheme_stiff_limit
 
 end module time_scheme_m

@@ -4,7 +4,7 @@
 module convergence_m
     use kinds_m, only: dp
     use config_m, only: config_t
-    use state_m, only: state_t, set_mesh, state_nodes
+    use state_m, only: state_t, set_mesh
     use stepper_m, only: stepper_t, step_result_t
     use fields_m, only: N_FIELDS, is_dirichlet
     use mms_m, only: mms_t, U_FIELD, N_EXACT
@@ -71,8 +71,12 @@ contains
 
         state%s = s
         allocate (state%u(0:s), state%w(0:s, N_FIELDS))
-        if (present(nodes)) call set_mesh(state, nodes)
-        x = state_nodes(state)
+        if (present(nodes)) then
+            call set_mesh(state, nodes)
+        else
+            call state%mesh%set_uniform(s)
+        end if
+        x = state%mesh%x
         do i = 0, s
             state%u(i) = mms%exact(U_FIELD, 0.0_dp, x(i), 0)
             do f = 1, N_FIELDS
@@ -95,7 +99,7 @@ contains
         integer :: s, el, k, f
 
         s = state%s
-        nodes = state_nodes(state)
+        nodes = state%mesh%x
         sq = 0.0_dp
         do el = 1, s
             h = nodes(el) - nodes(el - 1)

@@ -4,6 +4,7 @@ module shipped_inputs_m
     use config_m, only: config_t
     use config_reader_m, only: read_config
     use validate_m, only: validate_config
+    use time_scheme_m, only: scheme_rules
     implicit none
     private
     public :: SHIPPED_INPUTS, load_input, command_arguments
@@ -36,7 +37,7 @@ contains
         call read_config(source_dir//'/input/'//trim(name)//'.nml', cfg)
         cfg%output%prefix = scratch_dir//'/'//trim(name)
         cfg%output%quiet = .true.
-        call validate_config(cfg)
+        call validate_config(cfg, scheme_rules())
     end subroutine load_input
 
 end module shipped_inputs_m

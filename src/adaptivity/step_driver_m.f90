@@ -1,0 +1,332 @@
+!> The step driver: takes one accepted step of the time loop, trying and rejecting steps
+!> as the step control asks.
+!>
+!> The step is &time dt (fixed) or the size step_control_m's controller proposes
+!> (adaptive). Adaptive steps are tried: a step whose local error estimate exceeds the
+!> tolerance is rejected (the state restored) and retried smaller, and so is a step that
+!> changes the contact state while longer than the event tolerance (max(error_tol, dt_min)),
+!> retried to end just before the crossing, so that the step across a contact event is at
+!> most that long. Steps are shortened to land on the snapshot times (&output snapshot_dt)
+!> and on the end of the run. An accepted step adds its contact event to the event log,
+!> its level to the error estimator, its estimate to the run's time error, and its energy
+!> to the energy monitor.
+module step_driver_m
+    use kinds_m, only: dp
+    use iso_fortran_env, only: error_unit
+    use ieee_arithmetic, only: ieee_is_finite
+    use config_m, only: config_t, model_t
+    use state_m, only: state_t, advance_time, land_on, copy_state
+    use contact_law_m, only: contact_law_t
+    use stepper_m, only: stepper_t, step_result_t
+    use energy_m, only: energy_monitor_t
+    use checkpoint_m, only: checkpoint_t
+    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
+    use step_control_m, only: error_estimator_t, step_controller_t, energy_norm
+    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
+    use remesh_m, only: remesh
+    implicit none
+    private
+    public :: step_driver_t, step_failure
+
+    type :: step_driver_t
+        private
+        logical :: adaptive = .false.          !< &time adaptive
+        logical :: mesh_adaptive = .false.     !< &mesh adaptive
+        real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
+        real(dp) :: event_tol = 0.0_dp         !< longest step across a contact event (adaptive)
+        real(dp) :: v_front = 0.0_dp           !< adaptive_mesh_m's front_speed
+        type(model_t) :: model                 !< for the error estimate's energy norm
+        type(error_estimator_t) :: estimator
+        type(step_controller_t) :: control
+        type(event_log_t) :: events
+        type(state_t) :: saved                 !< the state before a tried step (adaptive)
+        logical :: in_contact = .false.        !< the contact state after the last accepted step
+        logical :: warned_forced = .false.
+    contains
+        procedure :: init => driver_init
+        procedure :: take_step => driver_take_step
+        procedure :: remesh => driver_remesh
+        procedure :: events_log => driver_events_log
+        procedure :: controller => driver_controller
+        procedure :: save_checkpoint => driver_save_checkpoint
+        procedure :: restore_checkpoint => driver_restore_checkpoint
+        procedure, private :: choose_step => driver_choose_step
+        procedure, private :: undo_step => driver_undo_step
+    end type step_driver_t
+
+contains
+
+    !> A driver for the run cfg starting from state; the stepper and the energy monitor are
+    !> set up on that state.
+    subroutine driver_init(self, cfg, state, stepper, monitor)
+        class(step_driver_t), intent(out) :: self
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(in) :: state
+        type(stepper_t), intent(in) :: stepper
+        type(energy_monitor_t), intent(in) :: monitor
+
+        self%adaptive = cfg%time%adaptive
+        self%mesh_adaptive = cfg%mesh%adaptive
+        self%dt = cfg%time%dt
+        self%dt_min = cfg%time%dt_min
+        self%dt_max = cfg%time%dt_max
+        self%v_front = front_speed(cfg%model)
+        self%model = cfg%model
+        call self%estimator%init(stepper%scheme, state%s)
+        call self%control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, stepper%scheme, &
+                               cfg%time%dt, scale=energy_norm(monitor%current_energy()))
+        self%event_tol = max(cfg%time%error_tol, cfg%time%dt_min)
+        call self%estimator%push(state%u, state%w, 0.0_dp)
+        self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
+    end subroutine driver_init
+
+    !> Continue from a checkpoint: state (restored, on its mesh) is the level the run
+    !> continues from; the step control and the events are the checkpoint's.
+    subroutine driver_restore_checkpoint(self, ckpt, state, stepper)
+        class(step_driver_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+        type(state_t), intent(in) :: state
+        type(stepper_t), intent(in) :: stepper
+
+        if (self%mesh_adaptive) call self%estimator%resize(state%s)
+        call self%estimator%reset()
+        call self%estimator%push(state%u, state%w, state%dt_last)
+        self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
+        if (allocated(ckpt%control) .and. allocated(ckpt%history)) then
+            call self%control%restore_checkpoint(ckpt)
+            call self%estimator%restore_checkpoint(ckpt)
+            self%in_contact = ckpt%in_contact
+        end if
+        call self%events%restore(ckpt%events)
+    end subroutine driver_restore_checkpoint
+
+    !> The step control, the contact state and the events into a checkpoint.
+    subroutine driver_save_checkpoint(self, ckpt)
+        class(step_driver_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        call self%control%save_checkpoint(ckpt)
+        call self%estimator%save_checkpoint(ckpt)
+        ckpt%in_contact = self%in_contact
+        ckpt%events = self%events%packed()
+    end subroutine driver_save_checkpoint
+
+    !> The contact events so far.
+    function driver_events_log(self) result(events)
+        class(step_driver_t), intent(in) :: self
+        type(event_log_t) :: events
+
+        events = self%events
+    end function driver_events_log
+
+    !> The step controller (its counts and the run's time error).
+    function driver_controller(self) result(control)
+        class(step_driver_t), intent(in) :: self
+        type(step_controller_t) :: control
+
+        control = self%control
+    end function driver_controller
+
+    !> Take one accepted step from state towards t_stop (landing on it, or on t_snapshot
+    !> when that comes first; at_snapshot: the step ended there). On a numerical failure,
+    !> failure says which step and why ('' otherwise); the state is then that of the
+    !> failed step (a failed solve) or of the accepted step (a non-finite energy).
+    subroutine driver_take_step(self, state, stepper, monitor, result, t_stop, at_snapshot, failure, t_snapshot)
+        class(step_driver_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(stepper_t), intent(inout) :: stepper
+        type(energy_monitor_t), intent(inout) :: monitor
+        type(step_result_t), intent(inout) :: result
+        real(dp), intent(in) :: t_stop
+        logical, intent(out) :: at_snapshot
+        character(len=*), intent(out) :: failure
+        real(dp), intent(in), optional :: t_snapshot   !< the next snapshot time (absent: none)
+        real(dp) :: dt_try, target, t_before, gap_start, gap_end, est, err, saved_dt_last
+        logical :: lands, contact_now, flipped
+
+        failure = ''
+        do
+            call self%choose_step(state, t_stop, dt_try, target, lands, at_snapshot, t_snapshot)
+            t_before = state%t
+            saved_dt_last = state%dt_last
+            gap_start = state%u(state%s) - stepper%law%g
+            if (self%adaptive) call copy_state(state, self%saved)
+            call stepper%advance(state, result, dt_try)
+            if (.not. result%ok) then
+                failure = step_failure(state%step + 1, advance_time(state, dt_try), trim(result%message))
+                return
+            end if
+            call contact_state(stepper%law, state, result, contact_now, gap_end)
+            flipped = contact_now .neqv. self%in_contact
+            est = 0.0_dp
+            err = -1.0_dp
+            if (self%estimator%ready() .and. .not. flipped) then
+                est = self%estimator%estimate(self%model, state%u, state%w, dt_try, state%mesh)
+                err = self%control%ratio(est)
+            end if
+            if (.not. self%adaptive) exit
+            if (flipped .and. dt_try > self%event_tol) then
+                ! retry to end just before the crossing (or, close to it, across it within event_tol)
+                call self%undo_step(stepper, result, state)
+                call self%control%retry(retry_before_event(dt_try, gap_start, gap_end, self%event_tol))
+                cycle
+            end if
+            if (err > 1.0_dp .and. dt_try > self%dt_min) then
+                call self%undo_step(stepper, result, state)
+                call self%control%reject(dt_try, err)
+                cycle
+            end if
+            if (err > 1.0_dp) then
+                call self%control%count_forced()
+                if (.not. self%warned_forced) call warn_forced(state%t, self%dt_min)
+                self%warned_forced = .true.
+            end if
+            exit
+        end do
+        ! the step is accepted
+        if (lands .and. self%adaptive) call land_on(state, target)
+        if (flipped) then
+            call self%events%add(crossing_time(t_before, dt_try, gap_start, gap_end), &
+                                 merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
+            if (self%adaptive) call self%estimator%reset()
+        end if
+        self%in_contact = contact_now
+        call self%estimator%push(state%u, state%w, dt_try)
+        if (err >= 0.0_dp) call self%control%add_estimate(est)
+        if (self%adaptive) call self%control%accept(dt_try, err, shortened=lands)
+        call monitor%observe(state, step_changed=dt_try /= saved_dt_last)
+        if (.not. ieee_is_finite(monitor%current_energy())) then
+            failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
+            return
+        end if
+        call self%control%observe_size(energy_norm(monitor%current_energy()))
+    end subroutine driver_take_step
+
+    !> The next step: &time dt or the controller's proposal (at most the scheme's step-ratio
+    !> bound times the last step; on an adaptive mesh at most FRONT_CFL of its smallest elements for the
+    !> fastest front), shortened to end on the next snapshot time or t_stop (target; lands).
+    !> Adaptive steps that would leave less than a step to the target take half the
+    !> distance instead, so no tiny step follows.
+    subroutine driver_choose_step(self, state, t_stop, dt_try, target, lands, at_snapshot, t_snapshot)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: t_stop
+        real(dp), intent(out) :: dt_try, target
+        logical, intent(out) :: lands, at_snapshot
+        real(dp), intent(in), optional :: t_snapshot
+        real(dp) :: remaining, slack
+
+        if (self%adaptive) then
+            dt_try = self%control%proposal(state%dt_last)
+            dt_try = min(max(dt_try, self%dt_min), self%dt_max)
+            if (self%mesh_adaptive .and. self%v_front > 0.0_dp) &
+                dt_try = max(min(dt_try, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)
+            slack = 1.0e-9_dp * dt_try
+        else
+            dt_try = self%dt
+            slack = 1.0e-9_dp * self%dt
+        end if
+        target = t_stop
+        at_snapshot = .false.
+        if (present(t_snapshot)) then
+            ! a snapshot time that is t_stop to round-off is the target (not t_stop): so
+            ! a run to t_stop takes the steps a longer run takes up to there
+            if (t_snapshot <= target + slack) then
+                target = t_snapshot
+                at_snapshot = .true.
+            end if
+        end if
+        remaining = target - state%t
+        lands = dt_try >= remaining - slack
+        if (lands) then
+            if (self%adaptive .or. dt_try > remaining + slack) dt_try = remaining
+        else if (self%adaptive .and. dt_try > 0.5_dp * remaining) then
+            dt_try = 0.5_dp * remaining
+        end if
+        at_snapshot = at_snapshot .and. lands
+    end subroutine driver_choose_step
+
+    !> A rejected step: the state as before it, and the step's contact count taken back.
+    subroutine driver_undo_step(self, stepper, result, state)
+        class(step_driver_t), intent(in) :: self
+        type(stepper_t), intent(inout) :: stepper
+        type(step_result_t), intent(in) :: result
+        type(state_t), intent(inout) :: state
+
+        call stepper%take_back(result)
+        call copy_state(self%saved, state)
+    end subroutine driver_undo_step
+
+    !> Adapt the mesh to the level in state and, if it changed, move the state, the
+    !> estimator's levels, the stepper and the monitor onto it (remesh_m).
+    subroutine driver_remesh(self, mesh, state, stepper, monitor, changed)
+        class(step_driver_t), intent(inout) :: self
+        type(adaptive_mesh_t), intent(inout) :: mesh
+        type(state_t), intent(inout) :: state
+        type(stepper_t), intent(inout) :: stepper
+        type(energy_monitor_t), intent(inout) :: monitor
+        logical, intent(out) :: changed
+
+        call remesh(mesh, state, stepper, self%estimator, monitor, changed)
+    end subroutine driver_remesh
+
+    !> The contact state after a step, as events are counted: penalty, u^n(1) > g (the end
+    !> position; the midpoint rule's force may act a step longer); Signorini, an active
+    !> multiplier. gap: the gap at the step's end the crossing time is interpolated to,
+    !> u^n(1) - g (penalty) or the trial gap (Signorini, whose u^n(1) stops at g).
+    subroutine contact_state(law, state, result, in_contact, gap)
+        type(contact_law_t), intent(in) :: law
+        type(state_t), intent(in) :: state
+        type(step_result_t), intent(in) :: result
+        logical, intent(out) :: in_contact
+        real(dp), intent(out) :: gap
+
+        if (law%is_signorini()) then
+            in_contact = result%in_contact
+            gap = result%trial_gap
+        else
+            gap = state%u(state%s) - law%g
+            in_contact = gap > 0.0_dp
+        end if
+    end subroutine contact_state
+
+    !> The retry of a step of size dt that changed the contact state: the trial gap went
+    !> from gap_start to gap_end; end event_tol/2 before the interpolated crossing, or take
+    !> a step of event_tol across it when the crossing is that close (events_m's crossing_time;
+    !> a release from a zero gap (Signorini) halves the step).
+    pure real(dp) function retry_before_event(dt, gap_start, gap_end, event_tol) result(dt_new)
+        real(dp), intent(in) :: dt, gap_start, gap_end, event_tol
+        real(dp) :: to_crossing
+
+        to_crossing = crossing_time(0.0_dp, dt, gap_start, gap_end)
+        if (to_crossing >= dt) to_crossing = 0.5_dp * dt
+        dt_new = to_crossing - 0.5_dp * event_tol
+        if (to_crossing <= event_tol) dt_new = event_tol
+        dt_new = min(dt_new, dt - 0.5_dp * event_tol)
+    end function retry_before_event
+
+    !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
+    subroutine warn_forced(t, dt_min)
+        real(dp), intent(in) :: t, dt_min
+
+        write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', t, &
+            ' a step of dt_min = ', dt_min, ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
+            '(the count is in the root attribute time_steps_at_dt_min)'
+        flush (error_unit)
+    end subroutine warn_forced
+
+    !> 'step n (t = ...): reason' for a failure message and the status attribute; with
+    !> reason = '' just 'step n (t = ...)'.
+    function step_failure(n, t, reason) result(text)
+        integer, intent(in) :: n
+        real(dp), intent(in) :: t
+        character(len=*), intent(in) :: reason
+        character(len=:), allocatable :: text
+        character(len=40) :: buf
+
+        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', t, ')'
+        text = trim(buf)
+        if (reason /= '') text = text//': '//reason
+    end function step_failure
+
+end module step_driver_m

@@ -1,0 +1,142 @@
+!> The root attributes of a run besides its provenance (provenance_m): every input value
+!> at the start, the SI scales of &material, and at the end what the run did (steps,
+!> energy law, solver, step control and mesh counts) with its contact events.
+module run_attributes_m
+    use kinds_m, only: dp
+    use config_m, only: config_t
+    use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
+    use material_m, only: nondim_t, nondim_groups, si_scale_t, si_scales
+    use state_m, only: state_t
+    use stepper_m, only: stepper_t
+    use time_scheme_m, only: energy_law_t
+    use energy_m, only: energy_monitor_t
+    use events_m, only: event_log_t
+    use step_control_m, only: step_controller_t
+    use step_driver_m, only: step_driver_t
+    use output_m, only: h5_writer_t
+    implicit none
+    private
+    public :: record_inputs, record_scales, record_results
+
+contains
+
+    !> Every input value as a root attribute named group.variable (docs/output.md).
+    subroutine record_inputs(writer, cfg)
+        type(h5_writer_t), intent(inout) :: writer
+        type(config_t), intent(in) :: cfg
+
+        call record_items(writer, input_items(cfg))
+    end subroutine record_inputs
+
+    !> Each item as a root attribute of its kind.
+    subroutine record_items(writer, items)
+        type(h5_writer_t), intent(inout) :: writer
+        type(input_item_t), intent(in) :: items(:)
+        integer :: k
+
+        do k = 1, size(items)
+            associate (item => items(k))
+                select case (item%kind)
+                case (KIND_REAL)
+                    call writer%attr_real(item%name, item%reals(1))
+                case (KIND_INTEGER)
+                    call writer%attr_int(item%name, item%int)
+                case (KIND_STRING)
+                    call writer%attr_str(item%name, item%text)
+                case (KIND_LOGICAL)
+                    call writer%attr_logical(item%name, item%flag)
+                case default   ! polynomial coefficients, (amplitude, x_end)
+                    call writer%attr_real_array(item%name, item%reals)
+                end select
+            end associate
+        end do
+    end subroutine record_items
+
+    !> With &material: the groups of (2.10) (root attributes derived.*), each scale of the
+    !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units) and, on
+    !> every dataset measured in one, si_factor and si_units.
+    subroutine record_scales(writer, cfg)
+        type(h5_writer_t), intent(inout) :: writer
+        type(config_t), intent(in) :: cfg
+        type(nondim_t) :: nd
+        type(si_scale_t), allocatable :: scales(:)
+        integer :: k
+
+        nd = nondim_groups(cfg%material)
+        call writer%attr_real('derived.beta1', nd%beta1)
+        call writer%attr_real('derived.beta2', nd%beta2)
+        call writer%attr_real('derived.omega', nd%omega)
+        call writer%attr_real('derived.delta', nd%delta)
+        call writer%attr_real('derived.varsigma', nd%varsigma)
+        call writer%attr_real('derived.zeta', nd%zeta)
+        call writer%attr_real('derived.a_check', nd%a_check)
+        call writer%attr_real('derived.alpha1', nd%alpha1)
+        call writer%attr_real('derived.alpha2', nd%alpha2)
+        call writer%attr_real('derived.alpha3', nd%alpha3)
+        scales = si_scales(cfg%material)
+        do k = 1, size(scales)
+            call writer%attr_real('scale.'//trim(scales(k)%name), scales(k)%factor)
+            call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
+            call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
+        end do
+    end subroutine record_scales
+
+    !> At the end of the run cfg: the contact events (/events) and the root attributes of
+    !> what the run did (docs/output.md): its steps and end time, wall_seconds, the energy
+    !> law's largest rises, the solver's counts, the time error and the step control's
+    !> counts, and on an adaptive mesh its counts (n_elements_max: the most elements held).
+    subroutine record_results(writer, cfg, state, stepper, monitor, driver, wall_seconds, n_elements_max)
+        type(h5_writer_t), intent(inout) :: writer
+        type(config_t), intent(in) :: cfg
+        type(state_t), intent(in) :: state
+        type(stepper_t), intent(in) :: stepper
+        type(energy_monitor_t), intent(in) :: monitor
+        type(step_driver_t), intent(in) :: driver
+        real(dp), intent(in) :: wall_seconds
+        integer, intent(in) :: n_elements_max
+        type(event_log_t) :: events
+        type(energy_law_t) :: scheme_law
+        real(dp) :: max_rise, max_rise_step_change
+
+        events = driver%events_log()
+        call writer%write_events(events%times(), events%kinds())
+        call writer%attr_int('steps', state%step)
+        call writer%attr_real('t_final', state%t)
+        call writer%attr_real('wall_seconds', wall_seconds)
+        call monitor%rises(max_rise, max_rise_step_change)
+        call writer%attr_real('energy_max_relative_rise', max_rise)
+        scheme_law = stepper%scheme%energy_law()
+        if (scheme_law%constant_steps .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
+            call writer%attr_real('energy_max_relative_rise_step_change', max_rise_step_change)
+        call writer%attr_str('energy_law', trim(scheme_law%text))
+        call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
+        call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
+        call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
+        call record_time_error(writer, driver%controller(), cfg%time%adaptive)
+        if (cfg%mesh%adaptive) then
+            call writer%attr_int('mesh.remeshes', state%mesh%n_remeshes())
+            call writer%attr_int('mesh.n_elements_max', n_elements_max)
+            call writer%attr_real('energy_max_relative_rise_remesh', state%mesh%max_rise_remesh())
+        end if
+    end subroutine record_results
+
+    !> The time error of the run (root attributes): the sum of the local error estimates of
+    !> the accepted steps (step_control_m), absolute (energy norm) and relative to the largest
+    !> energy norm of the solution; with it the counts of the step control.
+    subroutine record_time_error(writer, control, adaptive)
+        type(h5_writer_t), intent(inout) :: writer
+        type(step_controller_t), intent(in) :: control
+        logical, intent(in) :: adaptive
+        real(dp) :: error_sum, scale
+        integer :: n_estimated, n_rejected, n_forced
+
+        call control%counts(error_sum, scale, n_estimated, n_rejected, n_forced)
+        call writer%attr_real('time_error_estimate', error_sum)
+        call writer%attr_real('time_error_estimate_relative', error_sum / max(scale, tiny(1.0_dp)))
+        call writer%attr_int('time_steps_estimated', n_estimated)
+        if (.not. adaptive) return
+        call writer%attr_int('time_steps_rejected', n_rejected)
+        call writer%attr_int('time_steps_at_dt_min', n_forced)
+    end subroutine record_time_error
+
+end module run_attributes_m

@@ -1,0 +1,205 @@
+!> The mesh of Section 6: nodes 0 = x_0 < x_1 < ... < x_s = 1 and element sizes
+!> h_e = x_e - x_{e-1}, e = 1..s. The state owns it (state_m); the stepper keeps a copy of
+!> the mesh its factored matrices belong to (stepper_m). It is always allocated: the uniform
+!> mesh of &mesh n_elements (x_i = i/s, fe_m's mesh_nodes) is the graded mesh whose
+!> elements all have h_e = 1/s exactly. It remembers that it was built uniform
+!> (is_uniform): the operators with equal elements take the written-out tridiagonal kernel
+!> (fewer operations, no division per node), and a few choices made for the uniform mesh
+!> are kept with it (stepper_m: the LAPACK inverse of the block LU's pivot blocks; output_m:
+!> no native snapshots). A mesh of the adaptive refinement (adaptivity/adaptive_mesh_m: node
+!> keys, indicator) is graded even where its elements happen to be equal.
+!>
+!> The remesh counters of an adaptive run live here as well (set_nodes keeps them).
+module mesh_m
+    use kinds_m, only: dp
+    use errors_m, only: check_allocation
+    use checkpoint_m, only: checkpoint_t
+    use fe_m, only: mesh_nodes, element_mass, element_stiffness, apply_assembled, apply_mass_graded, &
+                    apply_stiffness_graded
+    implicit none
+    private
+    public :: mesh_t, uniform_mesh, graded_mesh, copy_mesh
+
+    type :: mesh_t
+        real(dp), allocatable :: x(:)   !< the nodes x_i, i = 0..s (written by mesh_m only)
+        real(dp), allocatable :: h(:)   !< element sizes h_e, e = 1..s (uniform: 1/s; mesh_m only)
+        logical, private :: uniform = .true.          !< built by set_uniform
+        integer, private :: remeshes = 0              !< remeshes of the run so far
+        !> the largest relative rise of the law energy across a remesh (energy_m's monitor
+        !> measures it; transfer_m's projections cannot raise it: round-off only)
+        real(dp), private :: rise_remesh = 0.0_dp
+    contains
+        procedure :: s => mesh_elements
+        procedure :: is_uniform => mesh_is_uniform
+        procedure :: set_uniform => mesh_set_uniform
+        procedure :: set_nodes => mesh_set_nodes
+        procedure :: apply_mass => mesh_apply_mass
+        procedure :: apply_stiffness => mesh_apply_stiffness
+        procedure :: record_remesh => mesh_record_remesh
+        procedure :: save_checkpoint => mesh_save_checkpoint
+        procedure :: restore_checkpoint => mesh_restore_checkpoint
+        procedure :: n_remeshes => mesh_n_remeshes
+        procedure :: max_rise_remesh => mesh_max_rise_remesh
+    end type mesh_t
+
+contains
+
+    !> The uniform mesh of s elements.
+    function uniform_mesh(s) result(mesh)
+        integer, intent(in) :: s
+        type(mesh_t) :: mesh
+
+        call mesh%set_uniform(s)
+    end function uniform_mesh
+
+    !> The graded mesh with nodes x(0:s).
+    function graded_mesh(x) result(mesh)
+        real(dp), intent(in) :: x(0:)
+        type(mesh_t) :: mesh
+
+        call mesh%set_nodes(x)
+    end function graded_mesh
+
+    !> Number of elements s.
+    pure integer function mesh_elements(self)
+        class(mesh_t), intent(in) :: self
+
+        mesh_elements = ubound(self%x, 1)
+    end function mesh_elements
+
+    !> Was the mesh built uniform (h_e = 1/s exactly: the kernels for equal elements apply)?
+    pure logical function mesh_is_uniform(self)
+        class(mesh_t), intent(in) :: self
+
+        mesh_is_uniform = self%uniform
+    end function mesh_is_uniform
+
+    !> The uniform mesh of s elements: x_i = i/s, h_e = 1/s (the remesh counters are kept).
+    subroutine mesh_set_uniform(self, s)
+        class(mesh_t), intent(inout) :: self
+        integer, intent(in) :: s
+
+        call allocate_arrays(self, s)
+        self%x = mesh_nodes(s)
+        self%h = 1.0_dp / real(s, dp)
+        self%uniform = .true.
+    end subroutine mesh_set_uniform
+
+    !> The graded mesh with nodes x(0:s), increasing from 0 to 1 (the remesh counters are kept).
+    subroutine mesh_set_nodes(self, x)
+        class(mesh_t), intent(inout) :: self
+        real(dp), intent(in) :: x(0:)
+        integer :: s
+
+        s = ubound(x, 1)
+        call allocate_arrays(self, s)
+        self%x = x
+        self%h = x(1:s) - x(0:s - 1)
+        self%uniform = .false.
+    end subroutine mesh_set_nodes
+
+    !> x(0:s) and h(1:s), reallocated only when s changes.
+    subroutine allocate_arrays(self, s)
+        type(mesh_t), intent(inout) :: self
+        integer, intent(in) :: s
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(self%x)) then
+            if (ubound(self%x, 1) == s) return
+            deallocate (self%x, self%h)
+        end if
+        allocate (self%x(0:s), self%h(s), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the mesh')
+    end subroutine allocate_arrays
+
+    !> copy = mesh, reusing copy's arrays (a rejected adaptive step restores the state from a
+    !> copy: the intrinsic assignment would allocate every step). A uniform mesh is fixed by
+    !> its size, so its arrays are not copied again.
+    subroutine copy_mesh(mesh, copy)
+        type(mesh_t), intent(in) :: mesh
+        type(mesh_t), intent(inout) :: copy
+        logical :: same_uniform
+
+        same_uniform = .false.
+        if (allocated(copy%x)) same_uniform = mesh%uniform .and. copy%uniform .and. &
+                                              ubound(copy%x, 1) == ubound(mesh%x, 1)
+        if (.not. same_uniform) then
+            call allocate_arrays(copy, ubound(mesh%x, 1))
+            copy%x = mesh%x
+            copy%h = mesh%h
+        end if
+        copy%uniform = mesh%uniform
+        copy%remeshes = mesh%remeshes
+        copy%rise_remesh = mesh%rise_remesh
+    end subroutine copy_mesh
+
+    !> y = M x, M the P1 mass matrix of the mesh (int phi_i phi_j dx); x, y have bounds 0..s.
+    !> No allocation (called every time step).
+    pure subroutine mesh_apply_mass(self, x, y)
+        class(mesh_t), intent(in) :: self
+        real(dp), intent(in) :: x(0:)
+        real(dp), intent(out) :: y(0:)
+
+        if (self%uniform) then
+            call apply_assembled(element_mass(self%h(1)), x, y)
+        else
+            call apply_mass_graded(self%h, x, y)
+        end if
+    end subroutine mesh_apply_mass
+
+    !> y = K x, K the P1 stiffness matrix of the mesh (int phi_i' phi_j' dx); see apply_mass.
+    pure subroutine mesh_apply_stiffness(self, x, y)
+        class(mesh_t), intent(in) :: self
+        real(dp), intent(in) :: x(0:)
+        real(dp), intent(out) :: y(0:)
+
+        if (self%uniform) then
+            call apply_assembled(element_stiffness(self%h(1)), x, y)
+        else
+            call apply_stiffness_graded(self%h, x, y)
+        end if
+    end subroutine mesh_apply_stiffness
+
+    !> The run has remeshed onto this mesh; the law energy rose by `rise` (relative) across it.
+    subroutine mesh_record_remesh(self, rise)
+        class(mesh_t), intent(inout) :: self
+        real(dp), intent(in) :: rise
+
+        self%remeshes = self%remeshes + 1
+        self%rise_remesh = max(self%rise_remesh, rise)
+    end subroutine mesh_record_remesh
+
+    !> The remesh counters into a checkpoint (the nodes are adaptive_mesh_m's keys).
+    subroutine mesh_save_checkpoint(self, ckpt)
+        class(mesh_t), intent(in) :: self
+        type(checkpoint_t), intent(inout) :: ckpt
+
+        ckpt%n_remeshes = self%remeshes
+        ckpt%max_rise_remesh = self%rise_remesh
+    end subroutine mesh_save_checkpoint
+
+    !> The inverse of save_checkpoint (the nodes are set apart: set_nodes keeps the counters).
+    subroutine mesh_restore_checkpoint(self, ckpt)
+        class(mesh_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+
+        self%remeshes = ckpt%n_remeshes
+        self%rise_remesh = ckpt%max_rise_remesh
+    end subroutine mesh_restore_checkpoint
+
+    !> Remeshes of the run so far.
+    pure integer function mesh_n_remeshes(self)
+        class(mesh_t), intent(in) :: self
+
+        mesh_n_remeshes = self%remeshes
+    end function mesh_n_remeshes
+
+    !> The largest relative rise of the law energy across a remesh so far.
+    pure real(dp) function mesh_max_rise_remesh(self)
+        class(mesh_t), intent(in) :: self
+
+        mesh_max_rise_remesh = self%rise_remesh
+    end function mesh_max_rise_remesh
+
+end module mesh_m

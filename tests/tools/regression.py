@@ -1,7 +1,7 @@
 """Regression references (tests/test_regression.sh): make a compact copy of a run file, or
 compare a run file with its reference.
 
-    regression.py store RUN.h5 REF.h5      # /mesh, /series, /snapshots and the status, gzip
+    regression.py store RUN.h5 REF.h5      # /mesh, /series, /snapshots, /events and the status, gzip
     regression.py compare RUN.h5 REF.h5    # exit 1 (with what differs) beyond the tolerances
     regression.py same A.h5 B.h5           # exit 1 unless every dataset and every attribute is
                                            # equal bit for bit, provenance aside (restarts)
@@ -21,7 +21,7 @@ import h5py
 import numpy as np
 
 RTOL = 1e-8
-GROUPS = ("mesh", "series", "snapshots")
+GROUPS = ("mesh", "series", "snapshots", "events")
 
 
 def store(run, ref):
@@ -29,7 +29,9 @@ def store(run, ref):
         for group in GROUPS:
             for name, dset in src[group].items():
                 if isinstance(dset, h5py.Dataset):
-                    dst.create_dataset(f"{group}/{name}", data=dset[()], compression="gzip", compression_opts=9)
+                    data = dset[()]
+                    packed = {"compression": "gzip", "compression_opts": 9} if data.size else {}
+                    dst.create_dataset(f"{group}/{name}", data=data, **packed)
         dst.attrs["status"] = src.attrs["status"]
 
 
@@ -39,6 +41,9 @@ def compare(run, ref):
         if got.attrs["status"] != want.attrs["status"]:
             problems.append(f"status {got.attrs['status']!r}, reference {want.attrs['status']!r}")
         for group in GROUPS:
+            if group not in want:
+                problems.append(f"/{group} not in the reference (store it: test_regression.sh --update)")
+                continue
             for name, dset in want[group].items():
                 path = f"{group}/{name}"
                 if path not in got:

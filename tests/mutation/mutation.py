@@ -2,7 +2,7 @@
 tests/mutation/mutants.txt to a scratch copy of the tree, build, run the test suite and
 report whether a test killed it.
 
-    mutation.py REPO [--only ID,ID] [--keep] [--no-baseline] [--timeout SEC] [--list]
+    mutation.py REPO [--mutants FILE] [--only ID,ID] [--keep] [--no-baseline] [--timeout SEC] [--list]
 
 1. The tree (tracked and untracked, not ignored, files of REPO) is copied to a scratch
    directory under $TMPDIR and built there (Release); REPO is never touched.
@@ -225,6 +225,7 @@ def outputs_differ(base_dir, base_status, mutant_dir, mutant_status):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("repo")
+    parser.add_argument("--mutants", help="the list of mutants (default: tests/mutation/mutants.txt of REPO)")
     parser.add_argument("--only", help="comma-separated mutant ids")
     parser.add_argument("--keep", action="store_true", help="keep the scratch directory")
     parser.add_argument("--no-baseline", action="store_true", help="do not run the suite on the unmutated copy")
@@ -232,7 +233,7 @@ def main():
     parser.add_argument("--list", action="store_true", help="only check which mutants apply")
     args = parser.parse_args()
     repo = os.path.abspath(args.repo)
-    mutants = read_mutants(os.path.join(repo, "tests", "mutation", "mutants.txt"))
+    mutants = read_mutants(args.mutants or os.path.join(repo, "tests", "mutation", "mutants.txt"))
     if args.only:
         wanted = set(args.only.split(","))
         unknown = wanted - {m.name for m in mutants}

@@ -9,6 +9,7 @@
 #   tests/mutation/run.sh --only ID,ID        # some of them
 #   tests/mutation/run.sh --list              # which mutants still apply to the tree
 #   tests/mutation/run.sh --keep              # keep the scratch copy and the test logs
+#   tests/mutation/run.sh --mutants FILE      # another list, in the format of mutants.txt
 # Exit status: 0 every counted mutant killed, 1 some survived, 2 setup error.
 set -u
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"

@@ -3,6 +3,7 @@ tests/mutation/mutants.txt to a scratch copy of the tree, build, run the test su
 report whether a test killed it.
 
     mutation.py REPO [--mutants FILE] [--only ID,ID] [--keep] [--no-baseline] [--timeout SEC] [--list]
+                     [--doc FILE]
 
 1. The tree (tracked and untracked, not ignored, files of REPO) is copied to a scratch
    directory under $TMPDIR and built there (Release); REPO is never touched.
@@ -19,7 +20,9 @@ report whether a test killed it.
    tests/tools/regression.py same (every dataset and attribute, provenance aside): no
    difference anywhere means EQUIVALENT (not counted), else SURVIVED. A mutant that does not
    compile is "did not build" (not counted). The file is restored before the next mutant.
-4. The report (one line per mutant, then a markdown table and the totals) goes to stdout.
+4. The report (one line per mutant, then a markdown table and the totals) goes to stdout;
+   --doc FILE also puts the table into FILE's section DOC_HEADING (docs/verification.md),
+   replacing the section of an earlier run.
 Exit status 0 when every counted mutant was killed, 1 otherwise, 2 on a usage or setup error.
 """
 import argparse
@@ -37,6 +40,23 @@ sys.path.insert(0, os.path.join(HERE, "..", "tools"))
 import regression  # noqa: E402  (tests/tools/regression.py: same)
 
 EXCLUDED_TESTS = ("test_slurm",)
+DOC_HEADING = "## 7. Mutation check (`tests/mutation/run.sh`)"
+DOC_TEXT = """
+Does the suite catch the bugs a developer would make? `tests/mutation/mutants.txt` lists
+single, plausible bugs (a sign, a factor, an index, a forgotten statement) in the scheme, the
+time schemes, the energy monitor, the contact law, step control, events, restart, the
+adaptive mesh, the linear algebra and the output; `tests/mutation/run.sh` applies each to a
+scratch copy of the tree, builds it and runs the suite, fastest tests first, until a test
+fails: that test killed the mutant. A mutant no test kills is run on 15 fixed cases (every
+scheme, both laws and methods, adaptive steps and mesh, the impact, a checkpoint and its
+restart) and its files compared with the unmutated program's (`tests/tools/regression.py
+same`): if nothing differs it is equivalent (not a bug, not counted), else it survived, and a
+test that kills it is missing. Not part of CI (about {minutes} minutes on 2 cores); run on
+demand, e.g. after changing the tests or the code the mutants are anchored on (a mutant whose
+text is no longer found "did not apply").
+
+Last run: {date}, commit {commit}, `{command}`.
+"""
 MIN_TIMEOUT = 30.0
 TIMEOUT_FACTOR = 5.0
 
@@ -222,6 +242,24 @@ def outputs_differ(base_dir, base_status, mutant_dir, mutant_status):
     return differ
 
 
+def write_doc(doc, table, summary, minutes, command, commit):
+    """Put the section DOC_HEADING (the last of doc) with the table into doc."""
+    section = DOC_HEADING + "\n" + DOC_TEXT.format(minutes=minutes, date=time.strftime("%Y-%m-%d"),
+                                                  commit=commit, command=command) + \
+        "\n" + "\n".join(table) + "\n\n" + summary + "\n"
+    with open(doc, encoding="utf-8") as f:
+        text = f.read()
+    at = text.find(DOC_HEADING + "\n")
+    if at >= 0:
+        following = text.find("\n## ", at + len(DOC_HEADING))
+        text = text[:at] + section + ("\n" + text[following + 1:] if following >= 0 else "")
+    else:
+        text = text.rstrip("\n") + "\n\n" + section
+    with open(doc + ".tmp", "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(doc + ".tmp", doc)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("repo")
@@ -231,6 +269,7 @@ def main():
     parser.add_argument("--no-baseline", action="store_true", help="do not run the suite on the unmutated copy")
     parser.add_argument("--timeout", type=float, default=300.0, help="per-test limit without a baseline time")
     parser.add_argument("--list", action="store_true", help="only check which mutants apply")
+    parser.add_argument("--doc", help="markdown file whose section '" + DOC_HEADING + "' gets the result")
     args = parser.parse_args()
     repo = os.path.abspath(args.repo)
     mutants = read_mutants(args.mutants or os.path.join(repo, "tests", "mutation", "mutants.txt"))
@@ -318,18 +357,20 @@ def main():
 
     counted = [r for r in results if r[1] in ("KILLED", "SURVIVED")]
     killed = [r for r in counted if r[1] == "KILLED"]
-    print()
-    print("| mutant | file | change | result | by |")
-    print("|---|---|---|---|---|")
-    for m, verdict, by, _ in results:
-        print(f"| {m.name} | {m.path.replace('src/', '')} | {m.what} | {verdict} | {by} |")
-    print()
+    table = ["| mutant | file | change | result | by |", "|---|---|---|---|---|"]
+    table += [f"| {m.name} | {m.path.replace('src/', '')} | {m.what} | {verdict} | {by} |"
+              for m, verdict, by, _ in results]
     summary = (f"{len(killed)} of {len(counted)} counted mutants killed; "
                f"{sum(r[1] == 'equivalent' for r in results)} equivalent, "
                f"{sum(r[1] == 'did not apply' for r in results)} did not apply, "
                f"{sum(r[1] == 'did not build' for r in results)} did not build; "
                f"total {time.time() - started:.0f} s wall")
-    print(summary)
+    print("\n" + "\n".join(table) + "\n\n" + summary)
+    if args.doc:
+        commit = subprocess.run(["git", "-C", repo, "describe", "--always", "--dirty"], capture_output=True,
+                                text=True).stdout.strip() or "unknown"
+        command = "tests/mutation/run.sh " + " ".join(a for a in sys.argv[2:])
+        write_doc(args.doc, table, summary, round((time.time() - started) / 60), command.strip(), commit)
     if args.keep:
         print(f"scratch kept: {scratch}")
     else:

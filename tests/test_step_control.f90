@@ -5,6 +5,9 @@
 !>     scale S /= 1 (at S = 1, est / tol would pass too);
 !>  1b. pack_control / unpack_control (a checkpoint) give back every counter and sum of the
 !>     controller and the estimator's levels and steps;
+!>  1c. the estimate is exact on levels X(t) = t^(p+1) Z with unequal past steps: the local
+!>     error of the step, h^2 |Z|_E (Euler), h^2 (h + h_prev) (1+w)/(1+2w) |Z|_E (BDF2, w =
+!>     h/h_prev), h^3/2 |Z|_E (midpoint) (a factor right for constant steps only fails);
 !>  2. the local error estimate tracks the true local error within a factor of 3, for all
 !>     fields at once in the energy norm, on the manufactured solution of tests/lib/mms_m
 !>     (no contact), for Euler, BDF2 and the midpoint rule, over step sizes 0.04 ... 0.005
@@ -17,7 +20,7 @@ program test_step_control
     use state_m, only: state_t
     use stepper_m, only: stepper_t, step_result_t
     use step_control_m, only: error_estimator_t, step_controller_t, pack_control, unpack_control, N_CONTROL_VALUES, &
-                              MAX_LEVELS
+                              MAX_LEVELS, energy_norm
     use fields_m, only: N_FIELDS
     use energy_m, only: linear_energy
     use mms_m, only: mms_t, mms_no_contact
@@ -36,6 +39,7 @@ program test_step_control
 
     call controller_checks()
     call checkpoint_checks()
+    call estimator_checks()
     mms = mms_no_contact(model_t(rho=1.0_dp, alpha=1.0_dp, varpi=0.1_dp, gamma1=0.5_dp, gamma2=0.5_dp, c=1.0_dp, &
                                  d=0.1_dp, r=1.0_dp, hbar=1.0_dp, tau0=0.5_dp, tau=0.5_dp))
     do k = 1, size(SCHEMES)
@@ -120,6 +124,47 @@ contains
                    maxval(abs(values2 - values)) <= 0.0_dp .and. maxval(abs(history2 - history)) <= 0.0_dp .and. &
                    e2%n_levels == e%n_levels)
     end subroutine checkpoint_checks
+
+    !> Levels X(t_j) = t_j^(p+1) Z at t = 0.7, 0.82, 0.9 and the new one at 1 (steps 0.12, 0.08,
+    !> 0.1): the estimate against the local error of the step for a solution with that X^(p+1).
+    subroutine estimator_checks()
+        integer, parameter :: SE = 6
+        real(dp), parameter :: T_LEVELS(3) = [0.7_dp, 0.82_dp, 0.9_dp], T_NEW = 1.0_dp
+        type(model_t), parameter :: MODEL = model_t(rho=1.5_dp, alpha=0.7_dp, varpi=0.1_dp, gamma1=0.3_dp, &
+                                                    gamma2=0.2_dp, c=1.1_dp, d=0.2_dp, r=0.9_dp, hbar=0.8_dp, &
+                                                    tau0=0.6_dp, tau=0.4_dp)
+        type(error_estimator_t) :: e
+        real(dp) :: zu(0:SE), zw(0:SE, N_FIELDS), norm, h, h_prev, w, expected, est
+        integer :: i, j, k, p
+
+        do i = 0, SE
+            zu(i) = sin(real(i, dp))
+            zw(i, :) = [(cos(real(i + j, dp)), j = 1, N_FIELDS)]
+        end do
+        norm = energy_norm(linear_energy(MODEL, zu, zw))
+        h = T_NEW - T_LEVELS(3)
+        h_prev = T_LEVELS(3) - T_LEVELS(2)
+        do k = 1, size(SCHEMES)
+            p = merge(1, 2, SCHEMES(k) == 'euler')
+            call e%init(trim(SCHEMES(k)), SE)
+            do j = 1, 3
+                call e%push(T_LEVELS(j)**(p + 1) * zu, T_LEVELS(j)**(p + 1) * zw, T_LEVELS(j) - T_LEVELS(max(j - 1, 1)))
+            end do
+            est = e%estimate(MODEL, T_NEW**(p + 1) * zu, T_NEW**(p + 1) * zw, h)
+            select case (trim(SCHEMES(k)))
+            case ('euler')
+                expected = h**2 * norm
+            case ('bdf2')
+                w = h / h_prev
+                expected = h**2 * (h + h_prev) * (1.0_dp + w) / (1.0_dp + 2.0_dp * w) * norm
+            case default
+                expected = 0.5_dp * h**3 * norm
+            end select
+            write (detail, '(a,es24.16,a,es24.16)') 'expected ', expected, ', got ', est
+            call check('estimate = local error on X = t^(p+1) Z, unequal steps, '//trim(SCHEMES(k)), &
+                       abs(est - expected) <= 1.0e-9_dp * expected, trim(detail))
+        end do
+    end subroutine estimator_checks
 
     !> est / |X^n - X_true|_E for one step of `scheme` of size dt ending at T_STEP_END, the
     !> past levels at T_STEP_END - dt - (0, h2, h2 + h3) with h2 = dt past(2), h3 = dt past(3)

@@ -47,9 +47,9 @@ single, plausible bugs (a sign, a factor, an index, a forgotten statement) in th
 time schemes, the energy monitor, the contact law, step control, events, restart, the
 adaptive mesh, the linear algebra and the output; `tests/mutation/run.sh` applies each to a
 scratch copy of the tree, builds it and runs the suite, fastest tests first, until a test
-fails: that test killed the mutant. A mutant no test kills is run on 16 fixed cases (every
-scheme, both laws and methods, adaptive steps and mesh, the impact, a checkpoint and its
-restart) and its files compared with the unmutated program's (`tests/tools/regression.py
+fails: that test killed the mutant. A mutant no test kills is run on 18 fixed cases (every
+scheme, both laws and methods, adaptive steps and mesh, the impact, checkpoints and their
+restarts) and its files compared with the unmutated program's (`tests/tools/regression.py
 same`): if nothing differs it is equivalent (not a bug, not counted), else it survived, and a
 test that kills it is missing. Not part of CI (about {minutes} minutes on 2 cores); run on
 demand, e.g. after changing the tests or the code the mutants are anchored on (a mutant whose
@@ -84,6 +84,8 @@ EQUIVALENCE_CASES = [
     ("am_euler", "exp1.nml", "time.t_end=0.3 mesh.adaptive=.true. mesh.max_level=2 mesh.n_elements=100 "
                              "time.dt=1e-3 output.snapshot_every=50"),
     ("impact_mid", "impact.nml", "mesh.n_elements=200 time.t_end=0.3"),
+    ("impact_mid_half", "impact.nml", "mesh.n_elements=200 time.t_end=0.15 output.checkpoint_every=100"),
+    ("impact_mid_rest", "impact.nml", "mesh.n_elements=200 time.t_end=0.3 @restart impact_mid_half"),
     ("impact_mid_sig", "impact.nml", "mesh.n_elements=200 time.t_end=0.3 contact.law='signorini'"),
     ("impact_bdf2_sig", "impact.nml", "mesh.n_elements=200 time.t_end=0.3 time.scheme='bdf2' contact.law='signorini'"),
 ]

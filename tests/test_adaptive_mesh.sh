@@ -4,8 +4,13 @@
 #  1. bad &mesh / &output n_points values and the paper's iteration with an adaptive mesh
 #     exit 2 with a message naming the variable;
 #  2. checkpoint/restart with adaptivity on (BDF2 with adaptive steps, Euler with fixed
+<<<<<<< HEAD
 #     steps): the split run equals the uninterrupted one bit for bit, /snapshots/native too,
 #     and in every counter the checkpoint carries and the events;
+=======
+#     steps): the split run equals the uninterrupted one bit for bit, /snapshots/native too;
+#     /snapshots/native holds at the points of /mesh/x the values /snapshots holds there;
+>>>>>>> i28
 #  3. the energy never rises through remeshes: on every shipped input (Euler and midpoint
 #     with adaptive steps, BDF2 with fixed steps) the remesh check
 #     energy_max_relative_rise_remesh stays at round-off (<= 1e-12) and the step-by-step law
@@ -54,7 +59,10 @@ for case in bdf2_adaptive euler_fixed; do
     "$exe" "${common[@]}" --set time.t_end=0.2 --set output.prefix="'half_$case'" || check "$case: half run" false
     "$exe" "${common[@]}" --set time.t_end=0.4 --set time.restart_from="'half_$case.h5'" \
         --set output.prefix="'rest_$case'" || check "$case: restarted run" false
+    # every dataset and attribute but mesh.n_elements_max: a restarted run reports the largest
+    # mesh since the restart only (the checkpoint does not keep it; a known defect)
     check "$case: split and restarted = uninterrupted, /snapshots/native included" \
+<<<<<<< HEAD
         "$py" "$src/tests/tools/regression.py" same "full_$case.h5" "rest_$case.h5"
     # every counter a checkpoint carries (step control, energy monitor, solver, remeshes) and
     # the events; mesh.n_elements_max is left out: it is not in the checkpoint, and a restarted
@@ -66,6 +74,28 @@ keys = [k for k in a.attrs if k.startswith(('time_', 'energy_', 'solver.', 't_fi
 bad = [k for k in keys if k not in b.attrs or str(a.attrs[k]) != str(b.attrs[k])]
 bad += ['/events/' + d for d in a['events'] if a['events'][d][()].tobytes() != b['events'][d][()].tobytes()]
 print(' '.join(bad)); sys.exit(1 if bad else 0)"
+=======
+        "$py" "$src/tests/tools/regression.py" same "full_$case.h5" "rest_$case.h5" --ignore mesh.n_elements_max
+    check "$case: /snapshots/native = /snapshots at the points of /mesh/x (every one a node)" "$py" - "full_$case.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+native, x_grid = f["snapshots/native"], f["mesh/x"][:]
+offset, count = native["offset"][:], native["count"][:]
+bad = [] if len(offset) == len(f["snapshots/t"]) > 1 and offset[-1] + count[-1] == len(native["x"]) else ["offsets"]
+for k in range(len(offset)):
+    x = native["x"][offset[k]:offset[k] + count[k]]
+    at = np.clip(np.searchsorted(x, x_grid - 1e-12), 0, len(x) - 1)
+    if not (np.all(np.diff(x) > 0) and np.all(np.abs(x[at] - x_grid) <= 1e-12)):
+        bad.append(f"snapshot {k}: a point of /mesh/x is not a node")
+        continue
+    for field in ("u", "v", "theta", "P", "q", "eta"):
+        fixed, own = f["snapshots/" + field][k], native[field][offset[k]:offset[k] + count[k]][at]
+        if not np.max(np.abs(fixed - own)) <= 1e-13 * max(np.max(np.abs(own)), 1e-300):
+            bad.append(f"snapshot {k} (t = {f['snapshots/t'][k]}): {field} differs by {np.max(np.abs(fixed - own)):.3e}")
+print("\n".join(bad))
+sys.exit(1 if bad else 0)
+PY
+>>>>>>> i28
     check "$case: the mesh changed during the run (remeshes > 0, several mesh sizes)" "$py" -c "
 import h5py, sys, numpy as np
 f = h5py.File('full_$case.h5', 'r')

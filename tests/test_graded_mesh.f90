@@ -7,6 +7,8 @@
 !>   transfer: random levels moved between random graded meshes (transfer_m): the energy
 !>       of Corollary 6.2 (with d /= 0, the coupled theta-P term) never rises, is kept when
 !>       the new mesh only adds nodes, u keeps its values at common nodes and at x = 1.
+!>   buffer: a kink of u at x = 1/2 on 20 coarse elements (one level, buffer 3) makes its two
+!>       elements refine and the 3 on either side with them: fine on exactly [0.3, 0.7].
 program test_graded_mesh
     use kinds_m, only: dp
     use reals_m, only: equal
@@ -29,6 +31,7 @@ program test_graded_mesh
                          d=0.2_dp, r=1.0_dp, hbar=1.0_dp, tau0=0.5_dp, tau=0.5_dp)
     call graded_mms_study(mms_linear_in_t(unit_model, 0.01_dp, 0.1_dp, .false.))
     call transfer_study()
+    call buffer_study()
     call test_summary('test_graded_mesh')
 
 contains
@@ -101,6 +104,34 @@ contains
         end do
         k = 2_int64 * mesh%k
     end function random_graded_keys
+
+    subroutine buffer_study()
+        integer, parameter :: N = 20, BUFFER = 3
+        type(adaptive_mesh_t) :: mesh
+        real(dp), allocatable :: x(:), u(:), w(:, :)
+        logical :: changed, fine, inside
+        integer :: s, e
+        character(len=120) :: detail
+
+        call mesh%init(N, 1, 1.0e-3_dp, BUFFER)
+        x = mesh%nodes()
+        u = abs(x - 0.5_dp)
+        allocate (w(0:N, N_FIELDS))
+        w = 0.0_dp
+        call mesh%adapt(x, u, w, changed)
+        s = mesh%s()
+        deallocate (x)
+        allocate (x(0:s))
+        x = mesh%nodes()
+        do e = 1, s
+            fine = x(e) - x(e - 1) < 0.75_dp / N
+            inside = 0.5_dp * (x(e - 1) + x(e)) > 0.3_dp .and. 0.5_dp * (x(e - 1) + x(e)) < 0.7_dp
+            write (detail, '(a,i0,a,f8.5,a,f8.5,a,l1)') 'element ', e, ' [', x(e - 1), ', ', x(e), '] fine: ', fine
+            call check_true('buffer: fine exactly within 3 coarse elements of the kink at 1/2', fine .eqv. inside, &
+                            trim(detail))
+        end do
+        call check_true('buffer: the mesh changed, 8 elements bisected', changed .and. s == N + 8)
+    end subroutine buffer_study
 
     !> Every element bisected (keys doubled, midpoints inserted).
     pure function bisect_all(k) result(k_new)

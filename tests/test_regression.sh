@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regression references: every case of tests/regression_cases.txt (the shipped inputs, BDF2,
 # Signorini, the paper's iteration, a thermoelastic scene with fields left out, a checkpoint
-# and its restart) is run shortened and its /series and /snapshots compared with the stored
+# and its restart) is run shortened and its /series, /snapshots and /events compared with the stored
 # reference tests/reference/<case>.h5 within tests/tools/regression.py's tolerance (1e-8 of each
 # dataset's largest value). A change that is not meant to change results keeps this green.
 #

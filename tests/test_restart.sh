@@ -2,6 +2,8 @@
 # Checkpoint and restart (&output checkpoint_every, &time restart_from):
 #  1. for Euler and BDF2, a run split at T/2 and restarted gives bit-for-bit the series,
 #     snapshots and energy bookkeeping of the uninterrupted run;
+#  1b. the same on the impact (midpoint rule) split among its bounces: events of both kinds
+#     come back from the checkpoint;
 #  2. a run killed with SIGKILL leaves its .h5.part with the last checkpoint readable and
 #     restartable, and the restarted run equals the uninterrupted one bit for bit;
 #  3. bad restarts exit 2, write nothing and leave the source as it was: missing file, no
@@ -53,6 +55,18 @@ for scheme in euler bdf2 midpoint; do
 print(list(a['events/t'][:]) == list(b['events/t'][:]) and list(a['events/kind'][:]) == list(b['events/kind'][:]) and len(a['events/t']) > 0)")
     [ "$ev" = True ] || fail "adaptive $scheme: /events differ after the restart (or are empty)"
 done
+
+# contact events of both kinds before the checkpoint (the impact's bounces, midpoint rule):
+# restored with their kinds
+imp=("$src/input/impact.nml" --set mesh.n_elements=100 --set output.quiet=.true. --set output.checkpoint_every=100)
+"$exe" "${imp[@]}" --set time.t_end=0.3 --set output.prefix="'ifull'" || fail "impact: uninterrupted run exit $?"
+"$exe" "${imp[@]}" --set time.t_end=0.2 --set output.prefix="'ihalf'" || fail "impact: first half exit $?"
+"$exe" "${imp[@]}" --set time.t_end=0.3 --set time.restart_from="'ihalf.h5'" --set output.prefix="'irest'" \
+    || fail "impact: restarted run exit $?"
+kinds=$("$py" -c "import h5py; print(sorted(set(h5py.File('ihalf.h5', 'r')['events/kind'][:].tolist())))")
+[ "$kinds" = "[-1, 1]" ] || fail "impact: the first half should hold onsets and releases, has kinds $kinds"
+if out=$(same ifull.h5 irest.h5); then echo "PASS impact: split among the bounces and restarted = uninterrupted ($out)"
+else fail "impact: restarted run differs from the uninterrupted one:"; echo "$out"; fi
 
 # killed run: long enough (10^7 steps) that the kill lands mid-run; checkpoints every 250 steps
 make_input long.nml long 1000.0 euler

@@ -123,6 +123,8 @@ fi
 
 strip() { grep -v -e '^test_[a-z_]*: [0-9]* checks' -e '^ *exp[0-9a-z_]* *tol ' "$1"; }
 commit="$(git --no-optional-locks rev-parse --short HEAD 2>/dev/null || echo unknown)"
+# section 7 (the mutation check) is written by tests/mutation/run.sh --doc, not here: keep it
+awk '/^## 7\. Mutation check/ { keep = 1 } keep' docs/verification.md > "$tmp/mutation.md" 2> /dev/null || true
 {
 cat <<EOF
 # Verification
@@ -224,4 +226,5 @@ EOF
 "$repo_root/scripts/paper/impact.sh"
 printf '\n![impact energy](../figures/impact_energy.png)\n'
 } > docs/verification.md
+[ -s "$tmp/mutation.md" ] && { echo; cat "$tmp/mutation.md"; } >> docs/verification.md
 echo "verify: wrote docs/verification.md, figures/convergence.png, figures/penetration_eps.png" >&2

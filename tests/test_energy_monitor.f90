@@ -1,0 +1,163 @@
+!> The energy monitor (energy_m's energy_monitor_t) fed levels whose energies are known:
+!>  1. Euler: E^n of each level is E_lin + 1/(2 eps) [u(1) - g]_+^2 (Corollary 6.2), written
+!>     out here independently of energy_m (P1 mass products, penalty term by hand); a level
+!>     whose energy rises by a known factor gives max_rise = (E^n - E^{n-1}) / E^{n-1}, a
+!>     falling one leaves it;
+!>  2. BDF2: the law's energy is the G-energy (E_lin(X^n) + E_lin(2 X^n - X^{n-1}))/2 +
+!>     penalty(u^n); no rise is recorded before the first level with a previous level; a rise
+!>     at a step of another size (step_changed) goes to max_rise_step_change, not max_rise;
+!>  3. a remesh (remeshed) records the rise across it in max_rise_remesh and counts it.
+!> The runs' own checks (test_energy_law) see only levels whose energy falls, where a monitor
+!> that compared a level with itself would also report 0.
+program test_energy_monitor
+    use kinds_m, only: dp
+    use config_m, only: model_t
+    use contact_law_m, only: contact_law_t, contact_law
+    use time_scheme_m, only: time_scheme
+    use state_m, only: state_t
+    use energy_m, only: energy_monitor_t
+    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA
+    use testing_m, only: check_close, check_true, test_summary
+    implicit none
+
+    integer, parameter :: S = 8
+    real(dp), parameter :: G = 0.1_dp, EPS = 0.01_dp, TOL = 1.0e-13_dp
+    type(model_t), parameter :: MODEL = model_t(rho=1.5_dp, alpha=0.7_dp, varpi=0.1_dp, gamma1=0.3_dp, gamma2=0.2_dp, &
+                                                c=1.1_dp, d=0.2_dp, r=0.9_dp, hbar=0.8_dp, tau0=0.6_dp, tau=0.4_dp)
+    type(contact_law_t) :: law
+    type(state_t) :: x0
+
+    law = contact_law('penalty', G, EPS)
+    x0 = level(1.0_dp, 0.05_dp)
+    call euler_checks()
+    call bdf2_checks()
+    call test_summary('test_energy_monitor')
+
+contains
+
+    subroutine euler_checks()
+        type(energy_monitor_t) :: monitor
+        type(state_t) :: x1, x2, x3
+        real(dp) :: rise
+
+        call monitor%init(MODEL, law, time_scheme('euler'), x0)
+        call check_close('Euler: E^0 of the first level', energy(x0), monitor%energy, TOL * energy(x0))
+        x1 = level(1.3_dp, 0.08_dp)
+        call monitor%observe(x1)
+        rise = (energy(x1) - energy(x0)) / energy(x0)
+        call check_true('Euler: the test level has a rising energy', rise > 0.5_dp)
+        call check_close('Euler: E^1', energy(x1), monitor%energy, TOL * energy(x1))
+        call check_close('Euler: max_rise after a rising level = (E^1 - E^0)/E^0', rise, monitor%max_rise, TOL)
+        x2 = level(0.5_dp, 0.02_dp)
+        call monitor%observe(x2)
+        call check_close('Euler: a falling level leaves max_rise', rise, monitor%max_rise, TOL)
+        ! in contact: u(1) = 0.15 > g, the penalty term 1/(2 eps) (u(1) - g)^2 = 0.125 counts
+        x3 = level(0.5_dp, 0.15_dp)
+        call monitor%observe(x3)
+        call check_close('Euler: E^3 with the penalty term', linear_energy(x3) + 0.5_dp / EPS * (0.15_dp - G)**2, &
+                         monitor%energy, TOL * energy(x3))
+        call check_close('Euler: max_rise after a rise into contact', &
+                         max(rise, (energy(x3) - energy(x2)) / energy(x2)), monitor%max_rise, TOL)
+    end subroutine euler_checks
+
+    subroutine bdf2_checks()
+        type(energy_monitor_t) :: monitor
+        type(state_t) :: x1, x2, x3, x4
+        real(dp) :: rise
+
+        call monitor%init(MODEL, law, time_scheme('bdf2'), x0)
+        x1 = with_previous(level(0.9_dp, 0.04_dp), x0)
+        call monitor%observe(x1)
+        call check_close('BDF2: no rise before a G-energy exists', 0.0_dp, monitor%max_rise, 0.0_dp)
+        call check_close('BDF2: E^1 (not the G-energy)', energy(x1), monitor%energy, TOL * energy(x1))
+        call check_close('BDF2: the law energy is the G-energy', g_energy(x1, x0), monitor%law_energy, &
+                         TOL * g_energy(x1, x0))
+        x2 = with_previous(level(1.2_dp, 0.12_dp), x1)
+        call monitor%observe(x2)
+        rise = (g_energy(x2, x1) - g_energy(x1, x0)) / g_energy(x1, x0)
+        call check_true('BDF2: the test level has a rising G-energy', rise > 0.5_dp)
+        call check_close('BDF2: max_rise of the G-energy', rise, monitor%max_rise, TOL)
+        x3 = with_previous(level(1.6_dp, 0.11_dp), x2)
+        call monitor%observe(x3, step_changed=.true.)
+        call check_close('BDF2: a rise at a changed step is not in max_rise', rise, monitor%max_rise, TOL)
+        call check_close('BDF2: a rise at a changed step is in max_rise_step_change', &
+                         (g_energy(x3, x2) - g_energy(x2, x1)) / g_energy(x2, x1), monitor%max_rise_step_change, TOL)
+        x4 = with_previous(level(2.0_dp, 0.11_dp), x3)
+        call monitor%remeshed(x4)
+        call check_true('BDF2: a remesh is counted', monitor%n_remeshes == 1)
+        call check_close('BDF2: max_rise_remesh', (g_energy(x4, x3) - g_energy(x3, x2)) / g_energy(x3, x2), &
+                         monitor%max_rise_remesh, TOL)
+        call check_close('BDF2: a remesh leaves max_rise', rise, monitor%max_rise, TOL)
+    end subroutine bdf2_checks
+
+    !> A level on the uniform mesh of S elements: every field a different smooth profile
+    !> times amplitude, u(1) = u_end.
+    type(state_t) function level(amplitude, u_end) result(x)
+        real(dp), intent(in) :: amplitude, u_end
+        integer :: i, f
+        real(dp) :: xi
+
+        x%s = S
+        allocate (x%u(0:S), x%w(0:S, N_FIELDS))
+        do i = 0, S
+            xi = real(i, dp) / S
+            x%u(i) = u_end * xi**2 + 0.01_dp * amplitude * sin(3.0_dp * xi)
+            do f = 1, N_FIELDS
+                x%w(i, f) = amplitude * cos(real(f, dp) * xi + 0.3_dp * f)
+            end do
+        end do
+        x%u(S) = u_end
+    end function level
+
+    type(state_t) function with_previous(x, previous) result(y)
+        type(state_t), intent(in) :: x, previous
+
+        y = x
+        y%u_prev = previous%u
+        y%w_prev = previous%w
+    end function with_previous
+
+    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2.
+    real(dp) function energy(x)
+        type(state_t), intent(in) :: x
+
+        energy = linear_energy(x) + 0.5_dp / EPS * max(x%u(S) - G, 0.0_dp)**2
+    end function energy
+
+    !> (E_lin(X^n) + E_lin(2 X^n - X^{n-1}))/2 + penalty(u^n) for x = X^n, previous = X^{n-1}.
+    real(dp) function g_energy(x, previous)
+        type(state_t), intent(in) :: x, previous
+        type(state_t) :: extrapolated
+
+        extrapolated = x
+        extrapolated%u = 2.0_dp * x%u - previous%u
+        extrapolated%w = 2.0_dp * x%w - previous%w
+        g_energy = 0.5_dp * (linear_energy(x) + linear_energy(extrapolated)) + 0.5_dp / EPS * max(x%u(S) - G, 0.0_dp)**2
+    end function g_energy
+
+    !> 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2 + tau hbar eta^2)
+    !> for P1 functions on the uniform mesh.
+    real(dp) function linear_energy(x)
+        type(state_t), intent(in) :: x
+        integer :: e
+
+        linear_energy = 0.0_dp
+        do e = 1, S
+            linear_energy = linear_energy + MODEL%alpha * (x%u(e) - x%u(e - 1))**2 * S &
+                + MODEL%rho * mass(x, e, F_V, F_V) + MODEL%c * mass(x, e, F_THETA, F_THETA) &
+                + MODEL%r * mass(x, e, F_P, F_P) + 2.0_dp * MODEL%d * mass(x, e, F_P, F_THETA) &
+                + MODEL%tau0 * mass(x, e, F_Q, F_Q) + MODEL%tau * MODEL%hbar * mass(x, e, F_ETA, F_ETA)
+        end do
+        linear_energy = 0.5_dp * linear_energy
+    end function linear_energy
+
+    !> int_e f_a f_b dx for P1 fields a, b on element e: element mass matrix h/6 [2 1; 1 2].
+    real(dp) function mass(x, e, a, b)
+        type(state_t), intent(in) :: x
+        integer, intent(in) :: e, a, b
+
+        mass = (2.0_dp * x%w(e - 1, a) * x%w(e - 1, b) + x%w(e - 1, a) * x%w(e, b) &
+                + x%w(e, a) * x%w(e - 1, b) + 2.0_dp * x%w(e, a) * x%w(e, b)) / (6.0_dp * S)
+    end function mass
+
+end program test_energy_monitor

@@ -8,7 +8,9 @@
 #   BUILD_TYPE=Debug BUILD_DIR=build-debug scripts/setup.sh
 #
 # Environment: BUILD_TYPE (default Release), BUILD_DIR (default build; relative paths
-# are taken from the repository root), JOBS (parallel build jobs, default 2).
+# are taken from the repository root), JOBS (parallel build jobs, default 2), WERROR
+# (ON: compiler warnings on the project's sources are errors, as scripts/test.sh builds;
+# default OFF).
 # Exit status: 0 ready; 1 missing packages that could not be installed, or the
 # configure/build failed.
 
@@ -26,6 +28,7 @@ repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
 build_type="${BUILD_TYPE:-Release}"
+werror="${WERROR:-OFF}"
 build_dir="${BUILD_DIR:-build}"
 [[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
 jobs="${JOBS:-2}"
@@ -73,16 +76,17 @@ fi
 # Configure when there is no complete configuration yet (none, or an earlier one that
 # failed), when it was made for another build type, or when packages were just installed.
 cache="$build_dir/CMakeCache.txt"
-cached_type=""
+cached_type="" cached_werror=""
 if [[ -f "$cache" ]]; then
     cached_type="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$cache")"
+    cached_werror="$(sed -n 's/^RODCONTACT_WERROR:[A-Z]*=//p' "$cache")"
 fi
-if [[ ! -f "$cache" || "$cached_type" != "$build_type" || ${#missing[@]} -gt 0 ||
+if [[ ! -f "$cache" || "$cached_type" != "$build_type" || "$cached_werror" != "$werror" || ${#missing[@]} -gt 0 ||
       ( ! -f "$build_dir/Makefile" && ! -f "$build_dir/build.ninja" ) ]]; then
     say "configuring $build_type build in $build_dir/"
     mkdir -p "$build_dir"
     log="$build_dir/setup-configure.log"
-    if ! cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" >"$log" 2>&1; then
+    if ! cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" -DRODCONTACT_WERROR="$werror" >"$log" 2>&1; then
         cat "$log" >&2
         say "configure failed (log: $log)"
         exit 1

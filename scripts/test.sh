@@ -14,6 +14,9 @@
 # labelled slurm (tests/test_slurm.sh: a Slurm cluster running scan scripts, nothing that
 # the Debug build checks) when it is given no ctest arguments.
 #
+# Both builds treat compiler warnings on the project's sources as errors (WERROR=ON for
+# scripts/setup.sh): the code compiles warning-free with -Wall -Wextra, and stays so.
+#
 # Exit status: 0 when every test passed in every build; otherwise that of the failing ctest
 # (the Release one if both failed), or 1 when a setup fails.
 # Environment: BUILD_TYPE, BUILD_DIR as for scripts/setup.sh (the first run); DEBUG_BUILD_DIR
@@ -38,6 +41,7 @@ done
 build_dir="${BUILD_DIR:-build}"
 [[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
 
+export WERROR=ON   # a compiler warning on the project's sources fails the build (and the suite)
 "$repo_root/scripts/setup.sh" || exit 1
 ctest --test-dir "$build_dir" --output-on-failure -j 2 "${ctest_args[@]}"
 status=$?

@@ -102,7 +102,7 @@ contains
             end do
         end do
         full = band_to_dense(m)
-        allocate (rhs(n), exact(n))
+        allocate (rhs(n), exact(n), got(n))
         rhs = [(cos(real(i, dp)), i = 1, n)]
         exact = rhs
         call dgesv(n, 1, full, n, piv, exact, n, stat)

@@ -287,7 +287,7 @@ contains
         item = input_item(cfg, findloc(INPUT_VARS%name, 'D', dim=1))
         call check_true('item material.D', item%name == 'material.D')
         call check_close('item material.D value', 1.5e-8_dp, item%reals(1), 0.0_dp)
-        items = input_items(cfg)
+        allocate (items, source=input_items(cfg))
         call check_true('input record: all but &material, plus 2', &
                         size(items) == count(INPUT_VARS%group /= 'material') + 2)
         call check_true('input record starts with model.rho', items(1)%name == 'model.rho')

@@ -39,10 +39,9 @@ program test_signorini
             call run(EXPERIMENTS(j), 'penalty', EPSILONS(k), u_pen, rise, n_contact)
             max_pen(k) = max(maxval(u_pen) - 0.1_dp, 0.0_dp)
             distance(k) = maxval(abs(u_pen - u_sig))
-            if (k == 1) then
-                write (*, '(a,es8.1,a,es10.3,a,es10.3,a)') '| ', EPSILONS(k), ' | ', max_pen(k), ' | | ', distance(k), ' | |'
-                cycle
-            end if
+        end do
+        write (*, '(a,es8.1,a,es10.3,a,es10.3,a)') '| ', EPSILONS(1), ' | ', max_pen(1), ' | | ', distance(1), ' | |'
+        do k = 2, size(EPSILONS)
             order = log10(max_pen(k - 1) / max_pen(k))
             write (*, '(a,es8.1,a,es10.3,a,f5.2,a,es10.3,a,f5.2,a)') '| ', EPSILONS(k), ' | ', max_pen(k), ' | ', &
                 order, ' | ', distance(k), ' | ', log10(distance(k - 1) / distance(k)), ' |'

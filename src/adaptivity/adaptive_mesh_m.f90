@@ -173,12 +173,17 @@ contains
         real(dp), allocatable :: refine_ind(:), coarsen_ind(:)
         logical, allocatable :: hot(:), keep(:), bisect(:), remove(:)
         integer(int64), allocatable :: k_new(:), k_graded(:)
-        integer :: s, e, m, n
+        integer :: s, e, m, n, stat
+        character(len=256) :: message
         integer(int64) :: length
 
         s = self%s()
         call self%observe_scales(mesh, u, w)
-        allocate (refine_ind(s), coarsen_ind(0:s), hot(s), keep(s), bisect(s), remove(0:s))
+        allocate (refine_ind(s), coarsen_ind(0:s), hot(s), keep(s), bisect(s), remove(0:s), stat=stat, errmsg=message)
+        if (stat /= 0) then
+            call check_allocation(stat, message, 'the mesh indicator''s work arrays')
+            return   ! not reached: check_allocation stops the run
+        end if
         call indicators(self, mesh%x, u, w, refine_ind, coarsen_ind)
         hot = refine_ind > self%tol
         ! keep: within `buffer` elements of a hot one (refined up to max_level, never coarsened)
@@ -198,7 +203,8 @@ contains
             remove(m) = coarsen_ind(m) <= self%tol / COARSEN_MARGIN
         end do
         ! the new nodes: the old ones not removed, and the midpoints of bisected elements
-        allocate (k_new(0:2 * s))
+        allocate (k_new(0:2 * s), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the new mesh')
         n = 0
         k_new(0) = self%k(0)
         do e = 1, s
@@ -224,14 +230,17 @@ contains
         integer(int64), intent(in) :: k_in(0:)
         integer(int64), allocatable, intent(out) :: k(:)
         integer(int64), allocatable :: k_next(:)
-        integer :: e, n, s
+        integer :: e, n, s, stat
+        character(len=256) :: message
         logical :: split
 
-        allocate (k(0:ubound(k_in, 1)))
+        allocate (k(0:ubound(k_in, 1)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the balanced mesh')
         k = k_in
         do
             s = ubound(k, 1)
-            allocate (k_next(0:2 * s))
+            allocate (k_next(0:2 * s), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the balanced mesh')
             n = 0
             k_next(0) = k(0)
             split = .false.
@@ -245,7 +254,8 @@ contains
                 k_next(n) = k(e)
             end do
             deallocate (k)
-            allocate (k(0:n))
+            allocate (k(0:n), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the balanced mesh')
             k = k_next(0:n)
             deallocate (k_next)
             if (.not. split) exit

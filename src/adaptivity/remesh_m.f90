@@ -32,6 +32,7 @@ contains
         logical :: changed
 
         call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, front_buffer(cfg))
+        changed = .false.
         do pass = 1, cfg%mesh%max_level + 2
             call initial_state(cfg, state, mesh%nodes())
             call mesh%adapt(state%mesh, state%u, state%w, changed)

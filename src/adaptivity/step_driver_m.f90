@@ -12,6 +12,7 @@
 !> to the energy monitor.
 module step_driver_m
     use kinds_m, only: dp
+    use reals_m, only: equal
     use iso_fortran_env, only: error_unit
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t
@@ -194,7 +195,7 @@ contains
         call self%estimator%push(state%u, state%w, dt_try)
         if (err >= 0.0_dp) call self%control%add_estimate(est)
         if (self%adaptive) call self%control%accept(dt_try, err, shortened=lands)
-        call monitor%observe(state, step_changed=dt_try /= saved_dt_last)
+        call monitor%observe(state, step_changed=.not. equal(dt_try, saved_dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
             failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
             return

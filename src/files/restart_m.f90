@@ -89,7 +89,8 @@ contains
         type(checkpoint_t), intent(out) :: ckpt
         real(dp), allocatable :: values(:), mesh(:)
         character(len=:), allocatable :: slot
-        integer :: s, n
+        integer :: s, n, stat
+        character(len=256) :: message
 
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
@@ -129,7 +130,8 @@ contains
         if (dataset_exists(file, slot//'/events')) then
             call read_real_2d(file, slot//'/events', ckpt%events)
         else
-            allocate (ckpt%events(0, 2))
+            allocate (ckpt%events(0, 2), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the event list')
         end if
         call read_real_1d(file, slot//'/counters', values)
         if (size(values) /= N_COUNTERS) call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/counters is not "// &
@@ -200,7 +202,7 @@ contains
             select case (item%kind)
             case (KIND_REAL)
                 call read_attr_real(file, item%name, x)
-                if (x /= item%reals(1)) call refuse(file, item%name, format_real(x), format_real(item%reals(1)))
+                if (.not. equal(x, item%reals(1))) call refuse(file, item%name, format_real(x), format_real(item%reals(1)))
             case (KIND_INTEGER)
                 call read_attr_int(file, item%name, i)
                 if (i /= item%int) call refuse(file, item%name, int_str(i), int_str(item%int))

@@ -175,7 +175,8 @@ contains
 
         s%onsets = ''
         s%releases = ''
-        if (.not. (dataset_exists(file, '/events/t') .and. dataset_exists(file, '/events/kind'))) return
+        if (.not. dataset_exists(file, '/events/t')) return
+        if (.not. dataset_exists(file, '/events/kind')) return
         call read_real_1d(file, '/events/t', t)
         call read_int_1d(file, '/events/kind', kind)
         do k = 1, min(size(t), size(kind))

@@ -5,7 +5,7 @@
 !> syntax, names, types, &material); value ranges are checked by validate_m.
 module config_reader_m
     use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
-    use errors_m, only: fatal, EXIT_INPUT
+    use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use config_m, only: config_t
     use strings_m, only: lower, excerpt, quoted, identifier_at
     use input_vars_m, only: read_namelist, var_kind, kind_description
@@ -49,14 +49,14 @@ contains
         ! the overrides are checked first: a misspelt --set fails before stdin is read
         if (present(overrides)) then
             allocate (sets(size(overrides)), stat=stat, errmsg=msg)
-            if (stat /= 0) call fatal(EXIT_INPUT, 'command line', 'out of memory: ' // trim(msg))
+            call check_allocation(stat, msg, 'the command-line overrides')
             do k = 1, size(overrides)
                 sets(k) = parse_override(overrides(k), sets(:k - 1))
             end do
             cfg%overrides = override_summary(overrides)
         else
             allocate (sets(0), stat=stat, errmsg=msg)
-            if (stat /= 0) call fatal(EXIT_INPUT, 'command line', 'out of memory: ' // trim(msg))
+            call check_allocation(stat, msg, 'the command-line overrides')
         end if
         call read_source(source, lines)
         call strip_comments(lines)

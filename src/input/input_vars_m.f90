@@ -14,7 +14,7 @@
 module input_vars_m
     use kinds_m, only: dp
     use config_m, only: config_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! LEN_*: access's locals
-    use errors_m, only: fatal, EXIT_OUTPUT
+    use errors_m, only: fatal, EXIT_OUTPUT, check_allocation
     use strings_m, only: lower, keyword, int_str
     implicit none
     private
@@ -129,7 +129,7 @@ contains
 
         recorded = INPUT_VARS%group /= 'material' .or. cfg%material%present
         allocate (items(count(recorded) + 2), stat=stat, errmsg=msg)
-        if (stat /= 0) call fatal(EXIT_OUTPUT, 'input record', 'out of memory: ' // trim(msg))
+        call check_allocation(stat, msg, 'the input record')
         n = 0
         do k = 1, size(INPUT_VARS)
             if (.not. recorded(k)) cycle

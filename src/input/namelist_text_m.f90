@@ -5,7 +5,7 @@
 !> reader (config_reader_m) then reads one at a time.
 module namelist_text_m
     use, intrinsic :: iso_fortran_env, only: input_unit, iostat_end, iostat_eor
-    use errors_m, only: fatal, EXIT_INPUT
+    use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use config_m, only: LEN_NAME
     use strings_m, only: lower, squeeze, excerpt, quoted, identifier_at, is_name_char, int_str
     use input_vars_m, only: GROUP_NAMES, group_list, var_list, var_kind, kind_description
@@ -78,7 +78,7 @@ contains
         integer :: n, ios, n_read
 
         allocate (lines(64), stat=ios, errmsg=msg)
-        if (ios /= 0) call fatal(EXIT_INPUT, 'input', 'cannot read ' // what // ': out of memory: ' // trim(msg))
+        call check_allocation(ios, msg, 'the lines of ' // what)
         n = 0
         do
             line = ''
@@ -93,8 +93,7 @@ contains
             if (ios == iostat_end .and. len(line) == 0) exit
             if (n == size(lines)) then
                 allocate (grown(2 * n), stat=ios, errmsg=msg)
-                if (ios /= 0) call fatal(EXIT_INPUT, 'input', 'cannot read ' // what // ' (' // int_str(n) // &
-                                         ' lines so far): out of memory: ' // trim(msg))
+                call check_allocation(ios, msg, 'the lines of ' // what // ' (' // int_str(n) // ' lines so far)')
                 grown(:n) = lines
                 call move_alloc(grown, lines)
             end if
@@ -141,8 +140,9 @@ contains
         integer :: i, j, k, stat
         character(len=LEN_MSG) :: msg
 
+        name = ''
         allocate (groups(0), stat=stat, errmsg=msg)
-        if (stat /= 0) call fatal(EXIT_INPUT, 'input', 'out of memory: ' // trim(msg))
+        call check_allocation(stat, msg, 'the namelist groups')
         inside = .false.
         do i = 1, size(lines)
             quote = ' '
@@ -238,7 +238,7 @@ contains
         asg%from_set = grp%from_set
         asg%body = group_body(lines, grp)
         allocate (asg%first(0), asg%eq(0), stat=stat, errmsg=msg)
-        if (stat /= 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), 'out of memory: ' // trim(msg))
+        call check_allocation(stat, msg, 'the assignments of &' // trim(grp%name))
         associate (body => asg%body)
             ! each '=' outside quoted strings, and where the variable name before it begins
             quote = ' '

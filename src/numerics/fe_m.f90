@@ -5,6 +5,7 @@
 !> each element's own h.
 module fe_m
     use kinds_m, only: dp
+    use reals_m, only: equal
     implicit none
     private
     public :: mesh_nodes, element_mass, element_stiffness, element_gradient
@@ -109,8 +110,8 @@ contains
             end do
             weight = (p(j) - x(e - 1)) / (x(e) - x(e - 1))
             values(j) = (1.0_dp - weight) * f(e - 1) + weight * f(e)
-            if (p(j) == x(e - 1)) values(j) = f(e - 1)
-            if (p(j) == x(e)) values(j) = f(e)
+            if (equal(p(j), x(e - 1))) values(j) = f(e - 1)
+            if (equal(p(j), x(e))) values(j) = f(e)
         end do
     end function evaluate_p1
 

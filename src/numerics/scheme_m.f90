@@ -21,6 +21,7 @@
 !> is handled by the solution methods (stepper_m), never assembled here.
 module scheme_m
     use kinds_m, only: dp
+    use reals_m, only: equal, is_zero
     use config_m, only: model_t
     use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled
     use mesh_m, only: mesh_t
@@ -118,7 +119,7 @@ contains
         m = model_t(rho=1.0_dp, alpha=1.0_dp, varpi=1.0_dp, gamma1=1.0_dp, gamma2=1.0_dp, &
                     c=1.0_dp, d=1.0_dp, r=1.0_dp, hbar=1.0_dp, tau0=1.0_dp, tau=1.0_dp)
         if (present(model)) m = model
-        couples = any(element_block(m, 1.0_dp, 1.0_dp, row, col) /= 0.0_dp)
+        couples = .not. all(is_zero(element_block(m, 1.0_dp, 1.0_dp, row, col)))
     end function couples
 
     !> The fields that can be nonzero: v (moved by the initial velocity, the contact force and
@@ -189,7 +190,7 @@ contains
         call a%init(nf * (s + 1), kw, kw)
         do e = 1, s
             h_e = mesh%h(e)
-            if (h_e /= h_blocks) then
+            if (.not. equal(h_e, h_blocks)) then
                 ! the element blocks of this element size
                 do row = 1, N_FIELDS
                     do col = 1, N_FIELDS
@@ -203,7 +204,7 @@ contains
                 do col = 1, N_FIELDS
                     if (slots(col) == 0) cycle
                     m = blocks(:, :, row, col)
-                    if (all(m == 0.0_dp)) cycle
+                    if (all(is_zero(m))) cycle
                     do ia = 1, 2
                         do ib = 1, 2
                             call a%add(nf * (e - 2 + ia) + slots(row), nf * (e - 2 + ib) + slots(col), m(ia, ib))
@@ -281,7 +282,7 @@ contains
             do col = 1, N_FIELDS
                 if (slots(col) /= 0) cycle
                 m = element_block(model, h, dt, row, col)
-                if (all(m == 0.0_dp)) cycle
+                if (all(is_zero(m))) cycle
                 call apply_assembled(m, w(:, col), work)
                 b(:, row) = b(:, row) - work
             end do

@@ -2,6 +2,7 @@
 !> the mesh they live on (mesh_m: uniform, or graded with &mesh adaptive).
 module state_m
     use kinds_m, only: dp
+    use reals_m, only: equal
     use config_m, only: config_t
     use mesh_m, only: mesh_t, copy_mesh
     use initial_data_m, only: profile
@@ -127,7 +128,7 @@ contains
 
         t_anchor = state%t_anchor
         step_anchor = state%step_anchor
-        if (state%step > 0 .and. dt /= state%dt_last) then
+        if (state%step > 0 .and. .not. equal(dt, state%dt_last)) then
             t_anchor = state%t
             step_anchor = state%step
         end if

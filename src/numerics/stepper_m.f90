@@ -21,6 +21,7 @@
 !> both; the first step (no X^{-1}) is an Euler step. Two matrices, each factored once.
 module stepper_m
     use kinds_m, only: dp
+    use reals_m, only: equal, is_zero
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t
     use errors_m, only: check_allocation
@@ -114,7 +115,8 @@ contains
         type(config_t), intent(in) :: cfg
         type(step_result_t), intent(out) :: result
         class(source_t), intent(in), optional :: source   !< source terms of sources_m
-        integer :: k, s_finest
+        integer :: k, s_finest, stat
+        character(len=256) :: message
 
         self%model = cfg%model
         self%dt = cfg%time%dt
@@ -128,7 +130,10 @@ contains
         self%max_iter = cfg%solver%max_iter
         call self%mesh%set_uniform(cfg%mesh%n_elements)
         self%s = cfg%mesh%n_elements
-        if (present(source)) allocate (self%source, source=source)
+        if (present(source)) then
+            allocate (self%source, source=source, stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the source terms')
+        end if
         select case (trim(cfg%solver%method))
         case ('paper')
             self%method = METHOD_PAPER
@@ -186,10 +191,10 @@ contains
         logical :: has_data(N_FIELDS)
 
         has_data(F_V) = .true.
-        has_data(F_Q) = any(cfg%initial%q0_poly /= 0.0_dp)
-        has_data(F_THETA) = any(cfg%initial%theta0_poly /= 0.0_dp) .or. cfg%initial%theta0_step(1) /= 0.0_dp
-        has_data(F_P) = any(cfg%initial%p0_poly /= 0.0_dp) .or. cfg%initial%p0_step(1) /= 0.0_dp
-        has_data(F_ETA) = any(cfg%initial%eta0_poly /= 0.0_dp)
+        has_data(F_Q) = .not. all(is_zero(cfg%initial%q0_poly))
+        has_data(F_THETA) = .not. (all(is_zero(cfg%initial%theta0_poly)) .and. is_zero(cfg%initial%theta0_step(1)))
+        has_data(F_P) = .not. (all(is_zero(cfg%initial%p0_poly)) .and. is_zero(cfg%initial%p0_step(1)))
+        has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
     end function initial_data_present
 
     !> The paper's Section 7 blocks for step dt, factored.
@@ -223,7 +228,7 @@ contains
 
         self%uses = self%uses + 1
         do k = 1, N_SYSTEMS
-            if (self%systems(k)%dt_eff == dt_eff) then
+            if (equal(self%systems(k)%dt_eff, dt_eff)) then
                 self%systems(k)%last_used = self%uses
                 return
             end if
@@ -326,7 +331,7 @@ contains
         t_new = advance_time(state, step_size)
         select case (self%method)
         case (METHOD_PAPER)
-            if (step_size /= self%paper_dt) call setup_paper(self, step_size, result)
+            if (.not. equal(step_size, self%paper_dt)) call setup_paper(self, step_size, result)
             if (.not. result%ok) return
             call start_rhs(self, self%model, step_size, t_new, state%u, state%w)
             call advance_paper(self, state, step_size, result)
@@ -476,6 +481,7 @@ contains
         s = self%s
         self%w_lag = state%w                 ! iterate l-1 (l = 0: the previous time level)
         self%u_lag = state%u
+        scale = 1.0_dp
         do l = 1, self%max_iter
             ! thermal block with the lagged velocity
             self%b = self%b_old

@@ -13,12 +13,8 @@
 !>   the previous iterate, then the mechanical block with the new theta, P and the lagged
 !>   penalty, until the largest change of any nodal value is <= tol * max(1, max |value|).
 !>
-!> &time scheme = 'bdf2' (monolithic only): the second-order backward differentiation
-!> formula, X_t ~ (3 X^n - 4 X^{n-1} + X^{n-2}) / (2 dt) in every equation and
-!> u^n = (4 u^{n-1} - u^{n-2} + 2 dt v^n) / 3. Multiplied by 2/3 this is exactly the Euler
-!> step (6.1) with step dt_eff = 2 dt / 3 from the extrapolated level
-!> X* = (4 X^{n-1} - X^{n-2}) / 3, so the same assembly, contact step and sources serve
-!> both; the first step (no X^{-1}) is an Euler step. Two matrices, each factored once.
+!> &time scheme: every scheme is one Euler step (6.1) of size dt_eff from a combination of
+!> past levels (time_scheme_m's plan), so the same assembly, contact step and sources serve all.
 module stepper_m
     use kinds_m, only: dp
     use reals_m, only: equal, is_zero
@@ -130,10 +126,9 @@ contains
         self%max_iter = cfg%solver%max_iter
         call self%mesh%set_uniform(cfg%mesh%n_elements)
         self%s = cfg%mesh%n_elements
-        if (present(source)) then
-            allocate (self%source, source=source, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the source terms')
-        end if
+        stat = 0
+        if (present(source)) allocate (self%source, source=source, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the source terms')
         select case (trim(cfg%solver%method))
         case ('paper')
             self%method = METHOD_PAPER

@@ -125,6 +125,7 @@ contains
         type(time_t), intent(in) :: time
         type(scheme_rule_t), intent(in) :: schemes(:)
         real(dp), intent(out) :: n_steps
+        character(len=len(schemes%name)), allocatable :: names(:)
 
         call require_positive(time%dt, 'time.dt', scaled=.true.)
         call require_positive(time%t_end, 'time.t_end')
@@ -135,7 +136,8 @@ contains
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
         n_steps = real(number_of_steps(time%dt, time%t_end), dp)
-        call require_one_of(time%scheme, schemes%name, 'time.scheme')
+        names = schemes%name   ! contiguous: no array temporary at the call (-fcheck=all warns of one)
+        call require_one_of(time%scheme, names, 'time.scheme')
         if (time%adaptive) call validate_step_control(time)
     end subroutine validate_time
 
@@ -200,7 +202,9 @@ contains
         if (cfg%contact%law /= 'penalty') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the penalty term and " // &
             "has no Signorini form; method must be 'monolithic' with this law")
-        k = findloc(schemes%name, cfg%time%scheme, dim=1)   ! > 0: validate_time has checked the name
+        do k = 1, size(schemes) - 1   ! validate_time has checked the name: it is one of them
+            if (schemes(k)%name == cfg%time%scheme) exit
+        end do
         if (.not. schemes(k)%paper_iteration) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "time.scheme = '" // trim(cfg%time%scheme) // "': the paper's iteration is implicit Euler; " // &
             "method must be 'monolithic' with this scheme")

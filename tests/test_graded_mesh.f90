@@ -118,7 +118,7 @@ contains
         u = abs(x - 0.5_dp)
         allocate (w(0:N, N_FIELDS))
         w = 0.0_dp
-        call mesh%adapt(x, u, w, changed)
+        call mesh%adapt(graded_mesh(x), u, w, changed)
         s = mesh%s()
         deallocate (x)
         allocate (x(0:s))

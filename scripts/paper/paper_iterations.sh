@@ -7,6 +7,11 @@
 #
 # Exit status: 0 written; 1 a run failed or the markers are missing.
 set -euo pipefail
+case ${1:-} in
+    -h | --help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit 0 ;;
+    '') ;;
+    *) echo "${BASH_SOURCE[0]##*/}: unknown argument '$1' (it takes none; --help)" >&2; exit 2 ;;
+esac
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 scripts="$repo_root/scripts"
 "$scripts/setup.sh"

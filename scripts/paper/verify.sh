@@ -9,6 +9,11 @@
 # Needs gnuplot for the plots (installed by setup.sh); takes about half a minute.
 
 set -euo pipefail
+case ${1:-} in
+    -h | --help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit 0 ;;
+    '') ;;
+    *) echo "${BASH_SOURCE[0]##*/}: unknown argument '$1' (it takes none; --help)" >&2; exit 2 ;;
+esac
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 BUILD_TYPE=Release "$repo_root/scripts/setup.sh"

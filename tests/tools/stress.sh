@@ -107,7 +107,11 @@ sys.path.insert(0, sys.argv[2])
 import rodrun
 with rodrun.open_run(sys.argv[1], checked=False) as f:
     status = rodrun.text(f.attrs["status"])
-    finite = all(np.all(np.isfinite(f[g + "/" + n][:])) for g in ("series", "snapshots") for n in f[g])
+    def all_finite(group):   # every numeric dataset below group, subgroups (/snapshots/native) included
+        found = []
+        group.visititems(lambda name, obj: found.append(obj) if isinstance(obj, rodrun.h5py.Dataset) else None)
+        return all(np.all(np.isfinite(d[()])) for d in found if d.dtype.kind == "f")
+    finite = all(all_finite(f[g]) for g in ("series", "snapshots"))
     # the attribute, and the same measured on the stored series (every step here)
     energy = f["series/energy"][:]
     rise_series = np.max(np.diff(energy) / np.maximum(energy[:-1], 1e-300)) if len(energy) > 1 else 0.0

@@ -124,7 +124,7 @@ contains
             call run%writer%attr_int('restart_step', run%state%step)
         else
             call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
-            call write_snapshot(run%writer, run%state, run%x_out)
+            call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
         end if
         call run%writer%flush()
     end subroutine open_output
@@ -159,7 +159,8 @@ contains
                 last = finished(run, cfg)
                 if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
                     call write_series(run%writer, run%stepper, state, run%monitor, run%result)
-                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) call write_snapshot(run%writer, state, run%x_out)
+                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) &
+                    call write_snapshot(run%writer, state, cfg%model, run%x_out)
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
                     call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
@@ -202,7 +203,8 @@ contains
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
             if (mod(run%last_written, cfg%output%series_every) /= 0) &
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
-            if (.not. snapshot_due(cfg, run%last_written, .false.)) call write_snapshot(run%writer, run%state, run%x_out)
+            if (.not. snapshot_due(cfg, run%last_written, .false.)) &
+                call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
         end if
         call system_clock(clock_now)
         call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, &

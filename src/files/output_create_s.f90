@@ -137,8 +137,8 @@ contains
         call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
                         SERIES(S_T)%units)
         dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
-        do k = 1, N_OUTPUT_FIELDS
-            associate (field => FIELDS(OUTPUT_ORDER(k)))
+        do k = 1, N_SNAPSHOT_FIELDS
+            associate (field => SNAPSHOTS(k))
                 call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
                                          dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k), &
                                          compress=.true.)

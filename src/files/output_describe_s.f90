@@ -44,8 +44,8 @@ contains
             call w%attr_real('si_factor', factor, on=w%snap_t_id)
             call w%attr_str('si_units', si_units, on=w%snap_t_id)
         end if
-        do k = 1, N_OUTPUT_FIELDS
-            if (FIELDS(OUTPUT_ORDER(k))%scale /= scale) cycle
+        do k = 1, N_SNAPSHOT_FIELDS
+            if (SNAPSHOTS(k)%scale /= scale) cycle
             call w%attr_real('si_factor', factor, on=w%snap_field_ids(k))
             call w%attr_str('si_units', si_units, on=w%snap_field_ids(k))
         end do

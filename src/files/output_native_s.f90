@@ -18,7 +18,7 @@ submodule (output_m) output_native_s
 contains
 
     !> Append one snapshot on its own mesh: nodes x(0:s), values(0:s, k) of the field
-    !> OUTPUT_ORDER(k).
+    !> fields_m's SNAPSHOTS(k).
     module subroutine writer_append_native(w, x, values)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(:)
@@ -27,13 +27,13 @@ contains
         integer :: k
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_native() on a closed writer')
-        if (size(values, 1) /= size(x) .or. size(values, 2) /= N_OUTPUT_FIELDS) &
+        if (size(values, 1) /= size(x) .or. size(values, 2) /= N_SNAPSHOT_FIELDS) &
             call w%fail('internal error: append_native() given fields that do not match the nodes')
         if (w%n_native_snap == 0) call create_native(w)
         n = int(size(x), hsize_t)
         call append_real(w, 'x', x, n)
-        do k = 1, N_OUTPUT_FIELDS
-            call append_real(w, trim(FIELDS(OUTPUT_ORDER(k))%name), values(:, k), n)
+        do k = 1, N_SNAPSHOT_FIELDS
+            call append_real(w, trim(SNAPSHOTS(k)%name), values(:, k), n)
         end do
         call append_int(w, 'offset', w%n_native_values)
         call append_int(w, 'count', int(n, int64))
@@ -54,8 +54,8 @@ contains
         call w%create_extendible(group_id, GROUP//'/', 'x', H5T_IEEE_F64LE, dims, [int(VALUES_CHUNK, hsize_t)], dset_id)
         call w%describe(dset_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', '1')
         call close_dataset(w, dset_id, 'x')
-        do k = 1, N_OUTPUT_FIELDS
-            associate (field => FIELDS(OUTPUT_ORDER(k)))
+        do k = 1, N_SNAPSHOT_FIELDS
+            associate (field => SNAPSHOTS(k))
                 call w%create_extendible(group_id, GROUP//'/', trim(field%name), H5T_IEEE_F64LE, dims, &
                                          [int(VALUES_CHUNK, hsize_t)], dset_id)
                 call w%describe(dset_id, GROUP//'/'//trim(field%name), described(trim(field%long_name)// &

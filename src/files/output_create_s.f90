@@ -37,6 +37,7 @@ contains
         w%n_snap = 0
         w%n_native_snap = 0
         w%n_native_values = 0
+        w%n_si = 0
         w%n_buf = 0
         w%logical_names = ''
         w%checkpoint_note = ''

@@ -35,6 +35,11 @@ contains
         real(dp), intent(in) :: factor
         integer :: k
 
+        if (w%n_si == size(w%si_names)) call w%fail('internal error: more SI scales than MAX_SI_SCALES')
+        w%n_si = w%n_si + 1
+        w%si_names(w%n_si) = scale
+        w%si_factors(w%n_si) = factor
+        w%si_units(w%n_si) = si_units
         do k = 1, N_SERIES
             if (SERIES(k)%scale /= scale) cycle
             call w%attr_real('si_factor', factor, on=w%series_ids(k))
@@ -54,5 +59,20 @@ contains
             call w%attr_str('si_units', si_units, on=w%mesh_x_id)
         end if
     end subroutine writer_describe_si
+
+    !> si_factor and si_units on a dataset created after describe_si (/snapshots/native,
+    !> /events) whose quantity has scale `scale`; nothing without &material.
+    module subroutine writer_describe_si_of(w, dset_id, scale)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: scale
+        integer :: k
+
+        do k = 1, w%n_si
+            if (w%si_names(k) /= scale) cycle
+            call w%attr_real('si_factor', w%si_factors(k), on=dset_id)
+            call w%attr_str('si_units', trim(w%si_units(k)), on=dset_id)
+        end do
+    end subroutine writer_describe_si_of
 
 end submodule output_describe_s

@@ -30,6 +30,7 @@ contains
         call w%describe(dset_id, '/events/t', described(SERIES(S_T)%long_name//' of a change of the '// &
                         'contact state (interpolated in the step that crosses it)', SERIES(S_T)%scale), &
                         SERIES(S_T)%units)
+        call w%describe_si_of(dset_id, SERIES(S_T)%scale)
         call h5dclose_f(dset_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /events/t')
         call h5dcreate_f(group_id, 'kind', H5T_STD_I32LE, space_id, dset_id, hdferr)
@@ -40,6 +41,7 @@ contains
         end if
         call w%describe(dset_id, '/events/kind', 'contact event: +1 onset (the rod end reaches the obstacle), '// &
                         '-1 release', '1')
+        call w%describe_si_of(dset_id, '')
         call h5dclose_f(dset_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /events/kind')
         call h5sclose_f(space_id, hdferr)

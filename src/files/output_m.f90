@@ -51,6 +51,8 @@ module output_m
     !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
     !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
     integer, parameter :: ISTORE_K = 4
+    !> At most this many SI scales (material_m's si_scales, and '' for counts)
+    integer, parameter :: MAX_SI_SCALES = 16
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
     !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
@@ -79,6 +81,12 @@ module output_m
         integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
         integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
+        !> the SI scales given to describe_si (&material), for the datasets created later
+        !> (/snapshots/native, /events)
+        integer :: n_si = 0
+        character(len=24) :: si_names(MAX_SI_SCALES) = ''
+        real(dp) :: si_factors(MAX_SI_SCALES) = 0.0_dp
+        character(len=16) :: si_units(MAX_SI_SCALES) = ''
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
@@ -106,6 +114,7 @@ module output_m
         procedure, private :: select_append => writer_select_append
         procedure, private :: close_spaces => writer_close_spaces
         procedure, private :: describe => writer_describe
+        procedure, private :: describe_si_of => writer_describe_si_of
     end type h5_writer_t
 
     interface   ! creating the file (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
@@ -177,6 +186,12 @@ module output_m
             character(len=*), intent(in) :: scale, si_units
             real(dp), intent(in) :: factor
         end subroutine writer_describe_si
+
+        module subroutine writer_describe_si_of(w, dset_id, scale)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: scale
+        end subroutine writer_describe_si_of
 
         pure module function described(long_name, scale) result(text)
             character(len=*), intent(in) :: long_name, scale

@@ -53,6 +53,7 @@ contains
         dims = 0
         call w%create_extendible(group_id, GROUP//'/', 'x', H5T_IEEE_F64LE, dims, [int(VALUES_CHUNK, hsize_t)], dset_id)
         call w%describe(dset_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', '1')
+        call w%describe_si_of(dset_id, 'position')
         call close_dataset(w, dset_id, 'x')
         do k = 1, N_SNAPSHOT_FIELDS
             associate (field => SNAPSHOTS(k))
@@ -60,16 +61,19 @@ contains
                                          [int(VALUES_CHUNK, hsize_t)], dset_id)
                 call w%describe(dset_id, GROUP//'/'//trim(field%name), described(trim(field%long_name)// &
                                 ' at the nodes of its own mesh (native/x)', field%scale), field%units)
+                call w%describe_si_of(dset_id, field%scale)
                 call close_dataset(w, dset_id, trim(field%name))
             end associate
         end do
         call w%create_extendible(group_id, GROUP//'/', 'offset', H5T_STD_I64LE, dims, [int(SERIES_CHUNK, hsize_t)], &
                                  dset_id)
         call w%describe(dset_id, GROUP//'/offset', 'first entry of each snapshot in native/x and the fields', '1')
+        call w%describe_si_of(dset_id, '')
         call close_dataset(w, dset_id, 'offset')
         call w%create_extendible(group_id, GROUP//'/', 'count', H5T_STD_I64LE, dims, [int(SERIES_CHUNK, hsize_t)], &
                                  dset_id)
         call w%describe(dset_id, GROUP//'/count', 'number of nodes of each snapshot''s mesh', '1')
+        call w%describe_si_of(dset_id, '')
         call close_dataset(w, dset_id, 'count')
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f '//GROUP)

@@ -42,9 +42,12 @@ contains
     !> theta = beta1 (T - T0)/((lambda + 2 mu) delta), P* = P/(beta2 delta),
     !> sigma* = sigma/(lambda + 2 mu), q* = omega beta1 q/(rho0 cE delta ell (lambda + 2 mu)),
     !> eta* = ell eta/(D beta2 delta); v = u_t takes the displacement over the time scale.
+    !> The energy E^n of Corollary 6.2 (per unit cross-section, J/m^2): its thermal term
+    !> 1/2 int theta^2 dx* is 1/2 int rho0 cE (T - T0)^2 / T0 dx over ell, which with the
+    !> temperature scale is ell (lambda + 2 mu) delta^2 / a-check times it.
     pure function si_scales(mat) result(scales)
         type(material_t), intent(in) :: mat
-        type(si_scale_t) :: scales(9)
+        type(si_scale_t) :: scales(10)
         type(nondim_t) :: nd
         real(dp) :: stiffness
 
@@ -60,6 +63,7 @@ contains
         scales(8) = si_scale_t('heat_flux', mat%rho0 * mat%cE * nd%delta * mat%ell * stiffness / (nd%omega * nd%beta1), &
                                'W/m^2')
         scales(9) = si_scale_t('diffusion_flux', mat%D * nd%beta2 * nd%delta / mat%ell, 'kg/(m^2 s)')
+        scales(10) = si_scale_t('energy', mat%ell * stiffness * nd%delta**2 / nd%a_check, 'J/m^2')
     end function si_scales
 
     !> The nondimensional groups of (2.10) for the physical quantities `mat`.

@@ -115,6 +115,8 @@ module output_m
         procedure, private :: close_spaces => writer_close_spaces
         procedure, private :: describe => writer_describe
         procedure, private :: describe_si_of => writer_describe_si_of
+        procedure, private :: make_scale => writer_make_scale
+        procedure, private :: attach_scale => writer_attach_scale
     end type h5_writer_t
 
     interface   ! creating the file (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
@@ -186,6 +188,19 @@ module output_m
             character(len=*), intent(in) :: scale, si_units
             real(dp), intent(in) :: factor
         end subroutine writer_describe_si
+
+        module subroutine writer_make_scale(w, dset_id, name, what)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: name, what
+        end subroutine writer_make_scale
+
+        module subroutine writer_attach_scale(w, dset_id, scale_id, dim, what)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id, scale_id
+            integer, intent(in) :: dim
+            character(len=*), intent(in) :: what
+        end subroutine writer_attach_scale
 
         module subroutine writer_describe_si_of(w, dset_id, scale)
             class(h5_writer_t), intent(inout) :: w

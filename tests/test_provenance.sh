@@ -77,7 +77,8 @@ scales = {"time": (omega, "s"), "position": (m["ell"], "m"), "displacement": (m[
           "velocity": (m["ell"] / delta / omega, "m/s"), "temperature": (stiff * delta / beta1, "K"),
           "chemical_potential": (beta2 * delta, "J/kg"), "stress": (stiff, "Pa"),
           "heat_flux": (m["rho0"] * m["cE"] * delta * m["ell"] * stiff / (omega * beta1), "W/m^2"),
-          "diffusion_flux": (m["D"] * beta2 * delta / m["ell"], "kg/(m^2 s)")}
+          "diffusion_flux": (m["D"] * beta2 * delta / m["ell"], "kg/(m^2 s)"),
+          "energy": (m["ell"] * stiff * delta ** 2 * m["rho0"] * m["cE"] * stiff / (m["T0"] * beta1 ** 2), "J/m^2")}
 for k, (factor, units) in scales.items():
     got = mat.attrs.get("scale." + k, float("nan"))
     check(abs(got - factor) <= 1e-12 * abs(factor), f"mat.h5: scale.{k} = {got}, expected {factor}")
@@ -87,11 +88,12 @@ check(abs(mat.attrs["model.tau0"] - 1e-3 / omega) <= 1e-12 * 1e-3 / omega, "mat.
 for path, scale in (("mesh/x", "position"), ("snapshots/t", "time"), ("series/t", "time"), ("snapshots/u", "displacement"),
                     ("series/u_end", "displacement"), ("snapshots/v", "velocity"), ("snapshots/theta", "temperature"),
                     ("snapshots/P", "chemical_potential"), ("snapshots/q", "heat_flux"),
-                    ("snapshots/eta", "diffusion_flux"), ("series/contact_stress", "stress")):
+                    ("snapshots/eta", "diffusion_flux"), ("series/contact_stress", "stress"),
+                    ("snapshots/sigma", "stress"), ("series/energy", "energy"), ("series/energy_thermal", "energy")):
     at = mat[path].attrs
     check(at.get("si_factor") == mat.attrs["scale." + scale] and at.get("si_units") == scales[scale][1],
           f"mat.h5: /{path} si_factor {at.get('si_factor')} {at.get('si_units')}, expected scale.{scale}")
-check("si_factor" not in mat["series/energy"].attrs, "mat.h5: /series/energy has an si_factor")
+check(mat["series/iterations"].attrs.get("si_factor") == 1.0, "mat.h5: /series/iterations (a count) has no si_factor 1")
 print("\n".join("FAIL: " + b for b in bad) if bad else "PASS: provenance, logicals, descriptions and SI scales")
 sys.exit(1 if bad else 0)
 PY

@@ -115,45 +115,42 @@ contains
         real(dp), intent(in) :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: parts(N_ENERGY_PARTS)
-        real(dp) :: mass(N_ENERGY_PARTS), strain, h_e
+        real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux, strain, h_e
         integer :: e, s
         logical :: uniform
 
         ! the mass products of the parts (6/h times, as linear_energy: summed with weights
-        ! h_e on a graded mesh, 1 on a uniform one, scaled by h = 1/s at the end); the strain
-        ! and contact entries of `mass` stay zero
+        ! h_e on a graded mesh, 1 on a uniform one, scaled by h = 1/s at the end); scalar
+        ! sums, so that the loop keeps them in registers (it runs at every series entry)
         s = ubound(u, 1)
         uniform = mesh%is_uniform()
-        mass = 0.0_dp
-        strain = 0.0_dp
+        kinetic = 0.0_dp; thermal = 0.0_dp; chemical = 0.0_dp; coupling = 0.0_dp
+        heat_flux = 0.0_dp; mass_flux = 0.0_dp; strain = 0.0_dp
         h_e = 1.0_dp
         do e = 1, s
             if (.not. uniform) h_e = mesh%h(e)
-            associate (w0 => w(e - 1, :), w1 => w(e, :))
-                mass(PART_KINETIC) = mass(PART_KINETIC) + h_e * element_mass_product(w0(F_V), w1(F_V), w0(F_V), w1(F_V))
-                mass(PART_THERMAL) = mass(PART_THERMAL) &
-                    + h_e * element_mass_product(w0(F_THETA), w1(F_THETA), w0(F_THETA), w1(F_THETA))
-                mass(PART_CHEMICAL) = mass(PART_CHEMICAL) + h_e * element_mass_product(w0(F_P), w1(F_P), w0(F_P), w1(F_P))
-                mass(PART_COUPLING) = mass(PART_COUPLING) &
-                    + h_e * element_mass_product(w0(F_P), w1(F_P), w0(F_THETA), w1(F_THETA))
-                mass(PART_HEAT_FLUX) = mass(PART_HEAT_FLUX) + h_e * element_mass_product(w0(F_Q), w1(F_Q), w0(F_Q), w1(F_Q))
-                mass(PART_MASS_FLUX) = mass(PART_MASS_FLUX) &
-                    + h_e * element_mass_product(w0(F_ETA), w1(F_ETA), w0(F_ETA), w1(F_ETA))
-            end associate
+            kinetic = kinetic + h_e * self_product(w(e - 1, F_V), w(e, F_V))
+            thermal = thermal + h_e * self_product(w(e - 1, F_THETA), w(e, F_THETA))
+            chemical = chemical + h_e * self_product(w(e - 1, F_P), w(e, F_P))
+            coupling = coupling + h_e * element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_THETA), w(e, F_THETA))
+            heat_flux = heat_flux + h_e * self_product(w(e - 1, F_Q), w(e, F_Q))
+            mass_flux = mass_flux + h_e * self_product(w(e - 1, F_ETA), w(e, F_ETA))
             strain = strain + (u(e) - u(e - 1))**2 / h_e
         end do
         if (uniform) then
-            mass = mass / real(s, dp)
+            h_e = 1.0_dp / real(s, dp)
+            kinetic = kinetic * h_e; thermal = thermal * h_e; chemical = chemical * h_e
+            coupling = coupling * h_e; heat_flux = heat_flux * h_e; mass_flux = mass_flux * h_e
             strain = strain * real(s, dp)
         end if
         ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
-        parts(PART_KINETIC) = model%rho * mass(PART_KINETIC) / 12.0_dp
+        parts(PART_KINETIC) = model%rho * kinetic / 12.0_dp
         parts(PART_STRAIN) = 0.5_dp * model%alpha * strain
-        parts(PART_THERMAL) = model%c * mass(PART_THERMAL) / 12.0_dp
-        parts(PART_CHEMICAL) = model%r * mass(PART_CHEMICAL) / 12.0_dp
-        parts(PART_COUPLING) = model%d * mass(PART_COUPLING) / 6.0_dp
-        parts(PART_HEAT_FLUX) = model%tau0 * mass(PART_HEAT_FLUX) / 12.0_dp
-        parts(PART_MASS_FLUX) = model%tau * model%hbar * mass(PART_MASS_FLUX) / 12.0_dp
+        parts(PART_THERMAL) = model%c * thermal / 12.0_dp
+        parts(PART_CHEMICAL) = model%r * chemical / 12.0_dp
+        parts(PART_COUPLING) = model%d * coupling / 6.0_dp
+        parts(PART_HEAT_FLUX) = model%tau0 * heat_flux / 12.0_dp
+        parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux / 12.0_dp
         parts(PART_CONTACT) = law%energy(u(s))
     end function energy_parts
 
@@ -361,6 +358,14 @@ contains
             + model%tau0 * element_mass_product(w0(F_Q), w1(F_Q), w0(F_Q), w1(F_Q)) &
             + model%tau * model%hbar * element_mass_product(w0(F_ETA), w1(F_ETA), w0(F_ETA), w1(F_ETA))
     end function element_energy_density
+
+    !> element_mass_product(a0, a1, a0, a1): 6/h times the mass product of a P1 function
+    !> with itself on one element.
+    pure real(dp) function self_product(a0, a1)
+        real(dp), intent(in) :: a0, a1
+
+        self_product = 2.0_dp * (a0 * a0 + a0 * a1 + a1 * a1)
+    end function self_product
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
     !> and b0, b1).

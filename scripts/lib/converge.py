@@ -75,8 +75,9 @@ class Level:
 
 
 def formal_order(refine, scheme):
-    """The formal order of the ladder: the scheme's in time, 2 in space, the smaller of the
-    two when both are refined together."""
+    """The formal order of the ladder: the scheme's in time, 2 in space, the smaller of the two
+    when both are refined together (the one that dominates as the steps shrink: before that,
+    observed orders between the two are seen, and flagged not_asymptotic)."""
     pt = SCHEME_ORDER.get(scheme)
     if pt is None:
         raise ValueError(f"unknown time scheme '{scheme}'")
@@ -84,8 +85,31 @@ def formal_order(refine, scheme):
 
 
 def steps(levels, refine):
-    """The refinement parameter of each level: h for space, dt for time and both."""
-    return [lv.h if refine == "space" else lv.dt for lv in levels]
+    """The refinement parameter of each level: h for space, dt for time, sqrt(h dt) for both
+    (its ratio is R when both are refined by R, and stays > 1 when only one of them is)."""
+    if refine == "space":
+        return [lv.h for lv in levels]
+    if refine == "time":
+        return [lv.dt for lv in levels]
+    return [math.sqrt(lv.h * lv.dt) for lv in levels]
+
+
+def inconsistencies(levels, refine):
+    """What makes the ladder other than the --refine it claims: a list of sentences (empty
+    when consistent). Ratios are compared within 2 % (n_elements * R^k is rounded)."""
+    out = []
+    for k in range(1, len(levels)):
+        a, b = levels[k - 1], levels[k]
+        rh, rt = a.h / b.h, a.dt / b.dt
+        if refine == "space" and abs(rt - 1) > 1e-9:
+            out.append(f"level {k} has another dt ({b.dt:g}, level {k - 1}: {a.dt:g}) in a space ladder")
+        if refine == "time" and abs(rh - 1) > 1e-9:
+            out.append(f"level {k} has another mesh (h = {b.h:g}, level {k - 1}: {a.h:g}) in a time ladder")
+        if refine == "both" and abs(rh / rt - 1) > 0.02:
+            out.append(f"level {k} refines h by {rh:.4g} but dt by {rt:.4g}")
+        if levels[k].scheme != levels[0].scheme:
+            out.append(f"level {k} uses the scheme '{levels[k].scheme}', level 0 '{levels[0].scheme}'")
+    return out
 
 
 def match_time(ts, t):
@@ -98,7 +122,14 @@ def study(levels, refine, warn=print):
     """The rows of converge.csv (dicts with COLUMNS) and, for the figure, the per-level values
     of each scalar: (rows, series {quantity: [value per level]}, hs)."""
     hs = steps(levels, refine)
+    for k in range(1, len(hs)):
+        if not hs[k] < hs[k - 1] * (1 - 1e-9):
+            raise ValueError(f"level {k} is not finer than level {k - 1} ({refine}: "
+                             f"{hs[k]:g} against {hs[k - 1]:g}): nothing to extrapolate")
     p_formal = formal_order(refine, levels[-1].scheme)
+    bad = inconsistencies(levels, refine)
+    for sentence in bad:
+        warn(f"converge: inconsistent ladder: {sentence}; no row is reported as asymptotic")
     scal = [lv.scalars() for lv in levels]
     names = list(scal[-1].keys())
     for lv_q in scal[:-1]:
@@ -113,7 +144,7 @@ def study(levels, refine, warn=print):
             continue
         phis = [q[name] for q in scal]
         values[name] = phis
-        rows.append({"quantity": name, **converge_gci.scalar(phis, hs, p_formal)})
+        rows.append({"quantity": name, **converge_gci.scalar(phis, hs, p_formal, not bad)})
     coarse = levels[0]
     for k0, t in enumerate(coarse.ts):
         ks = [match_time(lv.ts, t) for lv in levels]
@@ -121,7 +152,7 @@ def study(levels, refine, warn=print):
             continue
         for field in coarse.fields:
             fs = [lv.snapshot_on(field, k, coarse.x) for lv, k in zip(levels, ks)]
-            row = converge_gci.field(fs, hs, coarse.x, p_formal)
+            row = converge_gci.field(fs, hs, coarse.x, p_formal, not bad)
             rows.append({"quantity": f"error_{field}@{t:.10g}", **row})
     return rows, values, hs, p_formal
 
@@ -169,7 +200,7 @@ def draw(path, rows, values, hs, refine, p_formal):
     nrow = (n + ncol - 1) // ncol
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.3 * nrow), squeeze=False)
     axes = axes.ravel()
-    label = "h" if refine == "space" else ("dt" if refine == "time" else "dt (h refined with it)")
+    label = {"space": "h", "time": "dt", "both": "sqrt(h dt)"}[refine]
     for ax, name in zip(axes, names):
         r = byname[name]
         ax.semilogx(hs, values[name], "o-", color="C0", label="levels")
@@ -195,7 +226,7 @@ def draw(path, rows, values, hs, refine, p_formal):
         if t:
             ax.semilogy(t, g, ".-", ms=3, lw=1, label=field)
     ax.set_xlabel("t")
-    ax.set_title(f"fields: GCI band on ||f_fine - f|| / ||f_fine|| (formal order {p_formal})", fontsize=9)
+    ax.set_title(f"fields: band on ||f_fine - f|| / ||f_fine|| (formal order {p_formal:g})", fontsize=9)
     ax.legend(fontsize=7, ncol=2)
     ax.tick_params(labelsize=8)
     for ax in axes[n:]:

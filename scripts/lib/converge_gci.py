@@ -13,13 +13,14 @@ ASME V&V 20-2009).
 
 The verdict (status), from the three finest levels:
   asymptotic      0 < eps21/eps32 < 1 and the observed order within ORDER_WINDOW (relative)
-                  of the scheme's formal order: Fs = 1.25 with the observed order (Celik)
+                  of the scheme's formal order (refining time and space together: of the
+                  range between the two orders): Fs = 1.25 with the observed order (Celik)
   not_asymptotic  monotone convergence at an order far from the formal one, or only two
                   levels (no order can be observed): Fs = 3 (Roache's fall-back)
   oscillatory     eps21/eps32 < 0 (the differences change sign), and |eps21| < |eps32|: Fs = 3
   diverging       |eps21| >= |eps32|: the differences do not shrink; no extrapolate, no band
 In the Fs = 3 cases the order used is p_used = min(max(P_MIN, p), p_formal) (never more
-than the formal order, never below P_MIN), applied to the larger of |eps21| and
+than the formal order, the lower one of a range, never below P_MIN), applied to the larger of |eps21| and
 |eps32| / r32^p_used (the next difference scaled to the finest level), so that a ladder whose
 two finest levels agree by accident still gets a band.
 
@@ -61,31 +62,41 @@ def observed_order(e21, e32, r21, r32, s=None, iterations=200, tol=1e-12):
     return p
 
 
-def verdict(e21, e32, s, r21, r32, p_formal, scale):
+def formal_range(p_formal):
+    """(lo, hi) of a formal order given as a number or as a pair: refining time and space
+    together, the error C_t dt^pt + C_h h^ps converges at an order between pt and ps."""
+    if isinstance(p_formal, (tuple, list)):
+        return float(min(p_formal)), float(max(p_formal))
+    return float(p_formal), float(p_formal)
+
+
+def verdict(e21, e32, s, r21, r32, p_formal, scale, trusted=True):
     """(status, p_observed, p_used, fs, delta) for the magnitudes |eps21| = e21, |eps32| = e32
     (None for two levels) and the sign s of eps32/eps21; delta is the difference the band is
-    built on (see the module's docstring); scale: |phi| for the round-off test."""
+    built on (see the module's docstring); scale: |phi| for the round-off test. trusted =
+    False (an inconsistent ladder): never asymptotic."""
     tiny = ROUNDOFF * scale
     if e32 is None:                                   # two levels: formal order, Fs = 3
-        return "not_asymptotic", math.nan, p_formal, FS_TWO, e21
+        return "not_asymptotic", math.nan, formal_range(p_formal)[0], FS_TWO, e21
     if e21 <= tiny and e32 <= tiny:                   # identical to round-off
-        return "asymptotic", math.nan, p_formal, FS_THREE, e21
+        return ("asymptotic" if trusted else "not_asymptotic"), math.nan, formal_range(p_formal)[0], FS_THREE, e21
     if e21 <= tiny:                                   # the two finest agree, the next do not
         p = math.inf
     else:
         p = observed_order(e21, e32, r21, r32, s)
     if e21 >= e32 or p <= 0:
         return "diverging", p, math.nan, math.nan, e21
-    p_used = min(max(P_MIN, p), p_formal)
+    lo, hi = formal_range(p_formal)
+    p_used = min(max(P_MIN, p), lo)
     delta = max(e21, e32 / r32 ** p_used)
     if s < 0:
         return "oscillatory", p, p_used, FS_TWO, delta
-    if abs(p - p_formal) <= ORDER_WINDOW * p_formal:
+    if trusted and lo * (1 - ORDER_WINDOW) <= p <= hi * (1 + ORDER_WINDOW):
         return "asymptotic", p, p, FS_THREE, e21
     return "not_asymptotic", p, p_used, FS_TWO, delta
 
 
-def scalar(phis, hs, p_formal):
+def scalar(phis, hs, p_formal, trusted=True):
     """The study of one scalar: phis[k], hs[k] for the levels, finest LAST (any number >= 2).
     Returns dict fine, extrapolated, observed_order, gci_abs, gci_rel, status (the three
     finest levels decide)."""
@@ -100,7 +111,7 @@ def scalar(phis, hs, p_formal):
     else:
         r32, e32, s = r21, None, 1.0
     scale = max(abs(phi1), abs(phi2))
-    status, p, p_used, fs, delta = verdict(e21, e32, s, r21, r32, p_formal, scale)
+    status, p, p_used, fs, delta = verdict(e21, e32, s, r21, r32, p_formal, scale, trusted)
     return finish(phi1, phi2, r21, status, p, p_used, fs, delta, abs(phi1))
 
 
@@ -130,7 +141,7 @@ def l2(values, x):
     return math.sqrt(float(np.sum(w * values * values)))
 
 
-def field(fs, hs, x, p_formal):
+def field(fs, hs, x, p_formal, trusted=True):
     """The study of one field at one time: fs[k] the nodal values of level k on the common
     grid x, finest LAST. Row: fine = ||f1||, extrapolated = ||f_ext|| (the Richardson field),
     observed_order from ||eps32|| / ||eps21||, gci_abs the band on ||f1 - f||, gci_rel =
@@ -148,7 +159,8 @@ def field(fs, hs, x, p_formal):
         s = math.copysign(1.0, inner) if e21 > 0 and e32 > 0 else 1.0
     else:
         r32, e32, s = r21, None, 1.0
-    status, p, p_used, fsafe, delta = verdict(e21, e32, s, r21, r32, p_formal, max(norm1, l2(f2, x)))
+    status, p, p_used, fsafe, delta = verdict(e21, e32, s, r21, r32, p_formal, max(norm1, l2(f2, x)),
+                                              trusted)
     row = finish(norm1, math.nan, r21, status, p, p_used, fsafe, delta, norm1)
     if math.isfinite(p_used) and status != "diverging":
         rp = r21 ** p_used

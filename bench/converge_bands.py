@@ -142,7 +142,8 @@ def main_compare(a):
           f"{100 * within:.0f} % inside and band <= 10 x true, median band/true {med:.2f}")
     if a.csv:
         with open(a.csv, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=["case", "quantity", "status", "band", "true", "inside", "ratio"])
+            w = csv.DictWriter(f, fieldnames=["case", "quantity", "status", "band", "true", "inside", "ratio"],
+                               lineterminator="\n")
             w.writeheader()
             w.writerows(rows)
     return 0

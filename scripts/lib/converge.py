@@ -159,7 +159,7 @@ def study(levels, refine, warn=print):
 
 def write_csv(path, rows):
     with open(path, "w", newline="") as out:
-        w = csv.writer(out)
+        w = csv.writer(out, lineterminator="\n")
         w.writerow(COLUMNS)
         for r in rows:
             w.writerow([r["quantity"]] + [f"{r[c]:.10g}" for c in COLUMNS[1:-1]] + [r["status"]])

@@ -2,7 +2,7 @@
 behind docs/verification.md's table (bench/converge_bands.sh) and tests/test_converge.sh.
 
     <python with h5py, scipy> bench/converge_bands.py compare DIR [--truth RUN.h5] [--exact]
-                              [--csv OUT.csv] [--case NAME]
+                              [--csv OUT.csv] [--case NAME] [--modes K]
         DIR is a converge.sh output directory (converge.csv, level_<k>/point_0000.h5). Each
         row of converge.csv gets its true error: |fine - truth| for a scalar, and for a field
         ||f_fine - f|| / ||f_fine|| on the coarsest level's grid (as converge.sh measures it),
@@ -53,7 +53,7 @@ def levels_of(directory):
     return files
 
 
-def truths(directory, truth=None, exact=False):
+def truths(directory, truth=None, exact=False, modes=2**18):
     """{quantity: (true value or None, true error)} for the rows of DIR/converge.csv."""
     files = levels_of(directory)
     coarse, fine = converge.Level(files[0]), converge.Level(files[-1])
@@ -66,7 +66,7 @@ def truths(directory, truth=None, exact=False):
     t_contact = math.inf
     if exact:
         import exact_linear
-        ex = exact_linear.ExactLinear.from_attrs(fine.attrs)
+        ex = exact_linear.ExactLinear.from_attrs(fine.attrs, modes)
         on = np.nonzero(fine.pen > 0)[0]
         with rodrun.open_run(files[-1]) as f:
             t_series = f["series/t"][:]
@@ -96,10 +96,10 @@ def truths(directory, truth=None, exact=False):
     return out
 
 
-def compare(directory, truth=None, exact=False, case=""):
+def compare(directory, truth=None, exact=False, case="", modes=2**18):
     """Rows (case, quantity, status, band, true, inside, ratio) for every row of converge.csv
     with a truth."""
-    known = truths(directory, truth, exact)
+    known = truths(directory, truth, exact, modes)
     result = []
     for r in read_rows(os.path.join(directory, "converge.csv")):
         q = r["quantity"]
@@ -133,7 +133,7 @@ def summary(rows):
 
 
 def main_compare(a):
-    rows = compare(a.dir, a.truth, a.exact, a.case)
+    rows = compare(a.dir, a.truth, a.exact, a.case, a.modes)
     for r in rows:
         print(f"{r['quantity']:<24} {r['status']:<15} band {r['band']:.3e} true {r['true']:.3e} "
               f"{'inside' if r['inside'] else 'OUTSIDE'} ratio {r['ratio']:.2f}")
@@ -190,6 +190,8 @@ def main(argv):
     c.add_argument("--exact", action="store_true")
     c.add_argument("--csv")
     c.add_argument("--case", default="")
+    c.add_argument("--modes", type=int, default=2**18,
+                   help="modes of the exact solution (default 2^18; smooth initial data need far fewer)")
     r = sub.add_parser("report")
     r.add_argument("csvs", nargs="+")
     r.add_argument("--md")

@@ -98,9 +98,9 @@ stem=$(basename "$input")
 
 # ---------------------------------------------------------------- the --set values
 # converge.sh sets these itself at every level but 0 (where the user's values stand)
-owned="output.series_every output.snapshot_every output.snapshot_dt"
+owned="output.series_every"
 [[ $refine != time ]] && owned+=" mesh.n_elements"
-[[ $refine != space ]] && owned+=" time.dt"
+[[ $refine != space ]] && owned+=" time.dt output.snapshot_every output.snapshot_dt"
 for s in "${user_sets[@]}"; do
     [[ $s == *=* ]] || die "--set '$s': expected group.variable=value"
     target=${s%%=*}
@@ -150,7 +150,7 @@ level_args() {
     ARGS+=(--set output.series_every=1)
     [[ $refine != time ]] && ARGS+=(--set "mesh.n_elements=$(awk -v n="$n0" -v r="$ratio" -v k="$k" 'BEGIN { printf "%d", n * r^k + 0.5 }')")
     if [[ $refine != space ]]; then
-        ARGS+=(--set "time.dt=$(awk -v d="$dt0" -v r="$ratio" -v k="$k" 'BEGIN { printf "%.15g", d / r^k }')")
+        ARGS+=(--set "time.dt=$(awk -v d="$dt0" -v r="$ratio" -v k="$k" 'BEGIN { printf "%.17g", d / r^k }')")
         if awk -v s="$snap_dt0" 'BEGIN { exit !(s > 0) }'; then
             ARGS+=(--set "output.snapshot_dt=$snap_dt0")
         else
@@ -159,7 +159,7 @@ level_args() {
             if [[ -n $m ]]; then
                 ARGS+=(--set "output.snapshot_every=$m")
             else
-                ARGS+=(--set "output.snapshot_dt=$(awk -v d="$dt0" -v e="$snap_every0" 'BEGIN { printf "%.15g", d * e }')")
+                ARGS+=(--set "output.snapshot_dt=$(awk -v d="$dt0" -v e="$snap_every0" 'BEGIN { printf "%.17g", d * e }')")
             fi
         fi
     fi

@@ -34,7 +34,9 @@ case_args=("$src/input/exp1.nml" --set mesh.n_elements=40 --set time.dt=1e-3 --s
 
 # --- the exact case
 bash "$conv" "${case_args[@]}" --out exact -j 2 > exact.out 2> exact.err
-check "converge.sh runs (exit 0): $(tail -n 3 exact.err)" equals 0 "$?"
+rc=$?
+check "converge.sh runs (exit 0)" equals 0 "$rc"
+((rc == 0)) || tail -n 5 exact.err
 check "converge.csv has the columns of the issue" equals \
     "quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status" "$(head -n 1 exact/converge.csv)"
 check "the scalar rows are there" grep -q '^energy_end,' exact/converge.csv
@@ -44,7 +46,9 @@ check "the level files: n = 40, 80, 160" equals "40 80 160" \
 check "the level files: dt = 1e-3 / 2^k" equals "0.001 0.0005 0.00025" \
     "$(for k in 0 1 2; do "$PY" "$src/scripts/lib/rodrun.py" attr exact/level_$k/point_0000.h5 time.dt; done | xargs)"
 check "the figure is written" test -s exact/converge.png
-"$PY" "$src/bench/converge_bands.py" compare exact --exact --csv bands.csv > bands.out 2> bands.err
+# 4096 modes: experiment 1's initial data are polynomials (the errors agree with 2^18 modes'
+# within 0.4 %, at a tenth of the time)
+"$PY" "$src/bench/converge_bands.py" compare exact --exact --modes 4096 --csv bands.csv > bands.out 2> bands.err
 check "converge_bands.py compare (exit 0): $(cat bands.err)" equals 0 "$?"
 read -r n inside within u_out <<< "$("$PY" -c '
 import csv, sys

@@ -132,13 +132,18 @@ def finish(phi1, phi2, r21, status, p, p_used, fs, delta, norm1):
             "gci_rel": rel, "status": status}
 
 
-def l2(values, x):
-    """The L2 norm over the rod of nodal values on the grid x (trapezoidal rule)."""
-    w = np.empty_like(x)
+def weights(x):
+    """The trapezoidal-rule weights of the grid x: integral of f = sum(weights * f)."""
+    w = np.empty_like(x, dtype=float)
     dx = np.diff(x)
     w[0], w[-1] = dx[0] / 2, dx[-1] / 2
     w[1:-1] = (dx[:-1] + dx[1:]) / 2
-    return math.sqrt(float(np.sum(w * values * values)))
+    return w
+
+
+def l2(values, x):
+    """The L2 norm over the rod of nodal values on the grid x (trapezoidal rule)."""
+    return math.sqrt(float(np.sum(weights(x) * values * values)))
 
 
 def field(fs, hs, x, p_formal, trusted=True):
@@ -155,7 +160,7 @@ def field(fs, hs, x, p_formal, trusted=True):
         d32 = np.asarray(fs[-3], float) - f2
         e32 = l2(d32, x)
         r32 = hs[-3] / hs[-2]
-        inner = float(np.trapz(d32 * d21, x))
+        inner = float(np.sum(weights(x) * d32 * d21))
         s = math.copysign(1.0, inner) if e21 > 0 and e32 > 0 else 1.0
     else:
         r32, e32, s = r21, None, 1.0

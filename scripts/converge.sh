@@ -28,7 +28,8 @@
 # point_0000.h5); a rerun of the same command reuses the levels that are complete.
 # Writes DIR/converge.csv (quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status)
 # and DIR/converge.png, and prints the table (scalars, and each field's largest band).
-# Exit status: 0 done; 1 a level failed (see DIR/level_<k>/); 2 bad usage or input.
+# Exit status: 0 done; 1 a level failed (see DIR/level_<k>/); 2 bad usage or input; 130/143
+# interrupted by INT/TERM (the running levels are stopped; rerun the same command to resume).
 
 set -uo pipefail
 
@@ -165,11 +166,12 @@ level_args() {
     fi
 }
 
-# run_level K: the one-point scan of level K in DIR/level_K (its log: DIR/level_K.log)
+# run_level K: the one-point scan of level K in DIR/level_K (its log: DIR/level_K.log); in a
+# background subshell the scan replaces it (exec), so that the signal trap below reaches it
 run_level() {
     local k=$1
     level_args "$k"
-    bash "$repo_root/scripts/scan.sh" "$input" "${ARGS[@]}" --out "$out/level_$k" -j 1 --exe "$exe" \
+    exec bash "$repo_root/scripts/scan.sh" "$input" "${ARGS[@]}" --out "$out/level_$k" -j 1 --exe "$exe" \
         > "$out/level_$k.log" 2>&1
 }
 
@@ -177,8 +179,23 @@ mkdir -p "$out" || die "cannot create '$out'"
 file0=$out/level_0/point_0000.h5
 
 # ---------------------------------------------------------------- level 0, the input itself
+pids=()
+on_signal() {
+    local sig=$1
+    trap '' INT TERM
+    for pid in "${pids[@]}"; do
+        kill -TERM "$pid" 2> /dev/null
+    done
+    wait
+    echo "converge: interrupted (signal $sig); rerun the same command to resume (complete levels are kept)" >&2
+    exit $((sig == 2 ? 130 : 143))
+}
+trap 'on_signal 2' INT
+trap 'on_signal 15' TERM
 echo "converge: level 0 (the input) in $out/level_0/" >&2
-run_level 0
+run_level 0 &
+pids=($!)
+wait "${pids[0]}"
 rc=$?
 if ((rc != 0)); then
     echo "converge: level 0 failed (exit $rc):" >&2
@@ -195,17 +212,6 @@ n0=$(attr mesh.n_elements) && dt0=$(attr time.dt) && snap_every0=$(attr output.s
 
 # ---------------------------------------------------------------- the finer levels, finest first
 echo "converge: levels 1..$((levels - 1)) ($refine refined by $ratio each) with -j $jobs: logs in $out/level_<k>.log" >&2
-pids=()
-on_signal() {
-    trap '' INT TERM
-    for pid in "${pids[@]}"; do
-        kill -TERM "$pid" 2> /dev/null
-    done
-    wait
-    echo "converge: interrupted; rerun the same command to resume (complete levels are kept)" >&2
-    exit 130
-}
-trap on_signal INT TERM
 running=0
 for ((k = levels - 1; k >= 1; k--)); do
     if ((running >= jobs)); then

@@ -98,7 +98,8 @@ stem=$(basename "$input")
 [[ -n $out ]] || out=out/converge_${stem%.*}
 
 # ---------------------------------------------------------------- the --set values
-# converge.sh sets these itself at every level but 0 (where the user's values stand)
+# converge.sh sets these itself at every level but 0 (where the user's values stand);
+# output.series_every = 1 at every level
 owned="output.series_every"
 [[ $refine != time ]] && owned+=" mesh.n_elements"
 [[ $refine != space ]] && owned+=" time.dt output.snapshot_every output.snapshot_dt"
@@ -141,14 +142,14 @@ level_args() {
     ARGS=()
     for s in "${user_sets[@]}"; do
         target=${s%%=*}
+        target=${target,,}
         keep=1
-        if ((k > 0)) && [[ " $owned " == *" ${target,,} "* ]]; then
-            keep=0
-        fi
+        [[ $target == output.series_every ]] && keep=0
+        ((k > 0)) && [[ " $owned " == *" $target "* ]] && keep=0
         ((keep)) && ARGS+=(--set "$(scan_axis "$s")")
     done
-    ((k == 0)) && { ARGS+=(--set output.series_every=1); return; }
     ARGS+=(--set output.series_every=1)
+    ((k == 0)) && return
     [[ $refine != time ]] && ARGS+=(--set "mesh.n_elements=$(awk -v n="$n0" -v r="$ratio" -v k="$k" 'BEGIN { printf "%d", n * r^k + 0.5 }')")
     if [[ $refine != space ]]; then
         ARGS+=(--set "time.dt=$(awk -v d="$dt0" -v r="$ratio" -v k="$k" 'BEGIN { printf "%.17g", d / r^k }')")

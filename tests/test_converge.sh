@@ -40,7 +40,7 @@ check "converge.sh runs (exit 0)" equals 0 "$rc"
 check "converge.csv has the columns of the issue" equals \
     "quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status" "$(head -n 1 exact/converge.csv)"
 check "the scalar rows are there" grep -q '^energy_end,' exact/converge.csv
-check "a field row per snapshot and field (6 fields x 6 snapshots)" equals 36 "$(grep -c '^error_' exact/converge.csv)"
+check "a field row per snapshot and field (7 fields with sigma x 6 snapshots)" equals 42 "$(grep -c '^error_' exact/converge.csv)"
 check "the level files: n = 40, 80, 160" equals "40 80 160" \
     "$(for k in 0 1 2; do "$PY" "$src/scripts/lib/rodrun.py" attr exact/level_$k/point_0000.h5 mesh.n_elements; done | xargs)"
 check "the level files: dt = 1e-3 / 2^k" equals "0.001 0.0005 0.00025" \
@@ -57,7 +57,7 @@ inside = [r for r in rows if r["inside"] == "True"]
 within = [r for r in inside if float(r["ratio"]) <= 10]
 u_out = [r["quantity"] for r in rows if r["quantity"].startswith("error_u@") and r["inside"] != "True"]
 print(len(rows), len(inside), len(within), len(u_out))')"
-check "30 field rows compared with the exact solution (t > 0)" equals 30 "$n"
+check "35 field rows compared with the exact solution (t > 0)" equals 35 "$n"
 check "the exact error inside the band for >= 90 % of the rows ($inside of $n)" test "$((10 * inside))" -ge "$((9 * n))"
 check "the band <= 10 x the exact error where it holds it ($within of $inside)" equals "$inside" "$within"
 check "the exact error of u inside the band at every snapshot" equals 0 "$u_out"

@@ -79,11 +79,16 @@ module output_m
         integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
         integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
+        integer(hsize_t) :: n_estimate_snap = 0    !< snapshots in /snapshots/error_estimate* (output_estimate_s)
+        integer(hid_t) :: estimate_ids(N_OUTPUT_FIELDS, 3) = -1   !< its datasets, open until finish()
+        integer :: n_estimate_buf = 0              !< estimates waiting in estimate_buf
+        real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
         procedure :: append_snapshot => writer_append_snapshot
         procedure :: append_native => writer_append_native
+        procedure :: append_estimate => writer_append_estimate
         procedure :: attr_real => writer_attr_real
         procedure :: attr_int => writer_attr_int
         procedure :: attr_str => writer_attr_str
@@ -142,7 +147,21 @@ module output_m
             real(dp), intent(in) :: values(:, :)
         end subroutine writer_append_native
 
-        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
+        module subroutine writer_append_estimate(w, values)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: values(:, :)
+        end subroutine writer_append_estimate
+
+        module subroutine writer_close_estimate(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_close_estimate
+
+        module subroutine writer_flush_estimate(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_flush_estimate
+
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
+                                                   companion_levels, companion_scalars)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
@@ -152,6 +171,7 @@ module output_m
             real(dp), intent(in), optional :: history(:, :)
             real(dp), intent(in), optional :: events(:, :)
             real(dp), intent(in), optional :: mesh(:)
+            real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
         end subroutine writer_write_checkpoint
 
         module subroutine writer_drop(w, name)
@@ -316,6 +336,7 @@ contains
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
         call w%flush_series()
+        call writer_flush_estimate(w)
         call w%reserve()
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
@@ -377,6 +398,7 @@ contains
             call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
             w%snap_field_ids(k) = -1
         end do
+        call writer_close_estimate(w)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
         w%file_id = -1
@@ -408,6 +430,8 @@ contains
         w%mesh_x_id = -1
         w%snap_t_id = -1
         w%snap_field_ids = -1
+        w%estimate_ids = -1
+        w%n_estimate_buf = 0
         w%n_buf = 0
         if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)

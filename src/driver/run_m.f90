@@ -87,7 +87,7 @@ contains
         if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
         call run%monitor%init(cfg%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
-        if (cfg%output%error_estimate) call run%companions%init(cfg)
+        if (cfg%output%error_estimate) call run%companions%init(cfg, run%state)
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
             call run%state%restore_checkpoint(ckpt)

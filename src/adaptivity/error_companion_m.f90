@@ -250,19 +250,19 @@ contains
         width = 1 + N_FIELDS
         if (allocated(ckpt%companion_levels)) deallocate (ckpt%companion_levels)
         if (allocated(ckpt%companion_scalars)) deallocate (ckpt%companion_scalars)
-        allocate (ckpt%companion_levels(0:self%pair(1)%state%s, 2 * width * N_COMPANIONS), &
+        allocate (ckpt%companion_levels(self%pair(1)%state%s + 1, 2 * width * N_COMPANIONS), &
                   ckpt%companion_scalars(N_COMPANION_SCALARS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the checkpoint of the error estimate')
         ckpt%companion_levels = 0.0_dp
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j), st => self%pair(j)%state)
                 col = (j - 1) * 2 * width
-                n = st%s
-                ckpt%companion_levels(0:n, col + 1) = st%u
-                ckpt%companion_levels(0:n, col + 2:col + width) = st%w
+                n = st%s + 1
+                ckpt%companion_levels(1:n, col + 1) = st%u
+                ckpt%companion_levels(1:n, col + 2:col + width) = st%w
                 if (allocated(st%u_prev)) then
-                    ckpt%companion_levels(0:n, col + width + 1) = st%u_prev
-                    ckpt%companion_levels(0:n, col + width + 2:col + 2 * width) = st%w_prev
+                    ckpt%companion_levels(1:n, col + width + 1) = st%u_prev
+                    ckpt%companion_levels(1:n, col + width + 2:col + 2 * width) = st%w_prev
                 end if
                 ckpt%companion_scalars((j - 1) * SCALARS_PER_COMPANION + 1:j * SCALARS_PER_COMPANION) = &
                     [real(st%step, dp), st%t, st%dt_last, st%t_anchor, real(st%step_anchor, dp), &
@@ -286,16 +286,16 @@ contains
             associate (c => self%pair(j), st => self%pair(j)%state)
                 col = (j - 1) * 2 * width
                 scalars = ckpt%companion_scalars((j - 1) * SCALARS_PER_COMPANION + 1:j * SCALARS_PER_COMPANION)
-                n = st%s
-                st%u = ckpt%companion_levels(0:n, col + 1)
-                st%w = ckpt%companion_levels(0:n, col + 2:col + width)
+                n = st%s + 1
+                st%u = ckpt%companion_levels(1:n, col + 1)
+                st%w = ckpt%companion_levels(1:n, col + 2:col + width)
                 if (scalars(9) > 0.0_dp) then
                     if (.not. allocated(st%u_prev)) then
-                        allocate (st%u_prev(0:n), st%w_prev(0:n, N_FIELDS), stat=stat, errmsg=message)
+                        allocate (st%u_prev(0:n - 1), st%w_prev(0:n - 1, N_FIELDS), stat=stat, errmsg=message)
                         call check_allocation(stat, message, 'the error estimate''s previous level')
                     end if
-                    st%u_prev = ckpt%companion_levels(0:n, col + width + 1)
-                    st%w_prev = ckpt%companion_levels(0:n, col + width + 2:col + 2 * width)
+                    st%u_prev = ckpt%companion_levels(1:n, col + width + 1)
+                    st%w_prev = ckpt%companion_levels(1:n, col + width + 2:col + 2 * width)
                 end if
                 st%step = nint(scalars(1))
                 st%t = scalars(2)

@@ -6,7 +6,7 @@
 #     no step-control attributes, adaptive ones carry step_control_error_sum*;
 #  2. with it: /snapshots/error_estimate{,_time,_space}/<field>, one finite value per
 #     snapshot with long_name and units, the root attributes error_estimate.<field> etc. =
-#     the last snapshot's values;
+#     the last snapshot's values; --summary's columns error_<field> hold them;
 #  3. refused (exit 2, named): an adaptive mesh, a number of elements that is not a
 #     multiple of 4; a restart that switches the option (it changes the checkpoint);
 #  4. restart of a run with estimates (fixed BDF2, adaptive midpoint with snapshot_dt) is bit
@@ -70,6 +70,21 @@ with h5py.File(sys.argv[1], "r") as f:
     print("  error_estimate:", f.attrs["error_estimate"], "; error_estimate.theta:", f.attrs["error_estimate.theta"])
 sys.exit(0 if ok else 1)
 PY
+
+summary_has() {   # the --summary row of on.h5 carries the final estimates; off.h5's are empty (NaN)
+    "$py" - "$("$exe" --summary-header)" "$("$exe" --summary on.h5)" "$("$exe" --summary off.h5)" <<'PY'
+import csv, sys, h5py
+h, on, off = (next(csv.reader([a])) for a in sys.argv[1:4])
+on, off = dict(zip(h, on)), dict(zip(h, off))
+a = h5py.File("on.h5", "r").attrs
+ok = all(abs(float(on[f"error_{k}"]) - a[f"error_estimate.{k}"]) <= 1e-12 * a[f"error_estimate.{k}"]
+         for k in ("u", "v", "theta", "P", "q", "eta"))
+ok &= all(off[f"error_{k}"] in ("", "nan", "NaN") for k in ("u", "theta"))
+print("  on:", {k: on[k] for k in h if k.startswith("error_")}, " off error_u:", repr(off["error_u"]))
+sys.exit(0 if ok else 1)
+PY
+}
+check "2b. --summary has the final estimates (error_<field>), none without the option" summary_has
 
 refuses() {   # refuses <label> <word in the message> <args...>: exit 2, message names output.error_estimate
     local label=$1 word=$2; shift 2

@@ -43,7 +43,8 @@ contains
         type(stepper_t) :: stepper, fine_stepper
         type(step_result_t) :: result
         type(error_companions_t) :: companions
-        real(dp) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS), truth(N_OUTPUT_FIELDS), truth_time(N_OUTPUT_FIELDS), ratio
+        real(dp) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS), ratio
+        real(dp) :: truth(N_OUTPUT_FIELDS), truth_time(N_OUTPUT_FIELDS)
         integer :: n, f, j
         character(len=160) :: label
 

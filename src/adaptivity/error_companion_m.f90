@@ -21,8 +21,9 @@
 !> The relative errors are L2 norms over the rod (trapezoidal rule on the companion's
 !> nodes) over the field's L2 norm on the same nodes. The companions step when the run
 !> has taken their number of steps; at a snapshot between two of their steps a copy of the
-!> companion catches up (one shorter step), the companion itself goes on unchanged. Cost: A a quarter of the run's solves, C a
-!> sixteenth, D a thirty-second. Uniform meshes of a multiple of 4 elements only (validate_m).
+!> companion catches up (one shorter step), the companion itself goes on unchanged.
+!> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
+!> has the measurement). Uniform meshes of a multiple of 4 elements only (validate_m).
 module error_companion_m
     use kinds_m, only: dp
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -215,7 +216,8 @@ contains
         real(dp), intent(in) :: fine, coarse
 
         order = ORDER_MIN
-        if (fine > 0.0_dp .and. coarse > 0.0_dp) order = min(max(log(coarse / fine) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
+        if (fine > 0.0_dp .and. coarse > 0.0_dp) &
+            order = min(max(log(coarse / fine) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
     end function observed_order
 
     !> The L2 norm over the rod of the P1 function with nodal values x on a uniform mesh,
@@ -239,8 +241,8 @@ contains
 
     !> The companions' levels (and the levels before, for a multistep scheme) and scalars
     !> into a checkpoint: companion_levels (s/2+1, (1+N_FIELDS) x 2 per companion: level,
-    !> previous level or zeros; a companion on fewer nodes in the leading rows), companion_scalars (SCALARS_PER_COMPANION per companion, then
-    !> whether they failed).
+    !> previous level or zeros; a companion on fewer nodes in the leading rows),
+    !> companion_scalars (SCALARS_PER_COMPANION per companion, then whether they failed).
     subroutine companions_save_checkpoint(self, ckpt)
         class(error_companions_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt

@@ -58,7 +58,8 @@ contains
         else
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
                                          history=ckpt%history, events=ckpt%events, &
-                                         companion_levels=ckpt%companion_levels, companion_scalars=ckpt%companion_scalars)
+                                         companion_levels=ckpt%companion_levels, &
+                                         companion_scalars=ckpt%companion_scalars)
         end if
     end subroutine write_checkpoint
 

@@ -8,8 +8,8 @@
 !> retried to end just before the crossing, so that the step across a contact event is at
 !> most that long. Steps are shortened to land on the snapshot times (&output snapshot_dt)
 !> and on the end of the run. An accepted step adds its contact event to the event log,
-!> its level to the error estimator, its estimate to the run's time error, and its energy
-!> to the energy monitor.
+!> (adaptive steps) its level to the error estimator and its estimate to the controller's
+!> error sum, and its energy to the energy monitor. Fixed steps compute no estimate.
 module step_driver_m
     use kinds_m, only: dp
     use reals_m, only: equal
@@ -161,11 +161,12 @@ contains
             flipped = contact_now .neqv. self%in_contact
             est = 0.0_dp
             err = -1.0_dp
+            ! fixed steps compute no estimate (the run's error: &output error_estimate)
+            if (.not. self%adaptive) exit
             if (self%estimator%ready() .and. .not. flipped) then
                 est = self%estimator%estimate(self%model, state%u, state%w, dt_try, state%mesh)
                 err = self%control%ratio(est)
             end if
-            if (.not. self%adaptive) exit
             if (flipped .and. dt_try > self%event_tol) then
                 ! retry to end just before the crossing (or, close to it, across it within event_tol)
                 call self%undo_step(stepper, result, state)
@@ -192,15 +193,17 @@ contains
             if (self%adaptive) call self%estimator%reset()
         end if
         self%in_contact = contact_now
-        call self%estimator%push(state%u, state%w, dt_try)
-        if (err >= 0.0_dp) call self%control%add_estimate(est)
-        if (self%adaptive) call self%control%accept(dt_try, err, shortened=lands)
+        if (self%adaptive) then
+            call self%estimator%push(state%u, state%w, dt_try)
+            if (err >= 0.0_dp) call self%control%add_estimate(est)
+            call self%control%accept(dt_try, err, shortened=lands)
+        end if
         call monitor%observe(state, step_changed=.not. equal(dt_try, saved_dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
             failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
             return
         end if
-        call self%control%observe_size(energy_norm(monitor%current_energy()))
+        if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))
     end subroutine driver_take_step
 
     !> The next step: &time dt or the controller's proposal (at most the scheme's step-ratio

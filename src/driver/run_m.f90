@@ -21,7 +21,8 @@ module run_m
     use reals_m, only: is_zero
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, write_checkpoint, copy_history
-    use run_output_m, only: output_grid, write_series, write_snapshot
+    use run_output_m, only: output_grid, write_series, write_snapshot, write_error_estimate
+    use error_companion_m, only: error_companions_t
     use run_attributes_m, only: record_inputs, record_scales, record_results
     use provenance_m, only: record_provenance
     use progress_m, only: progress_t
@@ -41,6 +42,7 @@ module run_m
         type(energy_monitor_t) :: monitor
         type(step_driver_t) :: driver
         type(adaptive_mesh_t) :: mesh          !< &mesh adaptive only
+        type(error_companions_t) :: companions !< &output error_estimate only
         type(h5_writer_t) :: writer
         real(dp), allocatable :: x_out(:)      !< the fixed output grid
         integer :: n_steps = 0                 !< fixed steps: number_of_steps
@@ -88,6 +90,7 @@ contains
         if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
         call run%monitor%init(cfg%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
+        if (cfg%output%error_estimate) call run%companions%init(cfg, run%state)
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
             call run%state%restore_checkpoint(ckpt)
@@ -100,6 +103,7 @@ contains
             call run%monitor%restore_checkpoint(ckpt)
             call run%stepper%restore_checkpoint(ckpt)
             call run%driver%restore_checkpoint(ckpt, run%state, run%stepper)
+            if (cfg%output%error_estimate) call run%companions%restore_checkpoint(ckpt)
         end if
         if (cfg%output%snapshot_dt > 0.0_dp) &
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
@@ -127,7 +131,7 @@ contains
             call run%writer%attr_int('restart_step', run%state%step)
         else
             call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
-            call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
+            call snapshot(run, cfg)
         end if
         call run%writer%flush()
     end subroutine open_output
@@ -158,12 +162,12 @@ contains
                                               at_snapshot, failure)
                 end if
                 if (failure /= '') exit
+                if (cfg%output%error_estimate) call run%companions%follow(state)
                 if (at_snapshot) run%n_snapshot_next = run%n_snapshot_next + 1
                 last = finished(run, cfg)
                 if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
                     call write_series(run%writer, run%stepper, state, run%monitor, run%result)
-                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) &
-                    call write_snapshot(run%writer, state, cfg%model, run%x_out)
+                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) call snapshot(run, cfg)
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
                     call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
@@ -207,12 +211,12 @@ contains
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
             if (mod(run%last_written, cfg%output%series_every) /= 0) &
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
-            if (.not. snapshot_due(cfg, run%last_written, .false.)) &
-                call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
+            if (.not. snapshot_due(cfg, run%last_written, .false.)) call snapshot(run, cfg)
         end if
         call system_clock(clock_now)
         wall = real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp)
-        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, wall, run%n_elements_max)
+        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, run%companions, &
+                            wall, run%n_elements_max)
         if (interrupted /= '') then
             call run%writer%finish('interrupted: '//interrupted, keep_part=.true.)
             call report_end(run, cfg, '.h5.part', 'interrupted: '//interrupted, wall)
@@ -311,8 +315,18 @@ contains
         call run%monitor%save_checkpoint(ckpt)
         call run%driver%save_checkpoint(ckpt)
         if (cfg%mesh%adaptive) call run%mesh%save_checkpoint(ckpt)
+        if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
         call write_checkpoint(run%writer, ckpt, step_failure(run%state%step, run%state%t, ''))
     end subroutine checkpoint
+
+    !> A snapshot of the level in run%state, with its error estimate (&output error_estimate).
+    subroutine snapshot(run, cfg)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+
+        call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
+        if (cfg%output%error_estimate) call write_error_estimate(run%writer, run%companions, run%state)
+    end subroutine snapshot
 
     !> Has the run reached its end? Fixed steps without snapshot_dt: n_steps steps (as
     !> always, t_N = N dt); otherwise t_end (adaptive) or N dt (fixed), to round-off.

@@ -22,7 +22,7 @@ module output_m
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
                       write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
-    use fields_m, only: SNAPSHOTS, N_SNAPSHOT_FIELDS, SERIES, N_SERIES, S_T
+    use fields_m, only: FIELDS, OUTPUT_ORDER, SNAPSHOTS, N_SNAPSHOT_FIELDS, N_OUTPUT_FIELDS, SERIES, N_SERIES, S_T
     use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
     use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
                     h5pset_cache_f, H5F_ACC_TRUNC_F, &
@@ -87,11 +87,16 @@ module output_m
         character(len=24) :: si_names(MAX_SI_SCALES) = ''
         real(dp) :: si_factors(MAX_SI_SCALES) = 0.0_dp
         character(len=16) :: si_units(MAX_SI_SCALES) = ''
+        integer(hsize_t) :: n_estimate_snap = 0    !< snapshots in /snapshots/error_estimate* (output_estimate_s)
+        integer(hid_t) :: estimate_ids(N_OUTPUT_FIELDS, 3) = -1   !< its datasets, open until finish()
+        integer :: n_estimate_buf = 0              !< estimates waiting in estimate_buf
+        real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
         procedure :: append_snapshot => writer_append_snapshot
         procedure :: append_native => writer_append_native
+        procedure :: append_estimate => writer_append_estimate
         procedure :: attr_real => writer_attr_real
         procedure :: attr_int => writer_attr_int
         procedure :: attr_str => writer_attr_str
@@ -153,7 +158,21 @@ module output_m
             real(dp), intent(in) :: values(:, :)
         end subroutine writer_append_native
 
-        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
+        module subroutine writer_append_estimate(w, values)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: values(:, :)
+        end subroutine writer_append_estimate
+
+        module subroutine writer_close_estimate(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_close_estimate
+
+        module subroutine writer_flush_estimate(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_flush_estimate
+
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
+                                                   companion_levels, companion_scalars)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
@@ -163,6 +182,7 @@ module output_m
             real(dp), intent(in), optional :: history(:, :)
             real(dp), intent(in), optional :: events(:, :)
             real(dp), intent(in), optional :: mesh(:)
+            real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
         end subroutine writer_write_checkpoint
 
         module subroutine writer_drop(w, name)
@@ -346,6 +366,7 @@ contains
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
         call w%flush_series()
+        call writer_flush_estimate(w)
         call w%reserve()
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
@@ -407,6 +428,7 @@ contains
             call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(SNAPSHOTS(k)%name))
             w%snap_field_ids(k) = -1
         end do
+        call writer_close_estimate(w)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
         w%file_id = -1
@@ -438,6 +460,8 @@ contains
         w%mesh_x_id = -1
         w%snap_t_id = -1
         w%snap_field_ids = -1
+        w%estimate_ids = -1
+        w%n_estimate_buf = 0
         w%n_buf = 0
         if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)

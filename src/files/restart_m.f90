@@ -23,7 +23,7 @@ module restart_m
     use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
     use reals_m, only: equal
     use checkpoint_m, only: checkpoint_t, N_COUNTERS, COUNTER_STEP, COUNTER_T
-    use fields_m, only: N_FIELDS, FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
+    use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists
@@ -57,7 +57,9 @@ contains
                                          history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt))
         else
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
-                                         history=ckpt%history, events=ckpt%events)
+                                         history=ckpt%history, events=ckpt%events, &
+                                         companion_levels=ckpt%companion_levels, &
+                                         companion_scalars=ckpt%companion_scalars)
         end if
     end subroutine write_checkpoint
 
@@ -128,6 +130,14 @@ contains
             ckpt%max_rise_step_change = values(n + 2)
         end if
         if (dataset_exists(file, slot//'/history')) call read_real_2d(file, slot//'/history', ckpt%history)
+        if (cfg%output%error_estimate) then
+            if (.not. dataset_exists(file, slot//'/companion_scalars')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+                "': its checkpoint has no error-estimate companions")
+            call read_real_2d(file, slot//'/companion_levels', ckpt%companion_levels)
+            call read_real_1d(file, slot//'/companion_scalars', ckpt%companion_scalars)
+            if (size(ckpt%companion_levels, 1) /= s / 2 + 1) &
+                call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/companion_levels has the wrong shape")
+        end if
         if (dataset_exists(file, slot//'/events')) then
             call read_real_2d(file, slot//'/events', ckpt%events)
         else
@@ -289,6 +299,8 @@ contains
             call writer%append_snapshot(snap_t(k), snaps(:, :, k))
         end do
         if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
+        if (dataset_exists(file, '/snapshots/error_estimate/'//trim(FIELDS(OUTPUT_ORDER(1))%name))) &
+            call copy_estimate(writer, file, n)
     end subroutine copy_history
 
     !> Every dataset copy_history copies is in `file` (a file of an older version lacks the
@@ -309,6 +321,33 @@ contains
         if (missing /= '') call fatal(EXIT_INPUT, WHERE, "'"//file//"' has no "//missing//': it was written by '// &
                                       'an older version of rodcontact, whose checkpoints this version cannot continue')
     end subroutine require_history_datasets
+
+    !> The first n snapshots' error estimates (/snapshots/error_estimate*) of `file` into writer.
+    subroutine copy_estimate(writer, file, n)
+        type(h5_writer_t), intent(inout) :: writer
+        character(len=*), intent(in) :: file
+        integer, intent(in) :: n
+        character(len=*), parameter :: GROUPS(3) = [character(len=32) :: '/snapshots/error_estimate', &
+                                                    '/snapshots/error_estimate_time', '/snapshots/error_estimate_space']
+        real(dp), allocatable :: column(:), values(:, :, :)
+        character(len=:), allocatable :: path
+        integer :: j, k, part, stat
+        character(len=256) :: message
+
+        allocate (values(N_OUTPUT_FIELDS, size(GROUPS), n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the copied error estimates')
+        do part = 1, size(GROUPS)
+            do k = 1, N_OUTPUT_FIELDS
+                path = trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
+                call read_real_1d(file, path, column)
+                call require_rows(file, path, size(column), n)
+                values(k, part, :) = column(1:n)
+            end do
+        end do
+        do j = 1, n
+            call writer%append_estimate(values(:, :, j))
+        end do
+    end subroutine copy_estimate
 
     !> The first n snapshots of /snapshots/native (adaptive mesh) of `file` into writer.
     subroutine copy_native(writer, file, n)

@@ -14,9 +14,10 @@ module run_output_m
     use energy_m, only: energy_monitor_t
     use output_m, only: h5_writer_t
     use errors_m, only: check_allocation
+    use error_companion_m, only: error_companions_t, N_ESTIMATE_PARTS
     implicit none
     private
-    public :: output_grid, write_series, write_snapshot
+    public :: output_grid, write_series, write_snapshot, write_error_estimate
 
 contains
 
@@ -91,5 +92,17 @@ contains
         call writer%append_snapshot(state%t, on_grid)
         if (.not. state%mesh%is_uniform()) call writer%append_native(x, values)
     end subroutine write_snapshot
+
+    !> With &output error_estimate: the estimate of the snapshot just written
+    !> (/snapshots/error_estimate*; error_companion_m).
+    subroutine write_error_estimate(writer, companions, state)
+        type(h5_writer_t), intent(inout) :: writer
+        type(error_companions_t), intent(inout) :: companions
+        type(state_t), intent(in) :: state
+        real(dp) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
+
+        call companions%estimate(state, values)
+        call writer%append_estimate(values)
+    end subroutine write_error_estimate
 
 end module run_output_m

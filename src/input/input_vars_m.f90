@@ -89,7 +89,8 @@ contains
         case ('output')
             ! the steps land on the snapshot times (run_m)
             ! n_points: the width of the /snapshots rows a restart copies
-            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points'
+            ! error_estimate: the checkpoint holds the companions or not
+            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points' .or. var%name == 'error_estimate'
         case default
             changes_history = .false.
         end select

@@ -64,7 +64,23 @@ contains
         call validate_solver(cfg%solver)
         call validate_combination(cfg, schemes)
         call validate_output(cfg%output, cfg%mesh%n_elements, n_steps, cfg%time%t_end)
+        call validate_error_estimate(cfg)
     end subroutine validate_config
+
+    !> &output error_estimate: its companion solutions live on every other and every fourth
+    !> node of a uniform mesh.
+    subroutine validate_error_estimate(cfg)
+        type(config_t), intent(in) :: cfg
+
+        if (.not. cfg%output%error_estimate) return
+        if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'output.error_estimate', 'got .true. with mesh.adaptive = ' // &
+            '.true.; the built-in estimate needs a uniform mesh (its companion solutions use every other node): ' // &
+            'set mesh.adaptive = .false., or check convergence with scripts/converge.sh')
+        if (mod(cfg%mesh%n_elements, 4) /= 0 .or. cfg%mesh%n_elements < 8) call fatal(EXIT_INPUT, &
+            'output.error_estimate', 'got .true. with mesh.n_elements = ' // int_str(cfg%mesh%n_elements) // &
+            '; the built-in estimate needs a multiple of 4 elements, at least 8 (its companion solutions ' // &
+            'use every other and every fourth node)')
+    end subroutine validate_error_estimate
 
     ! ---------------------------------------------------------------- one check per group
 

@@ -100,27 +100,45 @@ run_point() {
     rm -f "$stem.h5" "$stem.status" "$stem.out"
     [[ -f $stem.h5.part ]] && mv -f "$stem.h5.part" "$stem.h5.resume"
     [[ -f $stem.h5.resume ]] && resume=(--set "time.restart_from=$stem.h5.resume")
-    # Signals: GNU parallel stops its jobs with SIGUSR1 (--term-seq) sent to this shell and to
-    # the run; Ctrl-C (INT) and Slurm's scancel (TERM) reach every process too. rodcontact
-    # stops cleanly on the first signal of each kind (a second one of the same kind ends it at
-    # once), so this shell passes nothing on: its trap only lets the run (in the foreground)
-    # finish its step, write its checkpoint and exit (5). The run gets the default action of
-    # these signals until it installs its handlers: one that comes earlier ends it at once.
-    trap ':' TERM INT USR1
+    # Signals. The scan stops its runs by sending SIGUSR1 to this shell (its pid in
+    # DIR/.run.<scan>.K, <scan> = SCAN_ID, the scan's host and pid),
+    # Ctrl-C's SIGINT and Slurm's SIGTERM (scancel) come to every process. rodcontact stops
+    # cleanly on the first signal of each kind (a second one of the same kind ends it at once):
+    # this shell passes one SIGUSR1 on, once, whatever came, and waits for the run to finish
+    # its step, write its checkpoint and exit (5). A scan told to stop before this point started
+    # (DIR/.stop.<scan>, checked after the pid file is written) runs nothing.
+    local child="" stop_requested="" forwarded=""
+    local run_file=$dir/.run.${SCAN_ID:-$$}.$k
+    printf '%s\n' "$$" > "$run_file"
+    if [[ -e $dir/.stop.${SCAN_ID:-$$} ]]; then
+        rm -f "$run_file"
+        return 143
+    fi
+    trap 'stop_requested=1; [[ -n $child && -z $forwarded ]] && { forwarded=1; kill -USR1 "$child" 2> /dev/null; }' TERM INT USR1
     while :; do
+        child=""
         "$RODCONTACT" "$dir/input.nml" "$@" "${resume[@]}" --set "output.prefix=$stem" \
-            --set output.quiet=.true. > "$stem.out" 2> "$stem.err" < /dev/null
-        rc=$?
+            --set output.quiet=.true. > "$stem.out" 2> "$stem.err" < /dev/null &
+        child=$!
+        [[ -n $stop_requested && -z $forwarded ]] && { forwarded=1; kill -USR1 "$child" 2> /dev/null; }
+        while :; do
+            wait "$child"
+            rc=$?
+            # a trap interrupted the wait while the run goes on (a zombie still counts)
+            kill -0 "$child" 2> /dev/null || break
+        done
         if ((rc == 2 && ${#resume[@]} > 0)) &&
                 grep -q -F -e 'error in time.restart_from' -e "$stem.h5.resume" "$stem.err"; then
             # no usable checkpoint in the file left behind: run the point from the start
             mv -f "$stem.err" "$stem.resume.err"
             rm -f "$stem.h5.resume"
             resume=()
-            continue
+            [[ -z $stop_requested ]] && continue
+            rc=143   # stopped meanwhile: the point counts as not run
         fi
         break
     done
+    rm -f "$run_file"
     # the file resumed from is superseded by this run's output (a restart copies the history)
     [[ -f $stem.h5 || -f $stem.h5.part ]] && rm -f "$stem.h5.resume" "$stem.resume.err"
     if ((rc > 128)) && [[ ! -f $stem.h5 && ! -f $stem.h5.part ]]; then
@@ -427,7 +445,7 @@ tmp_input=$(mktemp "$out/.input.XXXXXX") || die "cannot write in '$out'"
 tmp_points=$(mktemp "$out/.points.XXXXXX") || die "cannot write in '$out'"
 jobfile=$(mktemp "$out/.jobs.XXXXXX") || die "cannot write in '$out'"
 checks=$(mktemp "$out/.checks.XXXXXX") || die "cannot write in '$out'"
-trap 'rm -f "$tmp_input" "$tmp_points" "$jobfile" "$checks"' EXIT
+trap 'rm -f "$tmp_input" "$tmp_points" "$jobfile" "$checks" "$out/.stop.${SCAN_ID:-}"' EXIT
 # mktemp makes its files 0600: the scan's files get the mode of the umask, as any new file
 file_mode=$(printf '%o' $((0666 & ~$(umask))))
 chmod "$file_mode" "$tmp_input" "$tmp_points" || die "cannot change the mode of the files in '$out'"
@@ -593,10 +611,22 @@ done > "$jobfile"
 # parallel sends TERM to its jobs and waits for them) and exits 130/143
 parallel_pid=""
 on_interrupt() {
-    local sig=$1
+    local sig=$1 run_file pid
     trap '' INT TERM
     [[ -n $parallel_pid ]] || parallel_pid=$(jobs -p)
-    [[ -n $parallel_pid ]] && kill -TERM $parallel_pid 2> /dev/null
+    if [[ $what == "running the points" ]]; then
+        # No new point starts (the stop file, and SIGHUP: GNU parallel starts no more jobs and
+        # waits for the running ones); each running point's shell gets SIGUSR1 and passes it to
+        # its run, which finishes its step, writes its checkpoint and exits. Then GNU parallel
+        # exits, and this scan after it: no run is left behind.
+        : > "$out/.stop.$SCAN_ID"
+        [[ -n $parallel_pid ]] && kill -HUP $parallel_pid 2> /dev/null
+        for run_file in "$out/.run.$SCAN_ID".*; do
+            [[ -f $run_file ]] && read -r pid < "$run_file" && kill -USR1 "$pid" 2> /dev/null
+        done
+    else
+        [[ -n $parallel_pid ]] && kill -TERM $parallel_pid 2> /dev/null
+    fi
     wait 2> /dev/null
     echo "scan: interrupted (signal $sig) while $what; every point that ended is recorded, the runs stopped wrote their checkpoints (point_K.h5.part); rerun the same command to resume" >&2
     exit $((sig == 2 ? 130 : 143))
@@ -733,13 +763,16 @@ else
     echo "scan: $n_points points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
 fi
 start=$SECONDS
-# --term-seq: when the scan is stopped (it passes SIGTERM to GNU parallel), GNU parallel sends
-# SIGUSR1 to every process of each running point, then waits up to 10 minutes for the run to
-# finish its step, write its checkpoint and exit (5), before SIGKILL (its default sequence,
-# TERM,200,TERM,...: a second SIGTERM 200 ms after the first ended rodcontact at once, before
-# its checkpoint, and GNU parallel, hence scan.sh, exited while runs were still writing)
+# --term-seq: when GNU parallel itself gets SIGTERM or SIGINT (scancel, Ctrl-C: every process
+# gets it) it sends SIGCONT, which changes nothing, to the processes of each running point and
+# waits up to 10 minutes for them to end (the points stop on the signal they got themselves,
+# see run_point), before SIGKILL. Its default sequence TERM,200,TERM,... sent rodcontact a
+# second SIGTERM that ended it before its checkpoint, and exited while runs were still going.
+SCAN_ID="$(hostname 2> /dev/null || echo host).$$"
+export SCAN_ID
+rm -f "$out/.stop.$SCAN_ID"
 parallel_args=(--jobs "$jobs" --colsep '\t' -a "$jobfile"
-               --term-seq USR1,600000,KILL,25)
+               --term-seq CONT,600000,KILL,25)
 # GNU parallel's job log of a local run (one per scan directory; a task of an array leaves
 # its log to Slurm)
 [[ $mode == run ]] && parallel_args+=(--joblog "$out/joblog")

@@ -261,6 +261,30 @@ sys.exit(0 if ok else 1)
 EOF
 fi
 
+# --- --slurm with a stand-in sbatch (the real one: tests/test_slurm.sh): the array and the
+# collect job submitted in one go; the collect job's --wrap, run by /bin/sh as Slurm does,
+# collects (a target with '(' in it: an unquoted one is a syntax error in sh)
+mkdir -p fakebin
+cat > fakebin/sbatch << 'EOF'
+#!/usr/bin/env bash
+n=$(($(cat sbatch.n 2> /dev/null || echo 0) + 1))
+echo "$n" > sbatch.n
+printf '%s\n' "$@" > "sbatch.$n.args"
+echo "$((100 + n))"
+EOF
+chmod +x fakebin/sbatch
+rm -rf sbatch.* slurmscan
+PATH=$PWD/fakebin:$PATH bash "$scan" "${args[@]}" --out slurmscan --batch 4 --slurm --partition=p1 %2 > scan_slurm.out 2> scan_slurm.log
+check "--slurm: exit 0, both job ids printed" \
+    bash -c "grep -q '^submitted the array: job 101, tasks 0-1%2' scan_slurm.out && grep -q '^submitted the collect job: job 102, after the array ends' scan_slurm.out"
+check "--slurm: the array's sbatch options (throttle, logs in DIR/slurm, the template, its options)" \
+    bash -c "grep -qx -- '--array=0-1%2' sbatch.1.args && grep -qx -- '--output=$PWD/slurmscan/slurm/%x-%A_%a.out' sbatch.1.args && grep -qx -- '--partition=p1' sbatch.1.args && grep -q 'scripts/slurm/scan_array.sbatch$' sbatch.1.args"
+check "--slurm: the collect job depends on the array" grep -qx -- '--dependency=afterany:101' sbatch.2.args
+rm -f "slurmscan/summary.csv"
+sh -c "$(sed -n '/^--wrap$/{n;p;}' sbatch.2.args)" 2> scan_wrap.log
+check "--slurm: the collect job's --wrap runs in /bin/sh and writes DIR/summary.csv" \
+    bash -c "[[ -s slurmscan/summary.csv ]] && grep -q 'summary.csv: 6 points' scan_wrap.log"
+
 # --- bad input found only at run time (a restart file that does not exist: --check does not
 # open files): the point is recorded as failed with exit status 2 and the message
 rt=rtscan

@@ -261,6 +261,31 @@ sys.exit(0 if ok else 1)
 EOF
 fi
 
+# --- a point whose run alone is stopped by a signal (killed by hand, not the scan): recorded
+# as interrupted with its checkpoint, and the scan exits 5 (a Slurm task so ends FAILED, not
+# COMPLETED); the rerun continues it
+kd=killed
+rm -rf "$kd"
+bash "$scan" "${rs_args[@]}" --out "$kd" -j 1 2> scan_killed.log &
+pid=$!
+size0=""
+for ((i = 0; i < 1500; i++)); do
+    size=$(stat -c %s "$kd/point_0000.h5.part" 2> /dev/null)
+    if [[ -n $size ]] && ((size > 1000)); then
+        [[ -z $size0 ]] && size0=$size
+        ((size > size0)) && break
+    fi
+    sleep 0.01
+done
+run_pid=$(pgrep -f -- "[k]illed/point_0000 --set output.quiet")
+kill -TERM $run_pid
+wait "$pid"
+check "the run of a point killed by hand: the scan exits 5" equals 5 "$?"
+check "the run of a point killed by hand: 'interrupted' in the CSV, its checkpoint kept" \
+    bash -c "grep -q '^0,.*,interrupted,5,' $kd/summary.csv && [[ -f $kd/point_0000.h5.part ]]"
+bash "$scan" "${rs_args[@]}" --out "$kd" -j 1 2> scan_killed2.log
+check "the point killed by hand: the rerun completes it" equals 0 "$?"
+
 # --- --slurm with a stand-in sbatch (the real one: tests/test_slurm.sh): the array and the
 # collect job submitted in one go; the collect job's --wrap, run by /bin/sh as Slurm does,
 # collects (a target with '(' in it: an unquoted one is a syntax error in sh)

@@ -30,6 +30,7 @@ set -euo pipefail
 BUILD_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev)
 REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
                    gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-scipy python3-matplotlib
+                   python3-xarray python3-h5netcdf netcdf-bin
                    valgrind parallel graphviz)
 
 # poppler-utils: pdftotext, with which tests/test_plot.sh reads the title of a figure

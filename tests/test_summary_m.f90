@@ -6,6 +6,7 @@ program test_summary_m
     use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
     use kinds_m, only: dp
     use output_m, only: h5_writer_t
+    use fields_m, only: N_SERIES
     use summary_m, only: summary_t, summarise_file, summarise_series, summary_header, summary_row, csv_field
     use fsys_m, only: remove_file
     use testing_m, only: check_close, check_true, test_summary
@@ -55,14 +56,15 @@ contains
         logical, intent(in) :: with_counters
         type(h5_writer_t) :: w
         real(dp) :: pen
-        integer :: k
+        integer :: k, j
 
         call remove_file(scratch // '/' // name // '.h5')
         call w%create(scratch // '/' // name, [0.0_dp, 0.5_dp, 1.0_dp])
         call w%attr_real('contact.g', G)
         do k = 1, size(t)
             pen = max(u_end(k) - G, 0.0_dp)
-            call w%append_series([t(k), energy(k), u_end(k), pen, -pen / 0.01_dp, 1.0_dp, 0.0_dp, 0.0_dp])
+            call w%append_series([t(k), energy(k), u_end(k), pen, -pen / 0.01_dp, 1.0_dp, 0.0_dp, 0.0_dp, &
+                                  [(0.0_dp, j = 9, N_SERIES)]])   ! the energy parts: zero
         end do
         if (with_counters) then
             call w%attr_int('steps', 120)

@@ -16,6 +16,9 @@ module run_m
     use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t
     use step_driver_m, only: step_driver_t, step_failure
+    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
+    use strings_m, only: int_str
+    use reals_m, only: is_zero
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, write_checkpoint, copy_history
     use run_output_m, only: output_grid, write_series, write_snapshot
@@ -124,7 +127,7 @@ contains
             call run%writer%attr_int('restart_step', run%state%step)
         else
             call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
-            call write_snapshot(run%writer, run%state, run%x_out)
+            call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
         end if
         call run%writer%flush()
     end subroutine open_output
@@ -159,7 +162,8 @@ contains
                 last = finished(run, cfg)
                 if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
                     call write_series(run%writer, run%stepper, state, run%monitor, run%result)
-                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) call write_snapshot(run%writer, state, run%x_out)
+                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) &
+                    call write_snapshot(run%writer, state, cfg%model, run%x_out)
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
                     call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
@@ -188,6 +192,7 @@ contains
         type(config_t), intent(in) :: cfg
         character(len=*), intent(in) :: failure, interrupted
         integer(int64) :: clock_now
+        real(dp) :: wall
 
         if (interrupted /= '') then
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
@@ -202,13 +207,15 @@ contains
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
             if (mod(run%last_written, cfg%output%series_every) /= 0) &
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
-            if (.not. snapshot_due(cfg, run%last_written, .false.)) call write_snapshot(run%writer, run%state, run%x_out)
+            if (.not. snapshot_due(cfg, run%last_written, .false.)) &
+                call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
         end if
         call system_clock(clock_now)
-        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, &
-                            real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp), run%n_elements_max)
+        wall = real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp)
+        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, wall, run%n_elements_max)
         if (interrupted /= '') then
             call run%writer%finish('interrupted: '//interrupted, keep_part=.true.)
+            call report_end(run, cfg, '.h5.part', 'interrupted: '//interrupted, wall)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
                 step_failure(run%state%step, run%state%t, 'checkpoint written')//"; continue with "// &
                 "--set time.restart_from='"//trim(cfg%output%prefix)//".h5.part' and another output.prefix"
@@ -217,11 +224,80 @@ contains
         end if
         if (failure /= '') then
             call run%writer%finish('failed: '//trim(failure))
+            call report_end(run, cfg, '.h5', 'failed', wall)
             call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &
                        trim(cfg%output%prefix)//'.h5 (status attribute: failed)')
         end if
         call run%writer%finish('complete')
+        call report_end(run, cfg, '.h5', 'complete', wall)
     end subroutine close_output
+
+    !> The run's last line on stderr (unless &output quiet): where its file is, its status,
+    !> the contact onsets and releases (how many, the first of each) and the wall time, e.g.
+    !>   rodcontact: out/exp1.h5 complete; contact: 1 onset (first t = 0.1973), 1 release
+    !>   (first t = 0.5812); 30000 steps, t = 3, wall 12 s
+    !> (one line). suffix: '.h5', or '.h5.part' for a file left to be continued.
+    subroutine report_end(run, cfg, suffix, status, wall)
+        type(run_t), intent(in) :: run
+        type(config_t), intent(in) :: cfg
+        character(len=*), intent(in) :: suffix, status
+        real(dp), intent(in) :: wall
+        type(event_log_t) :: events
+
+        if (cfg%output%quiet) return
+        events = run%driver%events_log()
+        write (error_unit, '(a)') 'rodcontact: '//trim(cfg%output%prefix)//suffix//' '//status//'; contact: '// &
+            event_summary(events%times(), events%kinds(), EVENT_ONSET, 'onset')//', '// &
+            event_summary(events%times(), events%kinds(), EVENT_RELEASE, 'release')//'; '// &
+            int_str(run%state%step)//' steps, t = '//short_real(run%state%t)//', wall '//short_real(wall)//' s'
+        flush (error_unit)
+    end subroutine report_end
+
+    !> '<n> <name>s (first t = <t>)' of the events of kind `kind` ('no <name>s' when none).
+    pure function event_summary(times, kinds, kind, name) result(text)
+        real(dp), intent(in) :: times(:)
+        integer, intent(in) :: kinds(:), kind
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: text
+        integer :: n, first
+
+        n = count(kinds == kind)
+        if (n == 0) then
+            text = 'no '//name//'s'
+            return
+        end if
+        first = findloc(kinds, kind, dim=1)
+        text = int_str(n)//' '//name//merge('s', ' ', n > 1)
+        text = trim(text)//' (first t = '//short_real(times(first))//')'
+    end function event_summary
+
+    !> x with 4 significant digits and no padding: 0.1973, 12.5, 3, 1.234E-05.
+    pure function short_real(x) result(text)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+        character(len=32) :: buffer
+        integer :: decimals, last
+
+        if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
+            decimals = max(0, 3 - floor(log10(abs(x))))
+            write (buffer, '(f0.' // int_str(decimals) // ')') x
+            text = trim(adjustl(buffer))
+            if (decimals > 0) then   ! no trailing zeros, no bare point
+                last = len_trim(text)
+                do while (text(last:last) == '0')
+                    last = last - 1
+                end do
+                if (text(last:last) == '.') last = last - 1
+                text = text(:last)
+            end if
+            if (text(1:1) == '.') text = '0'//text
+        else if (is_zero(x)) then
+            text = '0'
+        else
+            write (buffer, '(es10.3)') x
+            text = trim(adjustl(buffer))
+        end if
+    end function short_real
 
     !> /checkpoint: every type that the run continues from saves itself (checkpoint_m), so
     !> that a restart continues exactly.

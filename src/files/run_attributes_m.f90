@@ -79,6 +79,8 @@ contains
             call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
             call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
         end do
+        ! the counts (fields_m's scale ''): SI factor 1, so that every dataset converts
+        call writer%describe_si('', 1.0_dp, '1')
     end subroutine record_scales
 
     !> At the end of the run cfg: the contact events (/events) and the root attributes of

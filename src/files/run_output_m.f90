@@ -5,9 +5,11 @@ module run_output_m
     use kinds_m, only: dp
     use config_m, only: config_t
     use fe_m, only: mesh_nodes, evaluate_p1
+    use config_m, only: model_t
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
-                        S_N_ELEMENTS, N_OUTPUT_FIELDS, OUTPUT_ORDER
+                        S_N_ELEMENTS, S_ENERGY_PARTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, K_SIGMA
     use state_m, only: state_t, field_values
+    use stress_m, only: nodal_stress
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use output_m, only: h5_writer_t
@@ -58,28 +60,32 @@ contains
         values(S_ITERATIONS) = real(result%iterations, dp)
         values(S_DT) = state%dt_last
         values(S_N_ELEMENTS) = real(state%s, dp)
+        values(S_ENERGY_PARTS) = monitor%parts(state)
         call writer%append_series(values)
     end subroutine write_series
 
-    !> One snapshot: every field of fields_m's OUTPUT_ORDER on the output grid x_out (the
-    !> P1 solution evaluated there, unless x_out are the nodes), and on a graded mesh its
-    !> nodal values in /snapshots/native.
-    subroutine write_snapshot(writer, state, x_out)
+    !> One snapshot: every dataset of fields_m's SNAPSHOTS (the fields of OUTPUT_ORDER and
+    !> the stress sigma of stress_m, with the coefficients of `model`) on the output grid
+    !> x_out (the P1 function of the nodal values evaluated there, unless x_out are the
+    !> nodes), and on a graded mesh the nodal values in /snapshots/native.
+    subroutine write_snapshot(writer, state, model, x_out)
         type(h5_writer_t), intent(inout) :: writer
         type(state_t), intent(in) :: state
+        type(model_t), intent(in) :: model
         real(dp), intent(in) :: x_out(:)
-        real(dp) :: values(0:state%s, N_OUTPUT_FIELDS), on_grid(size(x_out), N_OUTPUT_FIELDS), x(0:state%s)
+        real(dp) :: values(0:state%s, N_SNAPSHOT_FIELDS), on_grid(size(x_out), N_SNAPSHOT_FIELDS), x(0:state%s)
         integer :: k
 
         do k = 1, N_OUTPUT_FIELDS
             values(:, k) = field_values(state, OUTPUT_ORDER(k))
         end do
+        values(:, K_SIGMA) = nodal_stress(model, state%u, state%w, state%mesh)
         if (size(x_out) == state%s + 1 .and. state%mesh%is_uniform()) then
             call writer%append_snapshot(state%t, values)
             return
         end if
         x = state%mesh%x
-        do k = 1, N_OUTPUT_FIELDS
+        do k = 1, N_SNAPSHOT_FIELDS
             on_grid(:, k) = evaluate_p1(x, values(:, k), x_out)
         end do
         call writer%append_snapshot(state%t, on_grid)

@@ -7,7 +7,7 @@ module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
-    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SERIES
+    use fields_m, only: N_FIELDS, N_SNAPSHOT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
                         number_of_steps, MAX_COMPRESSION, LEN_NAME
@@ -244,9 +244,9 @@ contains
         nodes = real(n_elements, dp) + 1.0_dp
         if (output%n_points > 0) nodes = real(output%n_points, dp)
         if (output%snapshot_dt > 0.0_dp) then
-            snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
+            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
         else
-            snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
+            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
         end if
         series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
         total = snapshot_bytes + series_bytes + 8.0_dp * nodes

@@ -14,7 +14,7 @@ program rodcontact
     use validate_m, only: validate_config
     use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
-    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem
+    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, write_event_rows
     use errors_m, only: fatal, EXIT_INPUT
     use version_m, only: PROGRAM_VERSION
     implicit none
@@ -22,9 +22,9 @@ program rodcontact
     character(len=:), allocatable :: source, file, problem
     integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
     integer :: k, max_len
-    logical :: check_only
+    logical :: check_only, events
 
-    call parse_command_line(source, set_arg, set_skip, summary_args, check_only)
+    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, events)
     if (size(summary_args) > 0) then
         ! every file is checked before any row is written: a bad one is an input error
         do k = 1, size(summary_args)
@@ -33,8 +33,14 @@ program rodcontact
             if (problem /= '') call fatal(EXIT_INPUT, 'command line', "--summary: '" // file // "': " // &
                 problem // '; give rodcontact output files (<prefix>.h5 or <prefix>.h5.part)')
         end do
+        ! --events: a header, then one row per contact event of each file
+        if (events) write (output_unit, '(a)') events_header()
         do k = 1, size(summary_args)
-            write (output_unit, '(a)') summary_row(summarise_file(argument(summary_args(k))))
+            if (events) then
+                call write_event_rows(output_unit, summarise_file(argument(summary_args(k))))
+            else
+                write (output_unit, '(a)') summary_row(summarise_file(argument(summary_args(k))))
+            end if
         end do
         stop
     end if
@@ -61,11 +67,12 @@ contains
     !> and the arguments that are files of --summary (every argument after it; none without
     !> it), and whether --check was given. --help, --version and --summary-header print and
     !> stop here.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only)
+    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, events)
         character(len=:), allocatable, intent(out) :: source
         integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
         integer, allocatable, intent(out) :: summary_args(:)
         logical, intent(out) :: check_only
+        logical, intent(out) :: events     !< --events: the files' event rows instead of --summary
         character(len=:), allocatable :: arg
         integer :: n_args, i, k
         logical :: source_given
@@ -74,6 +81,7 @@ contains
         source = '-'
         source_given = .false.
         check_only = .false.
+        events = .false.
         allocate (set_arg(0), set_skip(0), summary_args(0))
         i = 1
         do while (i <= n_args)
@@ -88,11 +96,12 @@ contains
             case ('--summary-header')
                 write (output_unit, '(a)') summary_header()
                 stop
-            case ('--summary')
-                if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--summary needs a file: ' // &
-                                            'rodcontact --summary <prefix>.h5 [more files ...]')
+            case ('--summary', '--events')
+                if (i == n_args) call fatal(EXIT_INPUT, 'command line', arg // ' needs a file: ' // &
+                                            'rodcontact ' // arg // ' <prefix>.h5 [more files ...]')
                 if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
-                    '--summary takes only HDF5 files, no input file, --set or --check')
+                    arg // ' takes only HDF5 files, no input file, --set or --check')
+                events = arg == '--events'
                 summary_args = [(k, k = i + 1, n_args)]
                 exit
             case ('--check')
@@ -115,6 +124,7 @@ contains
                 if (len(arg) > 1) then
                     if (arg(1:1) == '-') call fatal(EXIT_INPUT, 'command line', "unknown option '"//arg// &
                         "'; allowed: --set group.variable=value, --summary file.h5, --summary-header, " // &
+                        '--events file.h5, ' // &
                         '--check, --help, --version, and one input file')
                 end if
                 if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
@@ -165,9 +175,13 @@ contains
             '  rodcontact --summary f.h5 [g.h5 ...]', &
             '                             one CSV row per run: status, contact times, max penetration,', &
             '                             max u(1,t), energy ratio and decay rate, steps, wall seconds,', &
-            '                             time error estimate, contact onset and release times;', &
+            '                             time error estimate, contact onsets and releases (count,', &
+            '                             first and last time);', &
             '                             a missing, unreadable or non-rodcontact file exits 2', &
             '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &
+            '  rodcontact --events f.h5 [g.h5 ...]', &
+            '                             the contact events of /events, one CSV row each:', &
+            '                             file,event,kind,t (kind: onset or release)', &
             '  rodcontact --help          this text', &
             '  rodcontact --version       the program version', &
             '', &

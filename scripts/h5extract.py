@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Text export of rodcontact HDF5 files for gnuplot and other tools (any run file: complete,
 failed, interrupted or still running), and the data of the paper's Figures 2-7.
 
@@ -43,8 +44,10 @@ written by scripts/paper/figures.sh). DATA_DIR receives
 Marked times that the run does not reach (shortened --quick runs) are left out; when
 fewer than three remain, evenly spaced snapshots are used instead.
 
-The script does not choose an interpreter (no shebang): run it with one that can import
-h5py (scripts/lib/find_python.sh). Exit status: 0 written; 1 (figures) a file is missing,
+Run it directly (scripts/h5extract.py ...): when the python3 on PATH cannot import h5py, it
+runs itself again with the Python of scripts/lib/find_python.sh (/usr/bin/python3 on Debian),
+and when there is none it says which packages to install (python3-h5py, python3-numpy) and
+exits 1. Exit status: 0 written; 1 (figures) a file is missing,
 incomplete or unreadable; 2 usage: unknown mode or option, a missing or unreadable file,
 a file that is not a rodcontact output file, an unknown dataset or field, a bad time
 (message on stderr).
@@ -55,9 +58,11 @@ import math
 import os
 import sys
 
-import numpy as np
-
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib'))
+import interpreter  # noqa: E402
+
+interpreter.ensure_h5py(__file__)
+import numpy as np  # noqa: E402
 
 # curve colours, early to late: plotdata.py's hue ramp (nine times differ in hue, not only
 # in lightness; the viridis ramp used before made t >= 0.5 hard to tell apart)

@@ -4,14 +4,24 @@
 # and the contact intervals). PNG and PDF. Works on complete, failed and interrupted runs
 # (a failed run is drawn up to its last good step, with its status in the title).
 #
-#   scripts/plot.sh RUN.h5 [--style surface|profiles|series] [--fields u,P,theta]
-#                          [--t-max T] [--out DIR]
+#   scripts/plot.sh RUN.h5 [--style surface|profiles|series|all] [--fields u,P,theta]
+#                          [--t-max T] [--out DIR] [--si | --nondimensional]
+#
+#   scripts/plot.sh out/exp1.h5     ->  out/exp1_surface.png, out/exp1_surface.pdf
 #
 #   --style    surface (default), profiles or series; 'all' draws the three
 #   --fields   comma-separated among u, v, theta, P, q, eta, sigma (default: u P theta q eta,
 #              and sigma when the file has /snapshots/sigma)
 #   --t-max    last time drawn in surfaces and profiles (default: the run's last snapshot)
-#   --out DIR  where to write <run>_<style>.png and .pdf (default: the directory of RUN.h5)
+#   --out DIR  where to write <run>_<style>.png and .pdf (default: the directory of RUN.h5);
+#              relative paths are taken from the current directory, as for RUN.h5. Nothing
+#              else is written (the data for gnuplot go to a temporary directory).
+#   --si       axes in SI units with their units (from each dataset's si_factor and
+#              si_units): the default for a run with &material, which has the scales
+#   --nondimensional  the file's nondimensional values (the default without &material); the
+#              labels say so
+# Names are drawn as they are (no gnuplot markup: point_0001 stays point_0001). The files
+# written are printed on stdout, one per line.
 #
 # Needs a Python with h5py (scripts/lib/find_python.sh) and gnuplot with pngcairo and pdfcairo.
 # Exit status: 0 drawn; 1 a tool is missing or gnuplot failed; 2 usage error, or RUN.h5 is
@@ -23,7 +33,7 @@ scripts="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 say() { echo "plot: $*" >&2; }
 usage() { sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//' >&"${2:-2}"; exit "${1:-2}"; }
 
-run="" style=surface fields="" t_max="" out_dir=""
+run="" style=surface fields="" t_max="" out_dir="" units=auto
 while (($# > 0)); do
     case "$1" in
         --style | --fields | --t-max | --out)
@@ -35,6 +45,8 @@ while (($# > 0)); do
                 --out) out_dir="$2" ;;
             esac
             shift ;;
+        --si) units=si ;;
+        --nondimensional) units=nondimensional ;;
         -h | --help) usage 0 1 ;;
         -*) say "unknown option '$1'"; usage ;;
         *) [[ -z "$run" ]] || { say "one run file only (got '$run' and '$1')"; usage; }
@@ -51,18 +63,21 @@ esac
 [[ -f "$run" ]] || { say "$run: no such file"; exit 2; }
 out_dir="${out_dir:-$(dirname "$run")}"
 name="$(basename "$run")"; name="${name%.part}"; name="${name%.h5}"
-for d in "$out_dir"; do
-    [[ "$d" != *"'"* && "$d" != *'"'* ]] || { say "directory names with quotes are not supported: $d"; exit 2; }
-done
+mkdir -p "$out_dir" 2>/dev/null || { say "cannot create the directory $out_dir"; exit 1; }
+# absolute paths: gnuplot runs in scripts/gnuplot (where its scripts load common.gp)
+out_dir="$(cd "$out_dir" && pwd)"
+run="$(cd "$(dirname "$run")" && pwd)/$(basename "$run")"
+[[ "$out_dir/$name" != *"'"* && "$out_dir/$name" != *'"'* ]] ||
+    { say "names with quotes are not supported: $out_dir/$name"; exit 2; }
 
 py="$("$scripts/lib/find_python.sh")" || { say "no Python with h5py (Debian: python3-h5py)"; exit 1; }
 command -v gnuplot >/dev/null 2>&1 || { say "gnuplot not found (Debian: gnuplot-nox)"; exit 1; }
-mkdir -p "$out_dir"
 data="$(mktemp -d "${TMPDIR:-/tmp}/rodcontact-plot.XXXXXX")"
 trap 'rm -rf "$data"' EXIT
 opts=()
 [[ -n "$fields" ]] && opts+=(--fields "$fields")
 [[ -n "$t_max" ]] && opts+=(--t-max "$t_max")
+opts+=(--units "$units")
 status=0
 "$py" "$scripts/lib/plotdata.py" "$run" "$data" "${opts[@]}" || status=$?
 if ((status != 0)); then
@@ -79,13 +94,15 @@ for st in "${styles[@]}"; do
     esac
     for fmt in png pdf; do
         target="$out_dir/${name}_$st.$fmt"
-        if ! (cd "$scripts/gnuplot" && gnuplot -e "datadir='$data'; out='$target.tmp'; fmt='$fmt'; W=1500; H=$h; fig_title='$title — $st'" "$gp") \
-                >"$data/gnuplot.log" 2>&1 || [[ ! -s "$target.tmp" ]]; then
+        tmp="$data/figure.$fmt"   # written here, then moved: never a partial file at $target
+        rm -f "$tmp"
+        if ! (cd "$scripts/gnuplot" && gnuplot -e "datadir='$data'; out='$tmp'; fmt='$fmt'; W=1500; H=$h; fig_title='$title — $st'; literal=1" "$gp") \
+                >"$data/gnuplot.log" 2>&1 || [[ ! -s "$tmp" ]]; then
             say "gnuplot failed on $target:"; cat "$data/gnuplot.log" >&2
-            rm -f "$target.tmp"; exit 1
+            exit 1
         fi
         [[ -s "$data/gnuplot.log" ]] && { say "gnuplot said on $target:"; cat "$data/gnuplot.log" >&2; }
-        mv "$target.tmp" "$target"
+        mv -f "$tmp" "$target" || { say "cannot write $target"; exit 1; }
         written+=("$target")
     done
 done

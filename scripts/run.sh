@@ -4,21 +4,22 @@
 #   scripts/run.sh                      # runs input/exp1.nml -> out/exp1.h5
 #   scripts/run.sh input/exp2.nml       # another input file
 #
-# The run happens in the repository root, so the output prefix of the input file
-# (&output prefix='out/exp1') is taken from there. Exit status: that of rodcontact
+# The run happens in the current directory: a relative output prefix of the input file
+# (&output prefix='out/exp1') is taken from there, as rodcontact itself does (from the
+# repository root, scripts/run.sh writes out/exp1.h5 there). Exit status: that of rodcontact
 # (0 ok, 2 bad input, 3 numerical failure, 4 output failure), or 1 when setup fails.
 # Environment: BUILD_TYPE, BUILD_DIR as for scripts/setup.sh.
 
 set -euo pipefail
 
 if (($# > 1)) || [[ "${1:-}" == -h || "${1:-}" == --help ]]; then
-    echo "usage: scripts/run.sh [input.nml]   (default input/exp1.nml)" >&2
+    sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//' >&2
+    [[ "${1:-}" == -h || "${1:-}" == --help ]] && exit 0
     exit 2
 fi
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-# Resolve the input against the caller's directory before moving to the repo root.
 input="${1:-$repo_root/input/exp1.nml}"
 if [[ ! -f "$input" ]]; then
     echo "run: input file not found: $input" >&2
@@ -27,7 +28,6 @@ fi
 input="$(cd "$(dirname "$input")" && pwd)/$(basename "$input")"
 
 "$repo_root/scripts/setup.sh"
-cd "$repo_root"
 
 build_dir="${BUILD_DIR:-build}"
 [[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
@@ -46,7 +46,7 @@ if ((status != 0)); then
     echo "run: rodcontact exited with status $status" >&2
     exit "$status"
 fi
-if [[ "$prefix" = /* ]]; then out="$prefix.h5"; else out="$repo_root/$prefix.h5"; fi
+if [[ "$prefix" = /* ]]; then out="$prefix.h5"; else out="$(pwd)/$prefix.h5"; fi
 if [[ -f "$out" ]]; then
     echo "run: output written to $out"
 else

@@ -7,6 +7,8 @@
 #   scripts/scan.sh INPUT --set AXIS ... --out DIR [--batch B] --task T  run task T only
 #   scripts/scan.sh INPUT --set AXIS ... --out DIR [--batch B] --array   print task indices
 #   scripts/scan.sh INPUT --set AXIS ... --out DIR --collect             write DIR/summary.csv
+#   scripts/scan.sh INPUT --set AXIS ... --out DIR [--batch B] --slurm [SBATCH OPTIONS] [%N]
+#                            submit the Slurm array and a collect job after it; print both ids
 #
 # AXIS is TARGET=VALUES:
 #   TARGET   group.variable or 'group.variable(i)' (element i of an array; quote it for the
@@ -34,16 +36,25 @@
 #          --exe PATH        the rodcontact executable (default: $RODCONTACT, else build/rodcontact)
 # The points run under GNU parallel (Debian package 'parallel'); DIR/joblog is its job log
 # of the latest run. A rerun of the same command skips the points whose .h5 has status
-# 'complete' and runs the others (failed, never run, or interrupted). DIR keeps a copy of
+# 'complete' and runs the others (failed, never run, or interrupted); an interrupted point
+# continues from the checkpoint its run wrote when it was stopped (DIR/point_K.h5.part).
+# On SIGTERM or SIGINT the scan stops its runs (each finishes its step and writes its
+# checkpoint) and exits once they have ended. One scan at a time in DIR: another one started
+# there while it runs is refused (exit 2, naming it; DIR/.scan.lock).
+# --slurm: the words after it go to sbatch (e.g. --partition=P --account=A --time=1:00:00),
+# a word %N throttles the array to N tasks at once; logs in DIR/slurm/. DIR keeps a copy of
 # INPUT (input.nml) and the point list (points.txt): a rerun with another input or other
 # axes is refused. --array prints the Slurm array indices of the tasks that still have
 # points to run ('0-9', '2,5-7'; nothing when every point is complete).
 # Exit status: 0 every point run is complete; 1 some point failed (recorded, see the CSV);
-# 2 usage error or a scan that fails its checks; 130/143 interrupted (rerun to resume).
+# 2 usage error, a scan that fails its checks, or another scan running in DIR; 5 a point's run
+# was stopped by a signal (not the scan; rerun to resume it); 130/143 interrupted (rerun to
+# resume).
 
 set -uo pipefail
 
 script="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/$(basename "${BASH_SOURCE[0]}")"
+command_line="$0 $*"
 repo_root="$(cd "$(dirname "$script")/.." && pwd)"
 
 die() {
@@ -66,64 +77,82 @@ usage() {
 # record_status STEM RC: STEM.status = exit status and the run's error message
 record_status() {
     local stem=$1 rc=$2 message
-    message=$(grep -m 1 '^rodcontact: error' "$stem.err" || tail -n 1 "$stem.err")
+    if ((rc == 5)); then
+        message="$(grep -m 1 '^rodcontact: stopped by' "$stem.err" | sed 's/; continue with.*//'); checkpoint in $stem.h5.part: rerun the scan to resume the point from it"
+    elif ((rc > 128)); then
+        message="killed by signal $((rc - 128)) before its first checkpoint: a rerun of the scan runs the point again"
+    else
+        message=$(grep -m 1 '^rodcontact: error' "$stem.err" || tail -n 1 "$stem.err")
+    fi
     printf '%s\n%s\n' "$rc" "$message" > "$stem.status.tmp" && mv -f "$stem.status.tmp" "$stem.status"
     [[ -s $stem.out ]] || rm -f "$stem.out"
 }
 
-# run_point DIR K ARGS...: run the point in the foreground; record its exit status and message
+# run_point DIR K ARGS...: run the point in the foreground; record its exit status and message.
+# A point interrupted before (its run stopped by a signal, exit 5) left DIR/point_K.h5.part with
+# a checkpoint: it is moved to DIR/point_K.h5.resume and the run continues from it
+# (--set time.restart_from, bit for bit the result of an uninterrupted run); a .part without a
+# usable checkpoint (a run killed before its first one) is dropped and the point runs from t = 0.
 run_point() {
-    local dir=$1 k=$2 stem child="" rc=""
+    local dir=$1 k=$2 stem rc resume=()
     shift 2
     stem=$dir/point_$k
-    rm -f "$stem.h5" "$stem.h5.part" "$stem.status" "$stem.err" "$stem.out"
-    # TERM: from GNU parallel (it stops its jobs so on Ctrl-C, SIGTERM, or when the scan is
-    # told to stop) or from Slurm. rodcontact, started with &, ignores INT.
-    trap 'on_point_term' TERM INT
-    "$RODCONTACT" "$dir/input.nml" "$@" --set "output.prefix=$stem" --set output.quiet=.true. \
-        > "$stem.out" 2> "$stem.err" < /dev/null &
-    child=$!
-    wait "$child"
-    rc=$?
+    rm -f "$stem.h5" "$stem.status" "$stem.out"
+    [[ -f $stem.h5.part ]] && mv -f "$stem.h5.part" "$stem.h5.resume"
+    [[ -f $stem.h5.resume ]] && resume=(--set "time.restart_from=$stem.h5.resume")
+    # Signals. The scan stops its runs by sending SIGUSR1 to this shell (its pid in
+    # DIR/.run.<scan>.K, <scan> = SCAN_ID, the scan's host and pid),
+    # Ctrl-C's SIGINT and Slurm's SIGTERM (scancel) come to every process. rodcontact stops
+    # cleanly on the first signal of each kind (a second one of the same kind ends it at once):
+    # this shell passes one SIGUSR1 on, once, whatever came, and waits for the run to finish
+    # its step, write its checkpoint and exit (5). A scan told to stop before this point started
+    # (DIR/.stop.<scan>, checked after the pid file is written) runs nothing.
+    local child="" stop_requested="" forwarded=""
+    local run_file=$dir/.run.${SCAN_ID:-$$}.$k
+    printf '%s\n' "$$" > "$run_file"
+    if [[ -e $dir/.stop.${SCAN_ID:-$$} ]]; then
+        rm -f "$run_file"
+        return 143
+    fi
+    trap 'stop_requested=1; [[ -n $child && -z $forwarded ]] && { forwarded=1; kill -USR1 "$child" 2> /dev/null; }' TERM INT USR1
+    while :; do
+        child=""
+        "$RODCONTACT" "$dir/input.nml" "$@" "${resume[@]}" --set "output.prefix=$stem" \
+            --set output.quiet=.true. > "$stem.out" 2> "$stem.err" < /dev/null &
+        child=$!
+        [[ -n $stop_requested && -z $forwarded ]] && { forwarded=1; kill -USR1 "$child" 2> /dev/null; }
+        while :; do
+            wait "$child"
+            rc=$?
+            # a trap interrupted the wait while the run goes on (a zombie still counts)
+            kill -0 "$child" 2> /dev/null || break
+        done
+        if ((rc == 2 && ${#resume[@]} > 0)) &&
+                grep -q -F -e 'error in time.restart_from' -e "$stem.h5.resume" "$stem.err"; then
+            # no usable checkpoint in the file left behind: run the point from the start
+            mv -f "$stem.err" "$stem.resume.err"
+            rm -f "$stem.h5.resume"
+            resume=()
+            [[ -z $stop_requested ]] && continue
+            rc=143   # stopped meanwhile: the point counts as not run
+        fi
+        break
+    done
+    rm -f "$run_file"
+    # the file resumed from is superseded by this run's output (a restart copies the history)
+    [[ -f $stem.h5 || -f $stem.h5.part ]] && rm -f "$stem.h5.resume" "$stem.resume.err"
+    if ((rc > 128)) && [[ ! -f $stem.h5 && ! -f $stem.h5.part ]]; then
+        # killed by a signal before it wrote anything: not recorded, the point counts as not run
+        rm -f "$stem.out"
+        return "$rc"
+    fi
     record_status "$stem" "$rc"
-    trap - TERM INT
-    if ((rc != 0)); then
+    if ((rc == 5 || rc > 128)); then
+        echo "scan: point $k interrupted: $(sed -n 2p "$stem.status")" >&2
+    elif ((rc != 0)); then
         echo "scan: point $k failed (exit $rc): $(sed -n 2p "$stem.status")" >&2
     fi
     return "$rc"
-}
-
-# The TERM trap of run_point (it sees run_point's locals stem, child, rc). A run that had
-# ended is recorded as usual; a run cut short is not recorded at all (its .part removed),
-# so that the point counts as not run and the next rerun does it again.
-on_point_term() {
-    trap '' TERM INT
-    if [[ -n $rc ]]; then
-        record_status "$stem" "$rc"
-        exit "$rc"
-    fi
-    if [[ -z $child ]]; then
-        # TERM came between the start of the run and 'child=$!': the run is this
-        # process's only job
-        child=$(jobs -p)
-        [[ -n $child ]] || exit 143
-    fi
-    kill -TERM "$child" 2> /dev/null
-    wait "$child"
-    rc=$?
-    if [[ ! -f $stem.h5 ]]; then
-        rm -f "$stem.h5.part" "$stem.out"
-        exit 143
-    fi
-    # the run got to its end (the .h5 is renamed last) just before the signal; when the
-    # interrupted wait lost its exit status, it follows from the file: rodcontact exits 0
-    # exactly when it writes status 'complete', 3 after a numerical failure
-    if ((rc != 0 && rc != 3)); then
-        rc=3
-        complete_file "$stem.h5" && rc=0
-    fi
-    record_status "$stem" "$rc"
-    exit "$rc"
 }
 
 # check_point INPUT K ARGS...: the input checks of the point, nothing written
@@ -188,6 +217,8 @@ exe="${RODCONTACT:-$repo_root/build/rodcontact}"
 mode=run
 task=""
 specs=()
+sbatch_options=()
+exe_given=""
 while (($# > 0)); do
     case $1 in
         --set) (($# >= 2)) || die "--set needs TARGET=VALUES, e.g. --set model.varpi=0:1:11"
@@ -200,13 +231,14 @@ while (($# > 0)); do
         --jobs=*) jobs=${1#--jobs=}; shift ;;
         --batch) (($# >= 2)) || die "--batch needs a number of points per task"; batch=$2; shift 2 ;;
         --batch=*) batch=${1#--batch=}; shift ;;
-        --exe) (($# >= 2)) || die "--exe needs a path"; exe=$2; shift 2 ;;
-        --exe=*) exe=${1#--exe=}; shift ;;
+        --exe) (($# >= 2)) || die "--exe needs a path"; exe=$2; exe_given=1; shift 2 ;;
+        --exe=*) exe=${1#--exe=}; exe_given=1; shift ;;
         --list) mode=list; shift ;;
         --collect) mode=collect; shift ;;
         --array) mode=array; shift ;;
         --task) (($# >= 2)) || die "--task needs a task number"; mode=task; task=$2; shift 2 ;;
         --task=*) mode=task; task=${1#--task=}; shift ;;
+        --slurm) mode=slurm; shift; sbatch_options=("$@"); break ;;
         -h|--help) usage; exit 0 ;;
         -*) die "unknown option '$1'; see scripts/scan.sh --help" ;;
         *) [[ -z $input ]] || die "a second input file '$1' after '$input'"
@@ -371,6 +403,30 @@ exe=$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")
 export RODCONTACT=$exe
 mkdir -p "$out" || die "cannot create '$out'"
 
+# lock_scan -x|-s: one scan at a time in DIR. A run holds an exclusive lock on DIR/.scan.lock
+# (flock(1); released by the kernel when the scan and every process it started have ended, so
+# a scan that died leaves no stale lock); the tasks of a Slurm array share it (-s), so that
+# they run side by side but a local run of the same DIR is refused while they run. The file
+# names the holder: pid, host, start time and command.
+lock_scan() {
+    local holder
+    command -v flock > /dev/null || return 0   # util-linux; without it no lock is taken
+    exec 9>> "$out/.scan.lock" || die "cannot write '$out/.scan.lock'"
+    if ! flock -n "$1" 9; then
+        holder=$(tail -n 1 "$out/.scan.lock" 2> /dev/null)
+        die "another scan is running in '$out' (${holder:-its lock file $out/.scan.lock is held}); wait for it to end or stop it, or use another --out"
+    fi
+    if [[ $1 == -x ]]; then
+        : > "$out/.scan.lock"
+    fi
+    printf 'pid %s on %s since %s: %s\n' "$$" "$(hostname 2> /dev/null || echo '?')" \
+        "$(date -u +%Y-%m-%dT%H:%M:%SZ)" "$command_line" >> "$out/.scan.lock"
+}
+case $mode in
+    run) lock_scan -x ;;
+    task) lock_scan -s ;;
+esac
+
 # same_or_new NEW DEST WHAT: a scan directory that holds another DEST is refused
 same_or_new() {
     local new=$1 dest=$2 what=$3
@@ -389,7 +445,10 @@ tmp_input=$(mktemp "$out/.input.XXXXXX") || die "cannot write in '$out'"
 tmp_points=$(mktemp "$out/.points.XXXXXX") || die "cannot write in '$out'"
 jobfile=$(mktemp "$out/.jobs.XXXXXX") || die "cannot write in '$out'"
 checks=$(mktemp "$out/.checks.XXXXXX") || die "cannot write in '$out'"
-trap 'rm -f "$tmp_input" "$tmp_points" "$jobfile" "$checks"' EXIT
+trap 'rm -f "$tmp_input" "$tmp_points" "$jobfile" "$checks" "$out/.stop.${SCAN_ID:-}"' EXIT
+# mktemp makes its files 0600: the scan's files get the mode of the umask, as any new file
+file_mode=$(printf '%o' $((0666 & ~$(umask))))
+chmod "$file_mode" "$tmp_input" "$tmp_points" || die "cannot change the mode of the files in '$out'"
 cp "$input" "$tmp_input" || die "cannot copy '$input' into '$out'"
 same_or_new "$tmp_input" "$out/input.nml" "input file"
 for ((k = 0; k < n_points; k++)); do
@@ -437,7 +496,7 @@ hms() {
 # ---------------------------------------------------------------- --collect
 collect() {
     local csv="$out/summary.csv" tmp header k i stem status exit_status row rest n_rest
-    local n_complete=0 n_failed=0 n_missing=0
+    local n_complete=0 n_failed=0 n_missing=0 n_stopped=0
     header=$("$exe" --summary-header) && parse_csv "$header" ||
         die "'$exe --summary-header' failed: is it an older rodcontact without --summary?"
     local -a summary_columns=("${CSV[@]}")
@@ -482,6 +541,8 @@ collect() {
         else
             if [[ -f $stem.h5 ]]; then
                 status="failed: cannot summarise $stem.h5: ${summary#rodcontact: }"
+            elif [[ $exit_status == 5 || -f $stem.h5.part || -f $stem.h5.resume ]]; then
+                status=interrupted
             elif [[ -n $exit_status && $exit_status != 0 ]]; then
                 status="failed: exit $exit_status: ${message#rodcontact: }"
             else
@@ -495,13 +556,15 @@ collect() {
         case $status in
             complete) n_complete=$((n_complete + 1)) ;;
             missing) n_missing=$((n_missing + 1)) ;;
+            interrupted) n_stopped=$((n_stopped + 1)) ;;
             *) n_failed=$((n_failed + 1)) ;;
         esac
         csv_escape "$status"
         printf '%s,%s,%s%s\n' "$row" "$FIELD" "$exit_status" "$rest"
     done >> "$tmp"
+    chmod "$file_mode" "$tmp"
     mv -f "$tmp" "$csv" || die "cannot write '$csv'"
-    echo "scan: $csv: $n_points points: $n_complete complete, $n_failed failed, $n_missing missing" >&2
+    echo "scan: $csv: $n_points points: $n_complete complete, $n_failed failed, $n_stopped interrupted, $n_missing missing" >&2
 }
 
 if [[ $mode == collect ]]; then
@@ -548,12 +611,24 @@ done > "$jobfile"
 # parallel sends TERM to its jobs and waits for them) and exits 130/143
 parallel_pid=""
 on_interrupt() {
-    local sig=$1
+    local sig=$1 run_file pid
     trap '' INT TERM
     [[ -n $parallel_pid ]] || parallel_pid=$(jobs -p)
-    [[ -n $parallel_pid ]] && kill -TERM $parallel_pid 2> /dev/null
+    if [[ $what == "running the points" ]]; then
+        # No new point starts (the stop file, and SIGHUP: GNU parallel starts no more jobs and
+        # waits for the running ones); each running point's shell gets SIGUSR1 and passes it to
+        # its run, which finishes its step, writes its checkpoint and exits. Then GNU parallel
+        # exits, and this scan after it: no run is left behind.
+        : > "$out/.stop.$SCAN_ID"
+        [[ -n $parallel_pid ]] && kill -HUP $parallel_pid 2> /dev/null
+        for run_file in "$out/.run.$SCAN_ID".*; do
+            [[ -f $run_file ]] && read -r pid < "$run_file" && kill -USR1 "$pid" 2> /dev/null
+        done
+    else
+        [[ -n $parallel_pid ]] && kill -TERM $parallel_pid 2> /dev/null
+    fi
     wait 2> /dev/null
-    echo "scan: interrupted (signal $sig) while $what; every point that ended is recorded; rerun the same command to resume" >&2
+    echo "scan: interrupted (signal $sig) while $what; every point that ended is recorded, the runs stopped wrote their checkpoints (point_K.h5.part); rerun the same command to resume" >&2
     exit $((sig == 2 ? 130 : 143))
 }
 run_parallel() {
@@ -604,10 +679,9 @@ install "$tmp_points" "$out/points.txt"
 
 # ---------------------------------------------------------------- --array
 # The Slurm array indices of the tasks with a point to run, as ranges: '0-3,5,7-9'
-if [[ $mode == array ]]; then
+task_ranges() {
+    local k t range_first=-1 range_last=-1
     ranges=""
-    range_first=-1
-    range_last=-1
     for k in "${pending[@]}"; do
         t=$((k / batch))
         ((t == range_last)) && continue
@@ -620,8 +694,65 @@ if [[ $mode == array ]]; then
         range_last=$t
     done
     ((range_first >= 0)) && ranges+=${ranges:+,}$range_first$( ((range_last > range_first)) && echo "-$range_last")
+    return 0
+}
+if [[ $mode == array ]]; then
+    task_ranges
     [[ -n $ranges ]] && echo "$ranges"
     echo "scan: $n_points points in $n_tasks tasks of --batch $batch; $n_run points to run" >&2
+    exit 0
+fi
+
+# ---------------------------------------------------------------- --slurm
+# The array (scripts/slurm/scan_array.sbatch, one task per --batch points that has a point to
+# run) and a collect job that runs after it (--dependency=afterany), in one go; the Slurm logs
+# in DIR/slurm/. The words after --slurm go to both sbatch calls (partition, account, time
+# limit, ...), but a word %N, which throttles the array (at most N tasks at once).
+if [[ $mode == slurm ]]; then
+    command -v sbatch > /dev/null || die "--slurm: sbatch not found (is this a Slurm login node?)"
+    throttle=""
+    sbatch_args=()
+    for word in "${sbatch_options[@]}"; do
+        if [[ $word =~ ^%[1-9][0-9]*$ ]]; then
+            throttle=$word
+        else
+            sbatch_args+=("$word")
+        fi
+    done
+    out_abs=$(cd "$out" && pwd)
+    mkdir -p "$out_abs/slurm" || die "cannot create '$out/slurm'"
+    # the scan's own arguments, for the tasks and the collector (relative paths are taken from
+    # this directory, which is the jobs' working directory too)
+    scan_argv=("$input")
+    for spec in "${specs[@]}"; do
+        scan_argv+=(--set "$spec")
+    done
+    scan_argv+=(--out "$out" --batch "$batch" --exe "$exe")
+    export RODCONTACT_ROOT=$repo_root RODCONTACT=$exe
+    if ((n_run > 0)); then
+        task_ranges
+        array_job=$(sbatch --parsable --array="$ranges$throttle" --output="$out_abs/slurm/%x-%A_%a.out" \
+                    "${sbatch_args[@]}" "$repo_root/scripts/slurm/scan_array.sbatch" "${scan_argv[@]}") ||
+            die "--slurm: sbatch of the array failed (above)"
+        array_job=${array_job%%;*}
+        echo "submitted the array: job $array_job, tasks $ranges$throttle ($n_run points to run), logs $out/slurm/rodcontact-scan-${array_job}_<task>.out"
+        dependency=(--dependency="afterany:$array_job")
+    else
+        echo "every point is complete: no array to submit"
+        dependency=()
+    fi
+    # the collector as a shell command line: every word in single quotes (sbatch --wrap runs it
+    # with /bin/sh, where an unquoted 'initial.theta0_step(1)=...' is a syntax error)
+    wrap="exec"
+    for word in "$script" "${scan_argv[@]}" --collect; do
+        wrap+=" '${word//\'/\'\\\'\'}'"
+    done
+    collect_job=$(sbatch --parsable "${dependency[@]}" --job-name=rodcontact-collect --ntasks=1 \
+                  --output="$out_abs/slurm/%x-%j.out" "${sbatch_args[@]}" --wrap "$wrap") ||
+        die "--slurm: sbatch of the collect job failed (above)"
+    collect_job=${collect_job%%;*}
+    echo "submitted the collect job: job $collect_job${array_job:+, after the array ends}: $out/summary.csv, log $out/slurm/rodcontact-collect-$collect_job.out"
+    echo "watch: squeue --me; resume: the same command again" >&2
     exit 0
 fi
 
@@ -632,8 +763,16 @@ else
     echo "scan: $n_points points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
 fi
 start=$SECONDS
+# --term-seq: when GNU parallel itself gets SIGTERM or SIGINT (scancel, Ctrl-C: every process
+# gets it) it sends SIGCONT, which changes nothing, to the processes of each running point and
+# waits up to 10 minutes for them to end (the points stop on the signal they got themselves,
+# see run_point), before SIGKILL. Its default sequence TERM,200,TERM,... sent rodcontact a
+# second SIGTERM that ended it before its checkpoint, and exited while runs were still going.
+SCAN_ID="$(hostname 2> /dev/null || echo host).$$"
+export SCAN_ID
+rm -f "$out/.stop.$SCAN_ID"
 parallel_args=(--jobs "$jobs" --colsep '\t' -a "$jobfile"
-               --term-seq TERM,200,TERM,10000,KILL,25)
+               --term-seq CONT,600000,KILL,25)
 # GNU parallel's job log of a local run (one per scan directory; a task of an array leaves
 # its log to Slurm)
 [[ $mode == run ]] && parallel_args+=(--joblog "$out/joblog")
@@ -644,19 +783,26 @@ fi
 n_ok=0
 n_bad=0
 n_lost=0
+n_stopped=0
 for k in "${pending[@]}"; do
     point_stem "$k"
     rc=""
     [[ -f $STEM.status ]] && read -r rc < "$STEM.status"
     case $rc in
         0) n_ok=$((n_ok + 1)) ;;
+        5 | 129 | 1[3-9][0-9]) n_stopped=$((n_stopped + 1)) ;;
         '') n_lost=$((n_lost + 1)) ;;
         *) n_bad=$((n_bad + 1)) ;;
     esac
 done
 lost=""
 ((n_lost > 0)) && lost=", $n_lost not run"
+((n_stopped > 0)) && lost+=", $n_stopped interrupted (stopped by a signal: rerun the same command to resume them from their checkpoints)"
 echo "scan: done in $(hms $((SECONDS - start))): $n_ok complete, $n_bad failed$lost (messages in $out/point_*.status, .err)" >&2
 [[ $mode == run ]] && collect
+# 5: a point's run was stopped by a signal (not the scan: e.g. the run killed directly);
+# its checkpoint is kept and a rerun resumes it. Not a success, and not a recorded failure
+# (a Slurm array task that ends so is FAILED, not COMPLETED).
+((n_stopped > 0)) && exit 5
 ((n_bad == 0 && n_lost == 0)) || exit 1
 exit 0

@@ -6,6 +6,13 @@
 #
 #   scripts/setup.sh                    # Release build in <repo>/build
 #   BUILD_TYPE=Debug BUILD_DIR=build-debug scripts/setup.sh
+#   scripts/setup.sh --build-only       # no package step: configure and build with the
+#                                       # libraries that are there (no root needed; clusters)
+#
+# Packages: only the missing ones are installed (apt-get install --no-upgrade: installed
+# packages are not upgraded; apt upgrades a dependency only when a new package requires it),
+# with root or sudo. Without either, when the build's own packages (BUILD_PACKAGES) are there,
+# it says which tool packages are missing (plots, tests) and builds anyway.
 #
 # Environment: BUILD_TYPE (default Release), BUILD_DIR (default build; relative paths
 # are taken from the repository root), JOBS (parallel build jobs, default 2), WERROR
@@ -20,10 +27,22 @@ set -euo pipefail
 # parallel: GNU parallel, which runs the points of scripts/scan.sh (with moreutils installed
 # too, Debian moves moreutils' own 'parallel' aside to parallel.moreutils). The test-only
 # Slurm packages (slurm-wlm, munge) are installed by tests/test_slurm.sh itself.
+BUILD_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev)
 REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
                    gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-scipy python3-matplotlib
                    python3-xarray python3-h5netcdf netcdf-bin
                    valgrind parallel graphviz)
+
+# poppler-utils: pdftotext, with which tests/test_plot.sh reads the title of a figure
+REQUIRED_PACKAGES+=(poppler-utils)
+
+build_only=0
+case "${1:-}" in
+    --build-only) build_only=1 ;;
+    "") ;;
+    -h | --help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed -e '$d' -e 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "setup: unknown option '$1' (--build-only, --help)" >&2; exit 2 ;;
+esac
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
@@ -38,7 +57,9 @@ say() { echo "setup: $*" >&2; }
 
 # --- 1. Debian packages --------------------------------------------------------------
 missing=()
-if command -v dpkg-query >/dev/null 2>&1; then
+if ((build_only)); then
+    :   # the libraries are wherever the system (or 'module load') put them: CMake finds them
+elif command -v dpkg-query >/dev/null 2>&1; then
     for pkg in "${REQUIRED_PACKAGES[@]}"; do
         status="$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)"
         if [[ "$status" != "install ok installed" ]]; then
@@ -51,21 +72,32 @@ else
 fi
 
 if ((${#missing[@]} > 0)); then
-    install_cmd="apt-get install -y ${missing[*]}"
+    install_cmd="apt-get install -y --no-upgrade ${missing[*]}"
     say "missing Debian packages: ${missing[*]}"
     sudo_cmd=()
     if [[ "$(id -u)" -ne 0 ]]; then
-        if command -v sudo >/dev/null 2>&1; then
+        if command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
             sudo_cmd=(sudo)
         else
-            say "not root and no sudo: cannot install them. Run as root:"
-            echo "    apt-get update && $install_cmd" >&2
-            exit 1
+            missing_build=()
+            for pkg in "${missing[@]}"; do
+                [[ " ${BUILD_PACKAGES[*]} " == *" $pkg "* ]] && missing_build+=("$pkg")
+            done
+            say "not root and no sudo: cannot install them. As root: apt-get update && $install_cmd"
+            if ((${#missing_build[@]} > 0)); then
+                say "the build needs ${missing_build[*]}: install them (or 'module load' the compiler,"
+                say "CMake, HDF5 and LAPACK and run scripts/setup.sh --build-only; README 'Building')"
+                exit 1
+            fi
+            say "building without them (they are for plots, scans and tests)"
+            missing=()
         fi
     fi
+fi
+if ((${#missing[@]} > 0)); then
     say "installing${sudo_cmd[*]:+ with sudo}: apt-get update && $install_cmd"
     if ! { "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q &&
-           "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${missing[@]}"; }; then
+           "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-upgrade "${missing[@]}"; }; then
         say "package installation failed. Install them yourself, as root:"
         echo "    apt-get update && $install_cmd" >&2
         exit 1

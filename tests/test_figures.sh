@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The reproduction pipeline cannot rot: scripts/paper/figures.sh --quick (shortened runs of every
 # input/exp*.nml, t_end = 0.3) must draw Figures 2-7 as PNG and PDF, a second call must find
-# every run up to date, and scripts/paper/claims.sh --quick must write the claims document with a
+# every run up to date and draw the same 22 files byte for byte, and scripts/paper/claims.sh --quick must write the claims document with a
 # row per claim and links to figures that exist. The claims script must also be able to
 # fail: without --report-only, the shortened runs (no loss of contact by t = 0.3) must give
 # exit status 1.
@@ -75,11 +75,23 @@ for n in 2 3 5 6 7; do
 done
 ls "$figs"/*.tmp >/dev/null 2>&1 && fail "temporary files left in $figs: $(ls "$figs"/*.tmp)"
 
-# 2. a second call reuses every run
-if ! "$src/scripts/paper/figures.sh" --quick --runs-only --exe "$prog" --out "$out" >"$scratch/again.log" 2>&1; then
-    fail "second call of scripts/paper/figures.sh --quick --runs-only failed:"
+# 2. a second call reuses every run, and draws the same files byte for byte (no time in the
+# PDFs: what makes `figures.sh --refresh` leave the committed figures unchanged when nothing
+# changed)
+rm -rf "$scratch/figures2"
+if ! "$src/scripts/paper/figures.sh" --quick --exe "$prog" --out "$out" --figdir "$scratch/figures2" >"$scratch/again.log" 2>&1; then
+    fail "second call of scripts/paper/figures.sh --quick failed:"
     cat "$scratch/again.log"
 fi
+n_same=0
+for f in "$figs"/*.png "$figs"/*.pdf; do
+    if cmp -s "$f" "$scratch/figures2/$(basename "$f")"; then
+        n_same=$((n_same + 1))
+    else
+        fail "drawn twice, $(basename "$f") differs: $(cmp "$f" "$scratch/figures2/$(basename "$f")" 2>&1)"
+    fi
+done
+[[ $n_same -eq 22 ]] || fail "expected 22 figures identical when drawn twice, got $n_same"
 inputs=("$src"/input/exp*.nml)
 n_inputs=${#inputs[@]}
 n_skipped=$(grep -c 'up to date' "$scratch/again.log")
@@ -121,5 +133,5 @@ if ((failures > 0)); then
     echo "test_figures: $failures failure(s)"
     exit 1
 fi
-echo "test_figures: passed (figures, reuse of runs, claims document, failing claims detected)"
+echo "test_figures: passed (figures, reuse of runs, the same files when drawn twice, claims document, failing claims detected)"
 exit 0

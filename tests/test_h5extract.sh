@@ -2,7 +2,8 @@
 # scripts/h5extract.py on any run file (issue 14, deliverable 4): the series, snapshot and
 # matrix modes (columns and gnuplot's nonuniform matrix), checked against the file's values
 # with h5py; --si on a run with &material; a complete run and the .h5.part of a stopped one
-# alike; every usage error exits 2 with a message on stderr and nothing on stdout.
+# alike; every usage error exits 2 with a message on stderr and nothing on stdout; run
+# directly, it finds a Python with h5py itself or names the packages to install.
 # Usage: bash test_h5extract.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
@@ -113,6 +114,26 @@ usage "bad --format" "invalid choice" matrix run.h5 --field u --format grid
 usage "--every 0" "--every: got 0" series run.h5 --every 0
 usage "--si without &material" "only runs with &material" series run.h5 --si
 usage "figures with a file as OUT_DIR" "is not a directory" figures run.h5 data
+
+# run directly: executable (git mode 100755 when in a git checkout), and with a python3 first
+# on PATH that cannot import h5py (here: Debian's own without its site packages, -S), it runs
+# itself again with the Python of find_python.sh; with none, it names the packages, exit 1
+check "h5extract.py is executable" test -x "$src/scripts/h5extract.py"
+if git -C "$src" rev-parse --git-dir > /dev/null 2>&1; then
+    check "h5extract.py has git mode 100755" equals 100755 \
+        "$(git -C "$src" ls-files -s scripts/h5extract.py | cut -d' ' -f1)"
+fi
+mkdir -p nopy
+printf '#!/bin/sh\nexec %s -S "$@"\n' "$py" > nopy/python3
+chmod +x nopy/python3
+check "the stand-in python3 cannot import h5py" bash -c '! PATH=nopy:$PATH python3 -c "import h5py" 2> /dev/null'
+PATH=$PWD/nopy:$PATH "$src/scripts/h5extract.py" series run.h5 --datasets t,energy > direct.txt 2> direct.err
+check "run directly with a python3 without h5py: exit 0, the same output as with find_python's" \
+    bash -c "[[ -s direct.txt ]] && cmp -s direct.txt <('$py' '$src/scripts/h5extract.py' series run.h5 --datasets t,energy)"
+PATH=$PWD/nopy:$PATH RODCONTACT_PYTHON_RETRIED=1 "$src/scripts/h5extract.py" series run.h5 > /dev/null 2> nopy.err
+check "no Python with h5py at all: exit 1" equals 1 "$?"
+check "no Python with h5py at all: names the Debian packages, no traceback" \
+    bash -c "grep -q 'install the Debian packages python3-h5py and python3-numpy' nopy.err && ! grep -q Traceback nopy.err"
 
 echo "test_h5extract: $n_failed of $n_checks checks failed"
 [ "$n_failed" -eq 0 ]

@@ -4,7 +4,9 @@
 # /snapshots/sigma and /series/energy_<part> datasets (added to a copy here, as a later
 # rodcontact will write them: sigma must be drawn by default, the parts read); and it must
 # refuse, with exit 2 and a message, an HDF5 file that is not a rodcontact output, a file
-# that is not HDF5, an unknown style and an absent field.
+# that is not HDF5, an unknown style and an absent field. From another working directory on
+# relative paths it writes only beside the run (or in --out), names are drawn literally, and
+# a run with &material is drawn in SI units (otherwise the labels say nondimensional).
 #
 #   bash tests/test_plot.sh <path to rodcontact> <source dir> <scratch dir>
 # Exit status: 0 passed, 1 failed, 77 skipped (no gnuplot with cairo terminals or no h5py).
@@ -94,6 +96,51 @@ check2 "an absent field" "has no /snapshots/sigma" "$dir/nosigma.h5" --fields u,
 check2 "a missing file" "no such file" "$dir/nothing.h5"
 ls "$dir/figs"/other_* >/dev/null 2>&1 && fail "figures written for a non-rodcontact file"
 
+# 5. from another working directory, on relative paths: the figures beside the run file (or
+#    in --out, relative to the current directory), nothing written in the source tree; a run
+#    named point_0001 keeps its underscore (no gnuplot markup: the PDF's text says so)
+src_state() { (cd "$src" && find . -path ./build -prune -o -path './build-*' -prune -o -path ./.git -prune -o -newer "$dir/stamp" -print); }
+touch "$dir/stamp"; sleep 1
+mkdir -p "$dir/cwd/runs"
+cp "$dir/run.h5" "$dir/cwd/runs/point_0001.h5"
+(cd "$dir/cwd" && "$src/scripts/plot.sh" runs/point_0001.h5 >"$dir/rel.log" 2>&1) ||
+    fail "plot.sh on a relative path from another directory: $(cat "$dir/rel.log")"
+is_png "$dir/cwd/runs/point_0001_surface.png" || fail "runs/point_0001_surface.png not written beside the run"
+(cd "$dir/cwd" && "$src/scripts/plot.sh" runs/point_0001.h5 --style series --out figs/rel >"$dir/rel2.log" 2>&1) ||
+    fail "plot.sh --out relative: $(cat "$dir/rel2.log")"
+is_pdf "$dir/cwd/figs/rel/point_0001_series.pdf" || fail "--out figs/rel: point_0001_series.pdf not in figs/rel"
+[[ -z $(src_state) ]] || fail "plot.sh wrote into the source tree: $(src_state)"
+ls "$src"/scripts/gnuplot/*.tmp >/dev/null 2>&1 && fail "temporary files left in scripts/gnuplot"
+[[ $(ls "$dir/cwd" | tr '\n' ' ') == "figs runs " ]] || fail "plot.sh wrote into the working directory: $(ls "$dir/cwd")"
+if command -v pdftotext >/dev/null 2>&1; then
+    pdftotext "$dir/cwd/figs/rel/point_0001_series.pdf" - | grep -q 'point_0001' ||
+        fail "the title does not read point_0001: $(pdftotext "$dir/cwd/figs/rel/point_0001_series.pdf" - | head -n 3)"
+fi
+
+# 6. units: a run with &material is drawn in SI units by default (values times si_factor,
+#    units in the labels); --nondimensional and a run without &material say 'nondimensional'
+sed -e '/^&model/,/tau=0.2 \//d' -e "s|&time|\&material ell=1.0 /\n\&time|" -e 's/n_elements=500/n_elements=20/' \
+    -e 's/t_end=3.0/t_end=0.05/' -e 's/snapshot_every=100/snapshot_every=10/' -e "s|prefix='out/exp1'|prefix='$dir/alu' quiet=.true.|" \
+    "$src/input/exp1.nml" > "$dir/alu.nml"
+"$prog" "$dir/alu.nml" >/dev/null 2>&1 || fail "the &material run failed"
+"$py" "$src/scripts/lib/plotdata.py" "$dir/alu.h5" "$dir/si-data" >"$dir/si.log" 2>&1 || fail "plotdata.py on alu.h5: $(cat "$dir/si.log")"
+grep -q '^x_unit = " \[m\]"$' "$dir/si-data/params.gp" && grep -q '^t_unit = " \[s\]"$' "$dir/si-data/params.gp" &&
+    grep -q '^unit_theta = " \[K\]"$' "$dir/si-data/params.gp" || fail "SI units missing in params.gp: $(grep unit "$dir/si-data/params.gp")"
+"$py" - "$dir/alu.h5" "$dir/si-data" <<'PY' || fail "the SI profiles are not si_factor times the file's values"
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+p = np.loadtxt(sys.argv[2] + "/prof.theta.dat", skiprows=1)
+th, x = f["snapshots/theta"], f["mesh/x"]
+ok = np.allclose(p[:, 0], x.attrs["si_factor"] * x[:], rtol=1e-6) and \
+     np.allclose(p[:, -1], th.attrs["si_factor"] * th[-1, :], rtol=1e-6, atol=1e-6 * abs(th.attrs["si_factor"] * th[-1, :]).max())
+sys.exit(0 if ok else 1)
+PY
+"$src/scripts/plot.sh" "$dir/alu.h5" --style all --out "$dir/si-figs" >"$dir/si2.log" 2>&1 || fail "plot.sh on a &material run: $(cat "$dir/si2.log")"
+"$py" "$src/scripts/lib/plotdata.py" "$dir/alu.h5" "$dir/nd-data" --units nondimensional >/dev/null 2>&1
+grep -q '^x_unit = " (nondimensional)"$' "$dir/nd-data/params.gp" || fail "--units nondimensional: x not labelled nondimensional"
+grep -q '^x_unit = " (nondimensional)"$' "$data/params.gp" || fail "a run without &material: x not labelled nondimensional"
+check2 "--si on a run without &material" "has no SI scales" "$dir/run.h5" --si --out "$dir/figs"
+
 if ((failures > 0)); then echo "test_plot: $failures failure(s)"; exit 1; fi
-echo "test_plot: passed (complete, failed and extended run files drawn; bad files refused with exit 2)"
+echo "test_plot: passed (complete, failed and extended run files drawn; relative paths from another directory, nothing in the source tree, literal names; SI and nondimensional units; bad files refused with exit 2)"
 exit 0

@@ -126,7 +126,12 @@ check "interrupted scan exits 143" equals 143 "$status"
 check "interrupted scan says how to resume" grep -q 'rerun the same command to resume' scan_run1.log
 # checked at once: the scan stops its runs before it exits
 no_runs_left() {   # no rodcontact of this scan still running ([m]: pgrep must not match itself)
-    ! pgrep -f -- "[m]yscan/point_" > /dev/null
+    local left
+    left=$(pgrep -a -f -- "[m]yscan/point_") || return 0
+    echo "  still running: $left"
+    ps -eo pid,ppid,pgid,stat,etime,args --forest | grep -B4 -A1 "[m]yscan/point"
+    ls -l --time-style=+%T.%N "$dir"
+    return 1
 }
 check "no run left behind after the interrupt" no_runs_left
 n_done=$(ls "$dir"/point_*.h5 2> /dev/null | wc -l)
@@ -134,7 +139,20 @@ check "the interrupt came before the end (complete points: $n_done < 4)" test "$
 bash "$scan" "${args[@]}" --out "$dir" --collect 2> scan_collect1.log
 check "CSV after the interrupt: 6 points, each once" equals "0 1 2 3 4 5" \
     "$(tail -n +2 "$dir/summary.csv" | cut -d, -f1 | tr '\n' ' ' | sed 's/ $//')"
-check "CSV after the interrupt: some point missing" grep -q ',missing,' "$dir/summary.csv"
+check "CSV after the interrupt: some point not complete" grep -q -E ',(missing|interrupted),' "$dir/summary.csv"
+# every point whose run was stopped (exit 5) kept the checkpoint its .err names
+stopped_points_kept() {
+    local st rc stem
+    for st in "$dir"/point_*.status; do
+        read -r rc < "$st"
+        ((rc == 5)) || continue   # (> 128: killed before its handlers, no checkpoint)
+        stem=${st%.status}
+        [[ -f $stem.h5.part ]] || { echo "  $stem: exit 5 but no $stem.h5.part"; return 1; }
+        grep -q -F "restart_from='$stem.h5.part'" "$stem.err" || { echo "  $stem.err names no $stem.h5.part: $(cat "$stem.err")"; return 1; }
+        grep -q "^$((10#${stem##*_})),.*,interrupted,5," "$dir/summary.csv" || { echo "  point ${stem##*_} not 'interrupted,5' in the CSV"; return 1; }
+    done
+}
+check "the points stopped by the interrupt kept their checkpoints, named by their .err, 'interrupted' in the CSV" stopped_points_kept
 
 # --- Ctrl-C: SIGINT to the whole process group, so the runs get it too (they ignore it:
 # started with &), in a scan of its own: a new session, signalled once its first runs go.
@@ -153,7 +171,13 @@ if command -v setsid > /dev/null && env --default-signal=INT true 2> /dev/null; 
     check "Ctrl-C (INT to the process group): exit 130" equals 130 "$?"
     no_ctrlc_runs_left() { ! pgrep -f -- "[c]trlc/point_" > /dev/null; }
     check "no run left behind after Ctrl-C" no_ctrlc_runs_left
-    check "no .part left behind after Ctrl-C" bash -c "! ls ctrlc/*.h5.part 2> /dev/null"
+    # a .part is left only by a run stopped cleanly (exit 5: checkpoint written), or killed by
+    # the signal before its handlers were installed (exit > 128: resumed from t = 0)
+    check "Ctrl-C: a .part only for a point recorded as stopped by the signal" bash -c '
+        for part in ctrlc/*.h5.part; do [[ -e $part ]] || continue; rc=$(head -n 1 "${part%.h5.part}.status"); ((rc == 5 || rc > 128)) || exit 1; done'
+    m=$(printf '%o' $((0666 & ~$(umask))))
+    check "the scan's files have the mode of the umask ($(umask))" equals "$m $m $m" \
+        "$(stat -c %a ctrlc/input.nml ctrlc/points.txt "$dir/summary.csv" 2> /dev/null | tr '\n' ' ' | sed 's/ $//')"
 fi
 n_done=$(ls "$dir"/point_*.h5 2> /dev/null | wc -l)
 
@@ -168,7 +192,7 @@ check "CSV header" equals \
     "$(head -n 1 "$csv" | cut -d, -f1-11)"
 check "CSV: every point exactly once" equals "0 1 2 3 4 5" \
     "$(tail -n +2 "$csv" | cut -d, -f1 | tr '\n' ' ' | sed 's/ $//')"
-check "CSV: every row has a status" equals 6 "$(tail -n +2 "$csv" | cut -d, -f8 | grep -c -E '^(complete|failed: .+|missing)$')"
+check "CSV: every row has a status" equals 6 "$(tail -n +2 "$csv" | cut -d, -f8 | grep -c -E '^(complete|failed: .+|missing|interrupted)$')"
 check "CSV: every point complete with exit status 0" equals "complete,0 complete,0 complete,0 complete,0 complete,0 complete,0" \
     "$(tail -n +2 "$csv" | cut -d, -f8,9 | tr '\n' ' ' | sed 's/ $//')"
 check "CSV: contact only for varpi = 0.1, amplitude 20 (paper: 20 contact, 5 none)" equals "no yes no no no no" \
@@ -180,6 +204,111 @@ check "GNU parallel's job log: one line per point run, exit value 0" equals "$((
 bash "$scan" "${args[@]}" --out "$dir" -j 2 2> scan_run3.log
 check "rerun: 6 already complete, 0 to run, exit 0" \
     bash -c "grep -q '6 already complete, 0 to run' scan_run3.log && ! grep -q failed: '$csv'"
+
+# --- one point interrupted mid-run and resumed: it continues from its checkpoint (fewer steps
+# in the resumed run: root attribute restart_step) and its /snapshots equal those of the same
+# point run without interruption, bit for bit. The scan is stopped once the point's .part has
+# grown after its first flush: the run is then in its time loop, where a signal stops it
+# cleanly (before it, the signal would come before rodcontact's handlers).
+rs=resume
+rm -rf "$rs"
+rs_args=("$src/input/exp2.nml" --set time.t_end=3 --set output.snapshot_every=500 --set output.series_every=10
+         --set model.varpi=0.1)
+bash "$scan" "${rs_args[@]}" --out "$rs" -j 1 2> scan_resume1.log &
+pid=$!
+size0=""
+for ((i = 0; i < 1500; i++)); do
+    size=$(stat -c %s "$rs/point_0000.h5.part" 2> /dev/null)
+    if [[ -n $size ]] && ((size > 1000)); then
+        [[ -z $size0 ]] && size0=$size
+        ((size > size0)) && break
+    fi
+    sleep 0.01
+done
+# a second scan into the same directory while this one runs: refused at once, naming it
+bash "$scan" "${rs_args[@]}" --out "$rs" -j 1 2> scan_locked.log
+status=$?
+check "a second scan into a running scan's directory: exit 2" equals 2 "$status"
+check "a second scan into a running scan's directory: names the running scan (pid $pid)" \
+    grep -q "another scan is running in '$rs' (pid $pid on " scan_locked.log
+kill -TERM "$pid"
+wait "$pid"
+check "scan stopped while its point runs: exit 143" equals 143 "$?"
+check "the stopped point: exit 5 recorded, its checkpoint kept" \
+    bash -c "[[ \$(head -n 1 $rs/point_0000.status) == 5 && -f $rs/point_0000.h5.part && ! -f $rs/point_0000.h5 ]]"
+check "the stopped point's .err names the file that is there" grep -q -F "restart_from='$rs/point_0000.h5.part'" "$rs/point_0000.err"
+bash "$scan" "${rs_args[@]}" --out "$rs" -j 1 2> scan_resume2.log
+check "resume: exit 0" equals 0 "$?"
+check "resume: the point complete, no .part or .resume left" \
+    bash -c "grep -q '^0,.*,complete,0,' $rs/summary.csv && ! ls $rs/*.part $rs/*.resume 2> /dev/null"
+if py=$("$src/scripts/lib/find_python.sh" 2> /dev/null); then
+    "$prog" "${rs_args[@]}" --set output.prefix=uninterrupted --set output.quiet=.true.
+    check "resume: restarted from its checkpoint (0 < restart_step < steps) and /snapshots bit for bit those of an uninterrupted run" \
+        "$py" - "$rs/point_0000.h5" uninterrupted.h5 << 'EOF'
+import sys
+import h5py
+with h5py.File(sys.argv[1], "r") as a, h5py.File(sys.argv[2], "r") as b:
+    rs, steps = int(a.attrs.get("restart_step", 0)), int(a.attrs["steps"])
+    print(f"  resumed at step {rs} of {steps}")
+    ok = 0 < rs < steps and steps == int(b.attrs["steps"])
+    for name in b["snapshots"]:
+        x, y = a["snapshots"][name][...], b["snapshots"][name][...]
+        same = x.shape == y.shape and x.dtype == y.dtype and x.tobytes() == y.tobytes()
+        if not same:
+            print(f"  /snapshots/{name} differs")
+        ok = ok and same
+sys.exit(0 if ok else 1)
+EOF
+fi
+
+# --- a point whose run alone is stopped by a signal (killed by hand, not the scan): recorded
+# as interrupted with its checkpoint, and the scan exits 5 (a Slurm task so ends FAILED, not
+# COMPLETED); the rerun continues it
+kd=killed
+rm -rf "$kd"
+bash "$scan" "${rs_args[@]}" --out "$kd" -j 1 2> scan_killed.log &
+pid=$!
+size0=""
+for ((i = 0; i < 1500; i++)); do
+    size=$(stat -c %s "$kd/point_0000.h5.part" 2> /dev/null)
+    if [[ -n $size ]] && ((size > 1000)); then
+        [[ -z $size0 ]] && size0=$size
+        ((size > size0)) && break
+    fi
+    sleep 0.01
+done
+run_pid=$(pgrep -f -- "[k]illed/point_0000 --set output.quiet")
+kill -TERM $run_pid
+wait "$pid"
+check "the run of a point killed by hand: the scan exits 5" equals 5 "$?"
+check "the run of a point killed by hand: 'interrupted' in the CSV, its checkpoint kept" \
+    bash -c "grep -q '^0,.*,interrupted,5,' $kd/summary.csv && [[ -f $kd/point_0000.h5.part ]]"
+bash "$scan" "${rs_args[@]}" --out "$kd" -j 1 2> scan_killed2.log
+check "the point killed by hand: the rerun completes it" equals 0 "$?"
+
+# --- --slurm with a stand-in sbatch (the real one: tests/test_slurm.sh): the array and the
+# collect job submitted in one go; the collect job's --wrap, run by /bin/sh as Slurm does,
+# collects (a target with '(' in it: an unquoted one is a syntax error in sh)
+mkdir -p fakebin
+cat > fakebin/sbatch << 'EOF'
+#!/usr/bin/env bash
+n=$(($(cat sbatch.n 2> /dev/null || echo 0) + 1))
+echo "$n" > sbatch.n
+printf '%s\n' "$@" > "sbatch.$n.args"
+echo "$((100 + n))"
+EOF
+chmod +x fakebin/sbatch
+rm -rf sbatch.* slurmscan
+PATH=$PWD/fakebin:$PATH bash "$scan" "${args[@]}" --out slurmscan --batch 4 --slurm --partition=p1 %2 > scan_slurm.out 2> scan_slurm.log
+check "--slurm: exit 0, both job ids printed" \
+    bash -c "grep -q '^submitted the array: job 101, tasks 0-1%2' scan_slurm.out && grep -q '^submitted the collect job: job 102, after the array ends' scan_slurm.out"
+check "--slurm: the array's sbatch options (throttle, logs in DIR/slurm, the template, its options)" \
+    bash -c "grep -qx -- '--array=0-1%2' sbatch.1.args && grep -qx -- '--output=$PWD/slurmscan/slurm/%x-%A_%a.out' sbatch.1.args && grep -qx -- '--partition=p1' sbatch.1.args && grep -q 'scripts/slurm/scan_array.sbatch$' sbatch.1.args"
+check "--slurm: the collect job depends on the array" grep -qx -- '--dependency=afterany:101' sbatch.2.args
+rm -f "slurmscan/summary.csv"
+sh -c "$(sed -n '/^--wrap$/{n;p;}' sbatch.2.args)" 2> scan_wrap.log
+check "--slurm: the collect job's --wrap runs in /bin/sh and writes DIR/summary.csv" \
+    bash -c "[[ -s slurmscan/summary.csv ]] && grep -q 'summary.csv: 6 points' scan_wrap.log"
 
 # --- bad input found only at run time (a restart file that does not exist: --check does not
 # open files): the point is recorded as failed with exit status 2 and the message

@@ -74,6 +74,7 @@ stop_cluster() {   # every daemon started here, by pid: TERM, then KILL after 10
     ((${#pids[@]} > 0)) || return 0
     # jobs still running (after a failure): cancelled while slurmctld is there to do it
     [[ -n ${SLURM_CONF:-} ]] && timeout 10 scancel --quiet --name=rodcontact-scan > /dev/null 2>&1
+    [[ -n ${SLURM_CONF:-} ]] && timeout 10 scancel --quiet --name=rodcontact-collect > /dev/null 2>&1
     # slurmd, slurmctld, then munged (the last started first)
     for ((i = ${#pids[@]} - 1; i >= 0; i--)); do
         kill -TERM "${pids[i]}" 2> /dev/null
@@ -174,6 +175,7 @@ args=("$src/input/exp2.nml" --set model.varpi=0.1,0.3,1 --set solver.method=pape
       --set mesh.n_elements=200 --set time.dt=1e-3 --set time.t_end=16
       --set output.snapshot_every=100000 --set output.series_every=10 --out scan)
 export RODCONTACT=$prog RODCONTACT_ROOT=$src
+py=$("$src/scripts/lib/find_python.sh") || exit 1
 
 # the same scan locally, for the reference table
 mkdir -p local cluster
@@ -235,10 +237,11 @@ check "task 0 (a failed point among its points) and task 2 completed, task 1 (SI
     equals "0:COMPLETED:0:0 1:FAILED:143:0 2:COMPLETED:0:0" "$(task_states "$jid")"
 check "task 1: stopped on the signal, says how to resume" \
     grep -q 'interrupted (signal 15) while running the points.*rerun the same command to resume' "slurm-rodcontact-scan-${jid}_1.out"
-check "task 1: no .h5.part left behind" bash -c '! ls scan/*.h5.part 2> /dev/null'
+check "task 1: point 2 stopped with its checkpoint (exit 5, .h5.part kept), point 3 not run" \
+    bash -c '[[ $(head -n 1 scan/point_0002.status) == 5 && -f scan/point_0002.h5.part && ! -e scan/point_0003.status ]]'
 bash "$scan" "${args[@]}" --collect 2> ../collect1.log
-check "after the signal: points 2, 3 missing, point 0 failed, the others complete" equals \
-    "0:failed 1:complete 2:missing 3:missing 4:complete 5:complete" "$(statuses scan/summary.csv)"
+check "after the signal: point 2 interrupted, 3 missing, point 0 failed, the others complete" equals \
+    "0:failed 1:complete 2:interrupted 3:missing 4:complete 5:complete" "$(statuses scan/summary.csv)"
 
 # resubmission: the tasks with a point that is not complete (point 0 failed: task 0; task 1)
 range=$(bash "$scan" "${args[@]}" --batch 2 --array 2> ../array2.log)
@@ -251,6 +254,8 @@ check "resubmission: task 0 skipped its complete point 1 and ran point 0 again" 
     grep -q 'task 0: points 0..1 of 6 in scan/, 1 already complete, 1 to run' "slurm-rodcontact-scan-${jid2}_0.out"
 check "resubmission: task 1 ran points 2, 3" \
     grep -q 'task 1: points 2..3 of 6 in scan/, 0 already complete, 2 to run' "slurm-rodcontact-scan-${jid2}_1.out"
+check "resubmission: point 2 continued from its checkpoint (root attribute restart_step)" \
+    bash -c "$py"' -c "import h5py, sys; sys.exit(0 if h5py.File(\"scan/point_0002.h5\").attrs.get(\"restart_step\", 0) > 0 else 1)"'
 check "resubmission: the complete points' files untouched" \
     equals "$stamps" "$(stat -c '%n %Y.%s' scan/point_0001.h5 scan/point_0004.h5 scan/point_0005.h5)"
 check "left to run: only task 0 (its point 0 fails again)" \
@@ -267,6 +272,26 @@ check "cluster summary.csv = local summary.csv (every column but wall_seconds)" 
     diff <(without_wall ../local/scan/summary.csv) <(without_wall scan/summary.csv)
 cd "$scratch" || exit 1
 
+# ---------------------------------------------------------------- scan.sh --slurm
+# The array and the collect job in one command, from another directory than the repository;
+# the Slurm logs under the scan directory.
+mkdir -p oneshot && cd oneshot || exit 1
+rm -rf scan
+bash "$scan" "${args[@]}" --batch 2 --slurm %1 --time=10 > ../slurm_submit.out 2> ../slurm_submit.log
+check "--slurm: exit 0" equals 0 "$?"
+jid3=$(sed -n 's/^submitted the array: job \([0-9]*\),.*/\1/p' ../slurm_submit.out)
+cid3=$(sed -n 's/^submitted the collect job: job \([0-9]*\),.*/\1/p' ../slurm_submit.out)
+check "--slurm printed the array's and the collect job's ids ($jid3, $cid3)" test -n "$jid3" -a -n "$cid3"
+check "--slurm: the array ended" wait_array "$jid3"
+check "--slurm: the collect job ended" wait_array "$cid3"
+check "--slurm: the collect job completed" equals "COMPLETED:0:0" \
+    "$(scontrol -o show job "$cid3" | sed -n 's/.*JobState=\([A-Z_]*\) .*ExitCode=\([0-9:]*\).*/\1:\2/p')"
+check "--slurm: the collect job's summary.csv = local summary.csv (every column but wall_seconds)" \
+    diff <(without_wall ../local/scan/summary.csv) <(without_wall scan/summary.csv)
+check "--slurm: the Slurm logs in scan/slurm/ (3 tasks and the collect job), none here" \
+    bash -c "[[ \$(ls scan/slurm/rodcontact-scan-${jid3}_*.out | wc -l) == 3 && -f scan/slurm/rodcontact-collect-$cid3.out ]] && ! ls slurm-*.out 2> /dev/null"
+cd "$scratch" || exit 1
+
 # ---------------------------------------------------------------- stop
 cluster_dir=$cluster
 stop_cluster
@@ -275,7 +300,7 @@ check "every daemon stopped" equals "" "$left"
 
 echo "test_slurm: $n_checks checks, $n_failed failed; cluster start-up $t_up s, test wall time $(elapsed "$t_test") s"
 if ((n_failed > 0)); then
-    for log in local.log array1.log array2.log collect1.log collect2.log cluster/slurm-*.out; do
+    for log in local.log array1.log array2.log collect1.log collect2.log cluster/slurm-*.out slurm_submit.* oneshot/scan/slurm/*.out; do
         [[ -f $log ]] && { echo "--- $log"; cat "$log"; }
     done
     for log in cluster-logs/*.log; do

@@ -103,11 +103,11 @@ contains
 
         ! the row: the same numbers in the header's order, 15 significant digits
         row = summary_row(s)
-        call check_true('header has 27 columns', count_commas(summary_header()) == 26, summary_header())
+        call check_true('header has 31 columns', count_commas(summary_header()) == 30, summary_header())
         call check_true('header starts with file,status,contact', &
                         index(summary_header(), 'file,status,contact,first_contact_t,') == 1, summary_header())
         expected = file // ',complete,yes,0.2,0.64,0.17,0.06,0.16,0.6,1.6,' // &
-                   '0.0273237224472926,3,0.6,1.2,1.2,120,1.25,0.1,,,,,,,,,'
+                   '0.0273237224472926,3,0.6,1.2,1.2,120,1.25,0.1,,,,,,,,,,,,,'
         call check_true('row', row == expected, 'expected ' // expected // new_line('a') // '  got      ' // row)
     end subroutine test_contact_file
 
@@ -139,7 +139,7 @@ contains
         call check_true('failed: wall_seconds absent', ieee_is_nan(s%wall_seconds))
         row = summary_row(s)
         expected = file // ',"failed: step 4 (t = 2), no ""convergence""",no,,,0,0,0.1,1,1,0.125,' // &
-                   '1.38629436111989,1,1.5,1.5,,,0.1,,,,,,,,,'
+                   '1.38629436111989,1,1.5,1.5,,,0.1,,,,,,,,,,,,,'
         call check_true('failed: row', row == expected, 'expected ' // expected // new_line('a') // '  got      ' // row)
     end subroutine test_failed_file
 

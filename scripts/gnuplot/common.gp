@@ -37,8 +37,10 @@ fronts = 'do for [k=1:fr_n] { xf = pulse_end + fr_v*word(fr_times, k); if (word(
 px0 = 0.09; px1 = 0.985; pgx = 0.085
 py0 = 0.16; py1 = 0.82; pgy = 0.14
 place = 'set lmargin at screen px0 + pc*((px1 - px0 + pgx)/pnc); set rmargin at screen px0 + pc*((px1 - px0 + pgx)/pnc) + (px1 - px0 + pgx)/pnc - pgx; set tmargin at screen py1 - pr*((py1 - py0 + pgy)/pnr); set bmargin at screen py1 - pr*((py1 - py0 + pgy)/pnr) - (py1 - py0 + pgy)/pnr + pgy'
-# Figure title at the top left.
+# Figure title at the top left. figtitle_literal: the text as it is, no enhanced-text markup
+# (run names: 'point_0001' would draw 0001 as a subscript); no double quote in s.
 figtitle(s) = sprintf('set label 1000 "%s" at screen 0.01, screen 0.965 left font ",%.2f"', s, (font_px + 3)*font_scale)
+figtitle_literal(s) = figtitle(s).' noenhanced'
 
 # A key of its own across the whole width, between the title and the panels: an empty
 # plot whose curves are never drawn (NaN) but are listed in its key. Usage: set

@@ -7,21 +7,21 @@ pnc = (n_fields < 3) ? n_fields : 3
 pnr = int(ceil(n_fields/3.0))
 set multiplot
 st = failed ? sprintf('   [%s]', status) : ''
-eval figtitle(fig_title.st)
-key_plot = 'for [k=1:n_prof] NaN with lines lw 2.5 lc rgb word(prof_colours, k) title "t = ".word(prof_times, k)'
+eval figtitle_literal(fig_title.st.'   ('.units_note.')')
+key_plot = 'for [k=1:n_prof] NaN with lines lw 2.5 lc rgb word(prof_colours, k) title "t = ".word(prof_times, k).(t_unit[1:2] eq " [" ? " ".t_unit[3:strlen(t_unit)-1] : "")'
 key_y0 = 0.86; key_y1 = 0.935
 @keyrow
 unset label 1000
 py1 = 0.80; py0 = 0.10; pgy = 0.12
 px0 = 0.085; px1 = 0.985; pgx = 0.085
-set xlabel it('x')
-set xrange [0:1]
-set xtics 0.2
+set xlabel it('x').x_unit
+set xrange [0:x_max]
+set xtics x_max/5.
 do for [i=0:n_fields-1] {
     pr = int(i/3); pc = i - 3*pr
     @place
     fld = word(fields, i + 1)
-    set ylabel field_label(word(symbols, i + 1))
+    set ylabel field_label(word(symbols, i + 1)).value('unit_'.fld)
     plot for [k=1:n_prof] datadir.'/prof.'.fld.'.dat' skip 1 using 1:k+1 with lines lw 1.8 lc rgb word(prof_colours, k)
 }
 unset multiplot

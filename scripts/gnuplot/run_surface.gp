@@ -10,7 +10,12 @@ pnc = (n_panels < 3) ? n_panels : 3
 pnr = int(ceil(n_panels/3.0))
 set multiplot
 st = failed ? sprintf('   [%s]', status) : ''
-eval figtitle(fig_title.st)
+# literal = 1 (scripts/plot.sh): the title as it is, no enhanced-text markup (run names)
+if (exists('literal') && literal) {
+    eval figtitle_literal(fig_title.st.(units_note eq '' ? '' : '   ('.units_note.')'))
+} else {
+    eval figtitle(fig_title.st.(units_note eq '' ? '' : '   ('.units_note.')'))
+}
 # colour maps: sequential (dark blue - teal - yellow) for one-signed fields, diverging
 # (blue - white - red, centred on 0) for fields that change sign
 seq_palette = "set palette defined (0 '#30123b', 0.25 '#3e6fd8', 0.5 '#1bbc8f', 0.75 '#b8d22a', 1 '#f0e442')"
@@ -28,17 +33,17 @@ do for [i=0:n_fields-1] {
     set xyplane 0
     set border 31 lw 0.8 lc rgb '#606060'
     unset grid
-    set xtics 0.25 offset 0, -0.2 nomirror
+    set xtics x_max/4. offset 0, -0.2 nomirror
     set ytics auto offset 0.5, -0.2 nomirror
     unset ztics   # the colour bar beside the panel gives the values
     unset mxtics; unset mytics
-    set xlabel it('x') offset 0, -0.3
-    set ylabel it('t') offset 0, 0
+    set xlabel it('x').x_unit offset 0, -0.3
+    set ylabel it('t').t_unit offset 0, 0
     set zlabel ''
     set format z '%g'
     tmin = value('t_min_'.fld)
-    set title field_label(word(symbols, i + 1)).(tmin > 0 ? sprintf('   ({/:Italic t} ≥ %g: {/:Italic t} = 0 off the scale)', tmin) : '') offset 0, -1
-    set xrange [0:1]
+    set title field_label(word(symbols, i + 1)).(exists('unit_'.fld) ? value('unit_'.fld) : '').(tmin > 0 ? sprintf('   ({/:Italic t} ≥ %g: {/:Italic t} = 0 off the scale)', tmin) : '') offset 0, -1
+    set xrange [0:x_max]
     set yrange [0:t_max]
     lo = value('cb_lo_'.fld); hi = value('cb_hi_'.fld)
     set zrange [value('z_lo_'.fld):value('z_hi_'.fld)]
@@ -67,8 +72,8 @@ if (with_uend) {
     set grid xtics ytics
     set xrange [0:t_end_series]
     set yrange [0:*]
-    set xlabel it('t') offset 0, 0
-    set ylabel it('u').'(1, '.it('t').')' offset 0, 0
+    set xlabel it('t').t_unit offset 0, 0
+    set ylabel it('u').'(1, '.it('t').')'.u_unit offset 0, 0
     if (t_on == t_on) {
         set object 1 rect from t_on, graph 0 to t_off, graph 1 behind fc rgb '#e6e6e6' fs solid 1.0 noborder
     }

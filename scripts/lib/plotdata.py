@@ -2,7 +2,7 @@
 rodcontact HDF5 file into text files for gnuplot (scripts/gnuplot/run_*.gp).
 
     <python with h5py> scripts/lib/plotdata.py RUN.h5 DATA_DIR [--fields u,P,theta] [--t-max T]
-                                           [--times t1,t2,...]
+                                           [--times t1,t2,...] [--units auto|si|nondimensional]
 
 DATA_DIR receives
     surf.<field>.dat   the field over (x, t), sampled to at most 61 x 61 points (every k-th
@@ -16,6 +16,14 @@ DATA_DIR receives
                        energy when the file has them (/series/energy_<part>), thinned to
                        at most 4000 rows
     params.gp          gnuplot assignments: fields, labels, times, colours, status, g, ...
+
+Units: with --units si (the default 'auto' when the file has SI scales, i.e. a run with
+&material) every value is written in SI units (the si_factor of its dataset) and params.gp
+holds the units for the axis labels ('[m]', '[s]', ...); a dataset without si_factor stays
+nondimensional and its label says so. --units nondimensional (the default without scales)
+writes the file's values and labels the axes '(nondimensional)'; --units paper: the file's
+values, no units in the labels (the paper's figures, in its variables). Times given with --t-max and
+--times are in the file's own (nondimensional) time.
 
 Default fields: u P theta q eta, then sigma when /snapshots/sigma exists. Any file that
 rodcontact wrote works, also a failed run (status 'failed: ...': everything up to the last
@@ -74,6 +82,7 @@ def main(argv):
     p.add_argument("--fields", default=None, help="comma-separated: u,v,theta,P,q,eta,sigma")
     p.add_argument("--t-max", type=float, default=None, help="last time drawn (default: the run's last)")
     p.add_argument("--times", default=None, help="comma-separated profile times")
+    p.add_argument("--units", choices=("auto", "si", "nondimensional", "paper"), default="auto")
     a = p.parse_args(argv[1:])
     try:
         f = rodrun.open_run(a.run)
@@ -96,6 +105,24 @@ def main(argv):
         else:
             fields = [s for s in ["u", "P", "theta", "q", "eta", "sigma"] if s in snaps]
         os.makedirs(a.data_dir, exist_ok=True)
+        has_scales = "si_factor" in f["mesh/x"].attrs
+        if a.units == "si" and not has_scales:
+            sys.stderr.write(f"plotdata.py: --si: {a.run} has no SI scales (only runs with &material have them)\n")
+            return 2
+        si = a.units == "si" or (a.units == "auto" and has_scales)
+
+        def scale(d):
+            """(factor, label suffix) of dataset d in the units chosen."""
+            if a.units == "paper":
+                return 1.0, ""
+            if not si:
+                return 1.0, " (nondimensional)"
+            if "si_factor" not in d.attrs:
+                return 1.0, " (nondimensional: no SI scale in the file)"
+            return float(d.attrs["si_factor"]), " [%s]" % rodrun.text(d.attrs.get("si_units", "?"))
+
+        fx, x_unit = scale(f["mesh/x"])
+        ft, t_unit = scale(f["snapshots/t"])
         x = f["mesh/x"][:]
         ts = f["snapshots/t"][:]
         status = rodrun.status(f)
@@ -115,6 +142,7 @@ def main(argv):
             ip = sorted(set(int(in_range[int(round(i))]) for i in np.linspace(0, in_range.size - 1, n)))
         tp = [float(ts[k]) for k in ip]
         t_min_of = {}
+        unit_of = {}
         for fld in fields:
             data = snaps[fld]
             first = in_range
@@ -125,56 +153,77 @@ def main(argv):
                     first = in_range[1:]
             it = first[sample(first.size, SURF_SAMPLES)]
             t_min_of[fld] = float(ts[first[0]])
+            ff, unit_of[fld] = scale(data)
             # surface: blocks of constant t
             with open(os.path.join(a.data_dir, f"surf.{fld}.dat"), "w", encoding="utf-8") as out:
                 rows = data[it, :][:, ix]
                 for k, row in zip(it, rows):
-                    np.savetxt(out, np.column_stack([x[ix], np.full(ix.size, ts[k]), row]), fmt="%.7g")
+                    np.savetxt(out, np.column_stack([fx * x[ix], np.full(ix.size, ft * ts[k]), ff * row]), fmt="%.7g")
                     out.write("\n")
-            prof = data[ip, :]
+            prof = ff * data[ip, :]
             write_columns(os.path.join(a.data_dir, f"prof.{fld}.dat"),
-                          ["x"] + ["t = " + fmt_time(t, 3) for t in tp], [x] + [r for r in prof])
+                          ["x"] + ["t = " + fmt_time(ft * t, 3) for t in tp], [fx * x] + [r for r in prof])
         # series
         ser = f["series"]
         t = ser["t"][:]
         keep = np.unique(np.r_[np.arange(0, t.size, max(1, math.ceil(t.size / MAX_SERIES_ROWS))), t.size - 1])
-        cols = [t, ser["energy"][:]]
+        fts, _ = scale(ser["t"])
+        fe, e_unit = scale(ser["energy"])
+        cols = [fts * t, fe * ser["energy"][:]]
         titles = ["t", "E"]
+        fu, u_unit = 1.0, " (nondimensional)"
         for name in ("u_end", "penetration", "contact_stress"):
-            cols.append(ser[name][:] if name in ser else np.full(t.size, np.nan))
+            if name in ser:
+                factor, unit = scale(ser[name])
+                if name == "u_end":
+                    fu, u_unit = factor, unit
+                cols.append(factor * ser[name][:])
+            else:
+                cols.append(np.full(t.size, np.nan))
             titles.append(name)
         parts = rodrun.energy_parts(f)
         for k in parts:
-            cols.append(ser[k][:])
+            # the parts in the energy's units (their own si_factor when they have one)
+            factor = scale(ser[k])[0] if "si_factor" in ser[k].attrs or not si else fe
+            cols.append(factor * ser[k][:])
             titles.append(k[len("energy_"):])
         write_columns(os.path.join(a.data_dir, "series.dat"), titles, [c[keep] for c in cols])
-        t_on, t_off = rodrun.contact_interval(t, rodrun.series(f, "penetration", np.zeros(t.size)))
+        t_on, t_off = rodrun.contact_interval(fts * t, rodrun.series(f, "penetration", np.zeros(t.size)))
         at = f.attrs
         params = {
             "fields": " ".join(fields),
             "symbols": " ".join(SYMBOL[s] for s in fields),
             "n_fields": len(fields),
             "n_prof": len(tp),
-            "prof_times": " ".join(fmt_time(t, 3) for t in tp),
+            "prof_times": " ".join(fmt_time(ft * t, 3) for t in tp),
             "prof_colours": " ".join(colours(len(tp))),
-            "t_max": t_max,
-            "t_end_series": float(t[-1]),
+            "t_max": ft * t_max,
+            "t_end_series": float(fts * t[-1]),
+            "x_max": float(fx * x[-1]),
+            "x_unit": x_unit,
+            "t_unit": t_unit,
+            "e_unit": e_unit,
+            "u_unit": u_unit,
+            "units_note": "SI units" if si else ("" if a.units == "paper" else "nondimensional variables (2.10)"),
             "status": status.replace('"', "'"),
             "failed": 0 if status == "complete" else 1,
             "run_name": os.path.basename(a.run).replace('"', "'"),
-            "g": float(at["contact.g"]) if "contact.g" in at else math.nan,
+            "g": fu * float(at["contact.g"]) if "contact.g" in at else math.nan,
             "varpi": float(at["model.varpi"]),
             "t_on": t_on,
             "t_off": t_off,
             "u_end_min": float(np.nanmin(cols[2])) if t.size else 0.0,
             "u_end_max": float(np.nanmax(cols[2])) if t.size else 1.0,
+            "e_positive": int(bool(np.any(cols[1] > 0))),
             "n_parts": len(parts),
             "part_names": " ".join(k[len("energy_"):] for k in parts),
         }
         for fld in fields:   # colour range of each surface; symmetric when the field changes sign
             i0 = int(np.nonzero(ts == t_min_of[fld])[0][0])
             v = snaps[fld][i0:in_range[-1] + 1, :]
-            params[f"t_min_{fld}"] = t_min_of[fld]
+            params[f"t_min_{fld}"] = ft * t_min_of[fld]
+            params[f"unit_{fld}"] = unit_of[fld]
+            v = scale(snaps[fld])[0] * v
             lo, hi = float(np.nanmin(v)), float(np.nanmax(v))
             signed = lo < 0 < hi and min(-lo, hi) > 0.05 * max(-lo, hi)
             m = max(abs(lo), abs(hi)) or 1.0

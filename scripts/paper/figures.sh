@@ -11,14 +11,21 @@
 # the files hold them (/series/energy_<part>), and /snapshots/sigma, when present, is drawn
 # as a surface (fig2_surface adds it for experiment 1).
 #
-#   scripts/paper/figures.sh                  # runs into out/, figures into figures/
+#   scripts/paper/figures.sh                  # runs into out/, figures into out/figures/
+#   scripts/paper/figures.sh --refresh        # the same, figures into figures/ (the committed
+#                                             # ones: refresh them after a change of the code)
 #   scripts/paper/figures.sh --force          # rerun every input even if its output is up to date
 #   scripts/paper/figures.sh --quick          # shortened runs (t_end = 0.3) and their figures, in
 #                                       # ${TMPDIR:-/tmp}/rodcontact-quick/{out,figures}
 #
 # Options:
 #   --out DIR       directory of the HDF5 files (default out/, with --quick see above)
-#   --figdir DIR    directory of fig2.png ... fig7.pdf (default figures/, with --quick see above)
+#   --figdir DIR    directory of fig2.png ... fig7.pdf (default out/figures/, with --quick see
+#                   above, with --refresh the repository's figures/)
+#   --refresh       write the figures into the repository's figures/, which are committed (the
+#                   default leaves the tracked files alone). Drawing them twice gives the same
+#                   files byte for byte: the PDFs' CreationDate is set to the date of the
+#                   latest commit (or SOURCE_DATE_EPOCH when set), not the time of drawing
 #   --exe PATH      rodcontact binary to use (default: build it with scripts/setup.sh, which
 #                   honours BUILD_DIR, and use $BUILD_DIR/rodcontact)
 #   --force         rerun every input
@@ -54,10 +61,11 @@ usage() {   # usage [status]: the header comment; on stdout for --help, else on 
 }
 say() { echo "figures: $*" >&2; }
 
-force=0 quick=0 runs_only=0 with_long=0 out_dir="" fig_dir="" exe="" res_s="" res_dt=""
+force=0 quick=0 runs_only=0 with_long=0 refresh=0 out_dir="" fig_dir="" exe="" res_s="" res_dt=""
 while (($# > 0)); do
     case "$1" in
         --force) force=1 ;;
+        --refresh) refresh=1 ;;
         --quick) quick=1 ;;
         --runs-only) runs_only=1 ;;
         --with-long) with_long=1 ;;
@@ -94,7 +102,11 @@ if ((quick)); then
     fig_dir="${fig_dir:-$quick_base/figures}"
 else
     out_dir="${out_dir:-$repo_root/out}"
-    fig_dir="${fig_dir:-$repo_root/figures}"
+    if ((refresh)); then
+        fig_dir="${fig_dir:-$repo_root/figures}"
+    else
+        fig_dir="${fig_dir:-$out_dir/figures}"
+    fi
 fi
 for d in "$out_dir" "$fig_dir"; do
     if [[ "$d" == *"'"* || "$d" == *'"'* ]]; then
@@ -178,6 +190,16 @@ fi
 # --- figures -----------------------------------------------------------------------------
 mkdir -p "$fig_dir"
 fig_dir="$(cd "$fig_dir" && pwd)"
+
+# fixed_pdf_date FILE: cairo writes the time of drawing into a PDF (/CreationDate (D:...Z)); this
+# replaces it, in place and with the same length (the cross-reference offsets stay right), by
+# SOURCE_DATE_EPOCH, else the date of the latest commit, else 2000-01-01: the same figure
+# drawn twice is the same file. PNGs carry no time.
+pdf_date="$(date -u -d "@${SOURCE_DATE_EPOCH:-$(git -C "$repo_root" log -1 --format=%ct 2>/dev/null || echo 946684800)}" +%Y%m%d%H%M%S)"
+fixed_pdf_date() {
+    [[ "$1" == *.pdf || "$1" == *.pdf.tmp ]] || return 0
+    D="$pdf_date" perl -0777 -pi -e 's{/CreationDate \(D:\d{14}Z\)}{/CreationDate (D:$ENV{D}Z)}g' "$1"
+}
 data_dir="$(mktemp -d "${TMPDIR:-/tmp}/rodcontact-figdata.XXXXXX")"
 trap 'rm -rf "$data_dir"' EXIT
 "$py" "$scripts/h5extract.py" "$out_dir" "$data_dir" || { say "extraction from $out_dir failed"; exit 1; }
@@ -203,6 +225,7 @@ for entry in "${sizes[@]}"; do
             say "gnuplot said on fig$n.$fmt:"
             cat "$data_dir/gnuplot.log" >&2
         fi
+        fixed_pdf_date "$tmp"
         mv "$tmp" "$target"
         written+=("$target")
     done
@@ -221,7 +244,7 @@ for entry in "${surfaces[@]}"; do
         flds="$flds,sigma"
     fi
     sdata="$data_dir/surface$n"
-    "$py" "$scripts/lib/plotdata.py" "$out_dir/$run.h5" "$sdata" --fields "$flds" --t-max "$tmax" ||
+    "$py" "$scripts/lib/plotdata.py" "$out_dir/$run.h5" "$sdata" --fields "$flds" --t-max "$tmax" --units paper ||
         { say "extraction for fig${n}_surface failed"; exit 1; }
     extra=""
     [[ "$n" == 6 ]] && extra="with_uend = 1;"
@@ -243,6 +266,7 @@ for entry in "${surfaces[@]}"; do
             say "gnuplot said on fig${n}_surface.$fmt:"
             cat "$data_dir/gnuplot.log" >&2
         fi
+        fixed_pdf_date "$tmp"
         mv "$tmp" "$target"
         written+=("$target")
     done

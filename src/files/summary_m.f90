@@ -1,7 +1,9 @@
 !> One-line summary of a rodcontact HDF5 file (docs/output.md) for parameter scans: whether
 !> and when the rod touched the obstacle, how far it went, how the energy decayed, and what
 !> the run cost. `rodcontact --summary file.h5` prints summary_row(summarise_file(file));
-!> scripts/scan.sh joins the rows of all points of a scan (docs/scans.md).
+!> scripts/scan.sh joins the rows of all points of a scan (docs/scans.md). The row stays short:
+!> of the contact events (/events) it holds the counts and the first and last times; the full
+!> lists, one row per event, are `rodcontact --events file.h5` (write_event_rows).
 !>
 !> Definitions, on the stored series t_k, E_k, u_k = u(1,t_k), p_k = [u_k - g]_+ and the
 !> contact stress sigma_k = sigma(1,t_k) (k = 0..K):
@@ -29,6 +31,7 @@ module summary_m
     public :: summary_t
     public :: summarise_series, summarise_file, summary_problem
     public :: summary_header, summary_row, csv_field
+    public :: events_header, write_event_rows
 
     !> The numbers of one run. NaN (or steps < 0) where a value does not apply.
     type :: summary_t
@@ -54,18 +57,19 @@ module summary_m
         !> root attributes 'error_estimate.<field>' (&output error_estimate; NaN if absent),
         !> the fields in ESTIMATE_FIELDS' order
         real(dp) :: error_estimate(6) = 0.0_dp
-        !> /events: the onset and the release times, ';'-separated ('' if none or absent)
-        character(len=:), allocatable :: onsets, releases
+        !> /events: the onset and the release times (none when absent: has_events false)
+        logical :: has_events = .false.
+        real(dp), allocatable :: onset_t(:), release_t(:)
     end type summary_t
 
-    integer, parameter :: N_COLUMNS = 27
+    integer, parameter :: N_COLUMNS = 31
     character(len=*), parameter :: ESTIMATE_FIELDS(6) = [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta']
     character(len=*), parameter :: COLUMNS(N_COLUMNS) = [character(len=16) :: &
         'file', 'status', 'contact', 'first_contact_t', 'last_contact_t', 'contact_time', &
         'max_penetration', 'max_u_end', 't_max_u_end', 'max_u_end_over_g', 'energy_ratio', &
         'decay_rate', 'decay_fit_from_t', 'decay_fit_to_t', 't_final', 'steps', 'wall_seconds', 'g', &
-        'step_control_err', 'onset_times', 'release_times', &
-        'error_u', 'error_v', 'error_theta', 'error_P', 'error_q', 'error_eta']
+        'step_control_err', 'n_onsets', 'first_onset_t', 'last_onset_t', 'n_releases', 'first_release_t', &
+        'last_release_t', 'error_u', 'error_v', 'error_theta', 'error_P', 'error_q', 'error_eta']
 
 contains
 
@@ -182,24 +186,63 @@ contains
         type(summary_t), intent(inout) :: s
         real(dp), allocatable :: t(:)
         integer, allocatable :: kind(:)
-        integer :: k
+        integer :: n
 
-        s%onsets = ''
-        s%releases = ''
+        allocate (s%onset_t(0), s%release_t(0))
+        s%has_events = .false.
         if (.not. dataset_exists(file, '/events/t')) return
         if (.not. dataset_exists(file, '/events/kind')) return
+        s%has_events = .true.
         call read_real_1d(file, '/events/t', t)
         call read_int_1d(file, '/events/kind', kind)
-        do k = 1, min(size(t), size(kind))
-            if (kind(k) > 0) then
-                s%onsets = s%onsets // merge(';', ' ', len(s%onsets) > 0) // format_real(t(k))
+        n = min(size(t), size(kind))
+        s%onset_t = pack(t(1:n), kind(1:n) > 0)
+        s%release_t = pack(t(1:n), kind(1:n) <= 0)
+    end subroutine read_events
+
+    !> 'file,event,kind,t': the CSV header of write_event_rows.
+    pure function events_header() result(line)
+        character(len=:), allocatable :: line
+
+        line = 'file,event,kind,t'
+    end function events_header
+
+    !> One CSV row per contact event of s, in time order: the file, the event's number (1, 2,
+    !> ...), 'onset' or 'release', and its time (15 significant digits); nothing without events.
+    subroutine write_event_rows(unit, s)
+        integer, intent(in) :: unit
+        type(summary_t), intent(in) :: s
+        integer :: i, j, n
+
+        if (.not. s%has_events) return
+        i = 1
+        j = 1
+        do n = 1, size(s%onset_t) + size(s%release_t)
+            ! merge the two sorted lists (an onset before a release at the same time)
+            if (j > size(s%release_t)) then
+                call put('onset', s%onset_t(i))
+                i = i + 1
+            else if (i > size(s%onset_t)) then
+                call put('release', s%release_t(j))
+                j = j + 1
+            else if (s%onset_t(i) <= s%release_t(j)) then
+                call put('onset', s%onset_t(i))
+                i = i + 1
             else
-                s%releases = s%releases // merge(';', ' ', len(s%releases) > 0) // format_real(t(k))
+                call put('release', s%release_t(j))
+                j = j + 1
             end if
         end do
-        s%onsets = trim(adjustl(s%onsets))
-        s%releases = trim(adjustl(s%releases))
-    end subroutine read_events
+    contains
+        subroutine put(kind, t)
+            character(len=*), intent(in) :: kind
+            real(dp), intent(in) :: t
+            character(len=16) :: buf
+
+            write (buf, '(i0)') n
+            write (unit, '(a)') csv_field(s%file) // ',' // trim(buf) // ',' // kind // ',' // num(t)
+        end subroutine put
+    end subroutine write_event_rows
 
     !> Why `file` cannot be summarised ('' when it can): it does not exist, is not a readable
     !> HDF5 file, or is not a rodcontact output file (no /series datasets the summary reads, or
@@ -262,19 +305,35 @@ contains
                ',' // num(ratio_to_g(s)) // ',' // num(s%energy_ratio) // ',' // num(s%decay_rate) // &
                ',' // num(s%decay_fit_from_t) // ',' // num(s%decay_fit_to_t) // ',' // num(s%t_final) // &
                ',' // steps // ',' // num(s%wall_seconds) // ',' // num(s%g) // ',' // num(s%time_error) // &
-               ',' // csv_field(text_or_empty(s%onsets)) // ',' // csv_field(text_or_empty(s%releases))
+               ',' // event_columns(s)
         do k = 1, size(s%error_estimate)
             line = line // ',' // num(s%error_estimate(k))
         end do
     end function summary_row
 
-    pure function text_or_empty(text) result(out)
-        character(len=:), allocatable, intent(in) :: text
-        character(len=:), allocatable :: out
+    !> n_onsets,first_onset_t,last_onset_t,n_releases,first_release_t,last_release_t: empty
+    !> without /events; the counts 0 and the times empty when there are none of a kind.
+    pure function event_columns(s) result(text)
+        type(summary_t), intent(in) :: s
+        character(len=:), allocatable :: text
 
-        out = ''
-        if (allocated(text)) out = text
-    end function text_or_empty
+        if (.not. s%has_events .or. .not. allocated(s%onset_t) .or. .not. allocated(s%release_t)) then
+            text = ',,,,,'
+            return
+        end if
+        text = first_last(s%onset_t) // ',' // first_last(s%release_t)
+    end function event_columns
+
+    !> 'n,first,last' of the times t (first and last empty when there are none).
+    pure function first_last(t) result(text)
+        real(dp), intent(in) :: t(:)
+        character(len=:), allocatable :: text
+        character(len=16) :: buf
+
+        write (buf, '(i0)') size(t)
+        text = trim(buf) // ',,'
+        if (size(t) > 0) text = trim(buf) // ',' // num(t(1)) // ',' // num(t(size(t)))
+    end function first_last
 
     !> max u(1,t)/g; NaN when g is unknown (NaN) or 0 (a summary_t not filled in).
     pure function ratio_to_g(s) result(ratio)

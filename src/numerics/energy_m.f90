@@ -8,6 +8,7 @@ module energy_m
     use time_scheme_m, only: time_scheme_t, energy_law_t, LAW_G_ENERGY
     use state_m, only: state_t
     use mesh_m, only: mesh_t
+    use fe_m, only: inertia_difference_energy
     use errors_m, only: check_allocation
     use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
     implicit none
@@ -80,7 +81,7 @@ contains
                 mass_terms = mass_terms + h_e * element_energy_density(model, w(e - 1, :), w(e, :))
                 strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
             end do
-            energy = 0.5_dp * (mass_terms / 6.0_dp + model%alpha * strain_terms)
+            energy = 0.5_dp * (mass_terms / 6.0_dp + model%alpha * strain_terms) + inertia_difference(model, w, mesh)
             return
         end if
         do e = 1, s
@@ -93,8 +94,22 @@ contains
                 + model%tau * model%hbar * element_mass_product(w(e - 1, F_ETA), w(e, F_ETA), w(e - 1, F_ETA), w(e, F_ETA))
             strain_terms = strain_terms + (u(e) - u(e - 1))**2
         end do
-        energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp))
+        energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp)) &
+                 + inertia_difference(model, w, mesh)
     end function linear_energy
+
+    !> What the velocity's mass of &contact mass adds to the consistent kinetic energy above:
+    !> 1/2 rho v^T (M_v - M) v with fe_m's inertia_element (the matrix scheme_m assembles), so
+    !> the kinetic energy is the scheme's own; 0 for the consistent mass.
+    pure real(dp) function inertia_difference(model, w, mesh) result(energy)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+
+        energy = 0.0_dp
+        if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) energy = 0.5_dp * model%rho * &
+            inertia_difference_energy(mesh%h, model%mass_lumped, model%mass_end_moved, w(:, F_V))
+    end function inertia_difference
 
     !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
     !> of (2.11) tested with the new level,

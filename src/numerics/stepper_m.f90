@@ -19,7 +19,7 @@ module stepper_m
     use kinds_m, only: dp
     use reals_m, only: equal, is_zero
     use ieee_arithmetic, only: ieee_is_finite
-    use config_m, only: config_t, model_t
+    use config_m, only: config_t, model_t, with_contact_mass
     use errors_m, only: check_allocation
     use banded_m, only: band_t, lapack_info_message
     use block_tridiagonal_m, only: block_tridiagonal_t
@@ -114,7 +114,7 @@ contains
         integer :: k, s_finest, stat
         character(len=256) :: message
 
-        self%model = cfg%model
+        self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         self%dt = cfg%time%dt
         self%law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
         self%scheme = time_scheme(cfg%time%scheme)
@@ -401,7 +401,20 @@ contains
         else
             state%u = state%u + sys%dt_eff * state%w(:, F_V)
         end if
+        call keep_on_obstacle(self, state, result)
     end subroutine advance_monolithic
+
+    !> Signorini with a massless contact node (&contact mass = 'redistributed'): an active
+    !> multiplier puts the end on the obstacle, u^n(1) = g, exactly (not to round-off). The
+    !> consistent mass keeps its results bit for bit.
+    subroutine keep_on_obstacle(self, state, result)
+        type(stepper_t), intent(in) :: self
+        type(state_t), intent(inout) :: state
+        type(step_result_t), intent(in) :: result
+
+        if (self%step_model%mass_end_moved .and. self%law%is_signorini() .and. result%contact_force > 0.0_dp) &
+            state%u(self%s) = self%law%g
+    end subroutine keep_on_obstacle
 
     !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the
     !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
@@ -432,7 +445,11 @@ contains
                 state%w(:, f) = 2.0_dp * self%w_new(:, f) - state%w(:, f)
             end if
         end do
+        ! a massless contact node (&contact mass = 'redistributed') has no velocity of its own
+        ! to extrapolate: its v^n is the step's mean velocity Y_v, (u^n - u^{n-1})/dt
+        if (self%step_model%mass_end_moved) state%w(self%s, F_V) = self%w_new(self%s, F_V)
         state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
+        call keep_on_obstacle(self, state, result)
     end subroutine advance_midpoint
 
     !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.

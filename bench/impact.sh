@@ -12,7 +12,7 @@
 #
 #   bench/impact.sh            # about 2 minutes on 2 cores
 #   bench/impact.sh --quick    # impact.nml's pair only, no refinement, one adaptive run;
-#                              # prints the section, figure figures/impact_sigma_quick.png
+#                              # prints the section, figure $IMPACT_BENCH_OUT/impact_sigma_quick.png
 # Environment: BUILD_DIR (as scripts/setup.sh), IMPACT_BENCH_OUT (run files and impact.json,
 # default out/bench/impact). Exit status: 0 done (targets met or not: see the page); 1 build or
 # run failure; 2 usage.

@@ -11,6 +11,7 @@
 #     node: the test asserts that it does, so a change that silently made both masses equal fails);
 #  4. restart bit for bit with the redistributed mass: adaptive midpoint/Signorini and fixed-step
 #     BDF2/penalty impact runs split at a checkpoint and continued (tests/tools/regression.py same);
+#  4b. a checkpoint of a version without contact.mass restarts with the default mass only;
 #  5. exp2 with the redistributed mass (rho = 1.2e-17): /series within 1e-12 (relative) of the
 #     consistent run, the Section 7 claims' quantities unchanged (the full claims: see docs).
 # About 6 s.
@@ -88,6 +89,22 @@ split_run() {   # split_run <name> <t_half> <t_end> [--set ...]: uninterrupted a
 split_run adaptive_midpoint 0.5 1.2 --set time.scheme="'midpoint'" --set contact.law="'signorini'" \
     --set time.adaptive=.true. --set time.error_tol=1e-5 --set time.dt=1e-3
 split_run bdf2_penalty 0.5 1.2 --set time.scheme="'bdf2'" --set contact.law="'penalty'" --set time.dt=1e-3
+
+# 4b. a checkpoint written before contact.mass existed (the attribute removed) restarts with the
+#     default mass, and is refused with the redistributed one
+"$exe" "$src/input/impact.nml" --set mesh.n_elements=100 --set time.t_end=0.2 --set output.checkpoint_every=100 \
+    --set output.quiet=.true. --set output.prefix="'old'" >/dev/null || fail "old: exit $?"
+"$py" -c "import h5py; f = h5py.File('old.h5', 'r+'); del f.attrs['contact.mass']" || fail "removing contact.mass"
+if "$exe" "$src/input/impact.nml" --set mesh.n_elements=100 --set time.t_end=0.3 --set output.quiet=.true. \
+    --set time.restart_from="'old.h5'" --set output.prefix="'old_rest'" >/dev/null 2>old.err; then
+    echo "PASS a checkpoint without contact.mass restarts with the default mass"
+else fail "a checkpoint without contact.mass is refused with the default mass: $(cat old.err)"; fi
+if "$exe" "$src/input/impact.nml" --set mesh.n_elements=100 --set time.t_end=0.3 --set output.quiet=.true. \
+    --set contact.mass="'redistributed'" --set time.restart_from="'old.h5'" --set output.prefix="'old_red'" \
+    >/dev/null 2>old_red.err; then fail "a checkpoint without contact.mass restarted with mass = 'redistributed'"
+elif grep -q "contact.mass was not recorded" old_red.err; then
+    echo "PASS a checkpoint without contact.mass is refused with mass = 'redistributed'"
+else fail "unexpected message: $(cat old_red.err)"; fi
 
 # 5. the paper's rho: nothing visible changes
 for mass in consistent redistributed; do

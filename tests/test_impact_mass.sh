@@ -26,14 +26,14 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 "$py" "$src/tests/tools/exact_impact.py" --check || fail "exact_impact.py --check"
 
-impact() {   # impact <prefix> <mass> [more --set ...]
-    local prefix=$1 mass=$2; shift 2
-    "$exe" "$src/input/impact.nml" --set time.scheme="'midpoint'" --set contact.law="'signorini'" \
+impact() {   # impact <prefix> <mass> <law> [more --set ...]
+    local prefix=$1 mass=$2 law=$3; shift 3
+    "$exe" "$src/input/impact.nml" --set time.scheme="'midpoint'" --set contact.law="'$law'" \
         --set contact.mass="'$mass'" --set output.prefix="'$prefix'" --set output.quiet=.true. \
         --set output.snapshot_every=1000000 "$@" >/dev/null || fail "$prefix: exit $?"
 }
-impact red redistributed
-impact con consistent --set mesh.n_elements=500 --set time.dt=5e-4   # chatters at every S (cheaper here)
+impact red redistributed signorini
+impact con consistent signorini --set mesh.n_elements=500 --set time.dt=5e-4   # chatters at every S (cheaper here)
 
 "$py" - "$src" <<'PY' || fail "exact impact checks (lines above)"
 import sys
@@ -70,6 +70,43 @@ bad_con, why_con = sigma_ok(con)
 print(("PASS" if not bad_con else "FAIL") + " consistent mass fails the sigma checks (the chatter): "
       + ("; ".join(why_con)[:200] if why_con else "it passed them"))
 ok = ok and not bad_con
+sys.exit(0 if ok else 1)
+PY
+
+# 3b. the midpoint rule's massless end settles (stepper_m's settle_massless_end): with the
+#     penalty law exactly the 3 events and E^n never rises; adaptive steps at error_tol 1e-7 through
+#     the release take a bounded number of steps (the undamped mode of the extrapolated end made
+#     them grind at dt_min: 437,000 steps to t = 1.00005 at S = 1000). Step counts, not times.
+impact pen redistributed penalty
+for law in signorini penalty; do
+    timeout 120 "$exe" "$src/input/impact.nml" --set mesh.n_elements=200 --set time.dt=1e-3 \
+        --set time.scheme="'midpoint'" --set contact.law="'$law'" --set contact.mass="'redistributed'" \
+        --set time.adaptive=.true. --set time.error_tol=1e-7 --set time.t_end=1.3 --set output.quiet=.true. \
+        --set output.prefix="'adapt_$law'" >/dev/null 2>&1 || fail "adaptive $law, error_tol 1e-7: exit $? (124: over 120 s)"
+done
+"$py" - "$src" <<'PY' || fail "massless end checks (lines above)"
+import sys
+import h5py
+sys.path.insert(0, sys.argv[1] + "/tests/tools")
+import exact_impact as ei
+ok = True
+m = ei.compare_run("pen.h5")
+good = m["events"] == 3 and m["energy_max_rise"] <= 1e-13
+print(("PASS" if good else "FAIL") + f" penalty, redistributed: {m['events']} events (exact 3), largest rise "
+      f"{m['energy_max_rise']:.1e}, sigma error {m['sigma_err_rel']:.3e}")
+ok = ok and good
+for law in ("signorini", "penalty"):
+    try:
+        with h5py.File(f"adapt_{law}.h5", "r") as f:
+            steps, at_min = f["series/t"].shape[0] - 1, int(f.attrs["time_steps_at_dt_min"])
+    except OSError as exc:
+        print(f"FAIL adaptive {law}: {exc}")
+        ok = False
+        continue
+    good = steps <= 30000 and at_min == 0
+    print(("PASS" if good else "FAIL") + f" adaptive {law}, error_tol 1e-7, to t = 1.3: {steps} steps (bound 30000), "
+          f"{at_min} at dt_min")
+    ok = ok and good
 sys.exit(0 if ok else 1)
 PY
 

@@ -450,7 +450,27 @@ contains
         if (self%step_model%mass_end_moved) state%w(self%s, F_V) = self%w_new(self%s, F_V)
         state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
         call keep_on_obstacle(self, state, result)
+        call settle_massless_end(self, state)
     end subroutine advance_midpoint
+
+    !> The midpoint rule with a massless contact node (&contact mass = 'redistributed', rho not
+    !> taken as zero) and no viscosity or coupling acting on it (varpi = gamma1 = gamma2 = 0):
+    !> the node's u(1) is algebraic, and its extrapolation 2 u^{n-1/2}(1) - u^{n-1}(1) carries an
+    !> undamped alternating mode. u^n(1) is set instead to the node's equilibrium at t_n with
+    !> its neighbour, alpha (u(1) - u_{s-1})/h_s + lambda(u(1)) = 0 (contact_law_m's
+    !> equilibrium): it minimises the part of E^n that depends on u(1), so E^n only falls
+    !> (docs/scheme.md). With viscosity or coupling the node's equilibrium has other terms and
+    !> the extrapolated value is kept.
+    subroutine settle_massless_end(self, state)
+        type(stepper_t), intent(in) :: self
+        type(state_t), intent(inout) :: state
+
+        associate (m => self%step_model, s => self%s)
+            if (.not. (m%mass_end_moved .and. m%rho > 0.0_dp)) return
+            if (.not. (is_zero(m%varpi) .and. is_zero(m%gamma1) .and. is_zero(m%gamma2))) return
+            state%u(s) = self%law%equilibrium(state%u(s - 1), m%alpha / self%mesh%h(s))
+        end associate
+    end subroutine settle_massless_end
 
     !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.
     !> A non-finite solution fails the step.

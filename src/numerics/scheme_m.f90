@@ -22,7 +22,7 @@
 module scheme_m
     use kinds_m, only: dp
     use reals_m, only: equal, is_zero
-    use config_m, only: model_t
+    use config_m, only: model_t, config_t
     use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled, inertia_element, &
                     add_inertia_difference
     use mesh_m, only: mesh_t
@@ -32,7 +32,7 @@ module scheme_m
     private
     public :: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
     public :: element_block, band_width, assemble_matrix, active_fields, slots_of
-    public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields
+    public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields, initial_data_present
 
     ! Field order within a node (fields_m's F_*). The coupling graph (q-theta, theta-v,
     ! theta-P, v-P, P-eta) is a triangle theta-v-P with q and eta hanging off theta and P;
@@ -160,6 +160,18 @@ contains
             active(f) = linked(f, F_V) .or. any(linked(f, :) .and. has_data)
         end do
     end function active_fields
+
+    !> Which fields have nonzero initial data (a field with none may be left out: active_fields).
+    pure function initial_data_present(cfg) result(has_data)
+        type(config_t), intent(in) :: cfg
+        logical :: has_data(N_FIELDS)
+
+        has_data(F_V) = .true.
+        has_data(F_Q) = .not. all(is_zero(cfg%initial%q0_poly))
+        has_data(F_THETA) = .not. (all(is_zero(cfg%initial%theta0_poly)) .and. is_zero(cfg%initial%theta0_step(1)))
+        has_data(F_P) = .not. (all(is_zero(cfg%initial%p0_poly)) .and. is_zero(cfg%initial%p0_step(1)))
+        has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
+    end function initial_data_present
 
     !> Slots of the monolithic system holding only the active fields, in the order of
     !> MONOLITHIC_SLOTS (0: field left out).

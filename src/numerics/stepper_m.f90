@@ -25,13 +25,15 @@ module stepper_m
     use block_tridiagonal_m, only: block_tridiagonal_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
     use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
-                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields
+                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields, &
+                        initial_data_present
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
     use mesh_m, only: mesh_t, copy_mesh
     use sources_m, only: source_t, add_source_terms
     use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
+    use massless_end_m, only: settle_end
     implicit none
     private
     public :: stepper_t, step_result_t
@@ -179,18 +181,6 @@ contains
             self%systems(k)%last_used = 0
         end do
     end subroutine stepper_remesh
-
-    !> Which fields have nonzero initial data (a field with none may be left out: active_fields).
-    pure function initial_data_present(cfg) result(has_data)
-        type(config_t), intent(in) :: cfg
-        logical :: has_data(N_FIELDS)
-
-        has_data(F_V) = .true.
-        has_data(F_Q) = .not. all(is_zero(cfg%initial%q0_poly))
-        has_data(F_THETA) = .not. (all(is_zero(cfg%initial%theta0_poly)) .and. is_zero(cfg%initial%theta0_step(1)))
-        has_data(F_P) = .not. (all(is_zero(cfg%initial%p0_poly)) .and. is_zero(cfg%initial%p0_step(1)))
-        has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
-    end function initial_data_present
 
     !> The paper's Section 7 blocks for step dt, factored.
     subroutine setup_paper(self, dt, result)
@@ -401,20 +391,8 @@ contains
         else
             state%u = state%u + sys%dt_eff * state%w(:, F_V)
         end if
-        call keep_on_obstacle(self, state, result)
+        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u)
     end subroutine advance_monolithic
-
-    !> Signorini with a massless contact node (&contact mass = 'redistributed'): an active
-    !> multiplier puts the end on the obstacle, u^n(1) = g, exactly (not to round-off). The
-    !> consistent mass keeps its results bit for bit.
-    subroutine keep_on_obstacle(self, state, result)
-        type(stepper_t), intent(in) :: self
-        type(state_t), intent(inout) :: state
-        type(step_result_t), intent(in) :: result
-
-        if (self%step_model%mass_end_moved .and. self%law%is_signorini() .and. result%contact_force > 0.0_dp) &
-            state%u(self%s) = self%law%g
-    end subroutine keep_on_obstacle
 
     !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the
     !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
@@ -445,32 +423,10 @@ contains
                 state%w(:, f) = 2.0_dp * self%w_new(:, f) - state%w(:, f)
             end if
         end do
-        ! a massless contact node (&contact mass = 'redistributed') has no velocity of its own
-        ! to extrapolate: its v^n is the step's mean velocity Y_v, (u^n - u^{n-1})/dt
-        if (self%step_model%mass_end_moved) state%w(self%s, F_V) = self%w_new(self%s, F_V)
         state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
-        call keep_on_obstacle(self, state, result)
-        call settle_massless_end(self, state)
+        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u, &
+                        state%w(:, F_V), self%w_new(self%s, F_V))
     end subroutine advance_midpoint
-
-    !> The midpoint rule with a massless contact node (&contact mass = 'redistributed', rho not
-    !> taken as zero) and no viscosity or coupling acting on it (varpi = gamma1 = gamma2 = 0):
-    !> the node's u(1) is algebraic, and its extrapolation 2 u^{n-1/2}(1) - u^{n-1}(1) carries an
-    !> undamped alternating mode. u^n(1) is set instead to the node's equilibrium at t_n with
-    !> its neighbour, alpha (u(1) - u_{s-1})/h_s + lambda(u(1)) = 0 (contact_law_m's
-    !> equilibrium): it minimises the part of E^n that depends on u(1), so E^n only falls
-    !> (docs/scheme.md). With viscosity or coupling the node's equilibrium has other terms and
-    !> the extrapolated value is kept.
-    subroutine settle_massless_end(self, state)
-        type(stepper_t), intent(in) :: self
-        type(state_t), intent(inout) :: state
-
-        associate (m => self%step_model, s => self%s)
-            if (.not. (m%mass_end_moved .and. m%rho > 0.0_dp)) return
-            if (.not. (is_zero(m%varpi) .and. is_zero(m%gamma1) .and. is_zero(m%gamma2))) return
-            state%u(s) = self%law%equilibrium(state%u(s - 1), m%alpha / self%mesh%h(s))
-        end associate
-    end subroutine settle_massless_end
 
     !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.
     !> A non-finite solution fails the step.

@@ -598,6 +598,7 @@ def main():
     t.append("")
     md[targets_at:targets_at] = t
 
+    md += kept_impact_section(doc)
     with open(doc, "w") as f:
         f.write("\n".join(md).rstrip() + "\n")
     # on stdout: the targets and the per-step tables (the medians), for whoever ran bench.sh
@@ -609,6 +610,20 @@ def main():
         if printing and not (line and line[0].isalpha() or line.startswith("    ") or line.startswith("`")):
             keep.append(line)
     print(re.sub(r"\n{3,}", "\n\n", "\n".join(keep)))
+
+
+
+def kept_impact_section(doc):
+    """The section that bench/impact.sh writes between its markers, kept from the page as it is
+    (that script, not this one, rewrites it)."""
+    if not os.path.exists(doc):
+        return []
+    text = open(doc).read()
+    a, b = text.find("<!-- impact-bench:begin -->"), text.find("<!-- impact-bench:end -->")
+    if a < 0 or b < 0:
+        return []
+    head = text.rfind("\n## ", 0, a)
+    return [""] + text[head + 1:b + len("<!-- impact-bench:end -->")].split("\n")
 
 
 if __name__ == "__main__":

@@ -15,7 +15,7 @@ module step_driver_m
     use reals_m, only: equal
     use iso_fortran_env, only: error_unit
     use ieee_arithmetic, only: ieee_is_finite
-    use config_m, only: config_t, model_t
+    use config_m, only: config_t, model_t, with_contact_mass
     use state_m, only: state_t, advance_time, land_on, copy_state
     use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
@@ -72,7 +72,7 @@ contains
         self%dt_min = cfg%time%dt_min
         self%dt_max = cfg%time%dt_max
         self%v_front = front_speed(cfg%model)
-        self%model = cfg%model
+        self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         call self%estimator%init(stepper%scheme, state%s)
         call self%control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, stepper%scheme, &
                                cfg%time%dt, scale=energy_norm(monitor%current_energy()))

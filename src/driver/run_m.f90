@@ -88,7 +88,7 @@ contains
         end if
         call run%stepper%init(cfg, run%result)
         if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
-        call run%monitor%init(cfg%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
+        call run%monitor%init(run%stepper%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
         if (cfg%output%error_estimate) call run%companions%init(cfg, run%state)
         if (cfg%time%restart_from /= '') then

@@ -209,7 +209,11 @@ contains
                     call refuse(file, item%name, 'not given (no &material)', 'given (&material)')
                 if (.not. recorded) cycle
             end if
-            if (.not. recorded) call refuse(file, item%name, 'not recorded', 'a value')
+            if (.not. recorded) then
+                ! an input added after the version that wrote the file: its default is what that run computed
+                if (is_default(cfg, k)) cycle
+                call refuse(file, item%name, 'not recorded', 'a value other than its default')
+            end if
             select case (item%kind)
             case (KIND_REAL)
                 call read_attr_real(file, item%name, x)
@@ -233,6 +237,30 @@ contains
             end select
         end do
     end subroutine require_same_history_inputs
+
+    !> Has input variable k of cfg its default value (config_m's types)?
+    logical function is_default(cfg, k)
+        type(config_t), intent(in) :: cfg
+        integer, intent(in) :: k
+        type(config_t) :: defaults
+        type(input_item_t) :: a, b
+
+        a = input_item(cfg, k)
+        b = input_item(defaults, k)
+        select case (a%kind)
+        case (KIND_REAL)
+            is_default = equal(a%reals(1), b%reals(1))
+        case (KIND_INTEGER)
+            is_default = a%int == b%int
+        case (KIND_STRING)
+            is_default = a%text == b%text
+        case (KIND_LOGICAL)
+            is_default = a%flag .eqv. b%flag
+        case default
+            is_default = size(a%reals) == size(b%reals)
+            if (is_default) is_default = all(equal(a%reals, b%reals))
+        end select
+    end function is_default
 
     pure function logical_str(flag) result(text)
         logical, intent(in) :: flag

@@ -17,7 +17,7 @@ module config_m
     private
     public :: model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, material_t, config_t
     public :: MAX_POLY_DEGREE, LEN_NAME, LEN_PATH, MAX_COMPRESSION
-    public :: number_of_steps
+    public :: number_of_steps, with_contact_mass
 
     integer, parameter :: MAX_POLY_DEGREE = 8   !< *_poly coefficients 0..8 (constant term first)
     integer, parameter :: LEN_NAME = 32         !< length of keyword values ('penalty', 'euler', ...)
@@ -37,6 +37,9 @@ module config_m
         real(dp) :: hbar = 0.03058_dp
         real(dp) :: tau0 = 0.02_dp   !< tau0 of &material / omega, in the echo [(tau0/omega)]
         real(dp) :: tau = 0.2_dp     !< tau of &material / omega, in the echo [(tau/omega)]
+        ! the velocity's mass (fe_m's inertia_element), set from &contact mass by with_contact_mass
+        real(dp) :: mass_lumped = 0.0_dp     !< not an input: the lumped fraction of the blend
+        logical :: mass_end_moved = .false.  !< not an input: the contact node massless
     end type model_t
 
     !> &contact: obstacle gap g and normal compliance (3.4) with penalty eps.
@@ -44,6 +47,9 @@ module config_m
         real(dp) :: g = 0.1_dp
         real(dp) :: eps = 0.01_dp
         character(len=LEN_NAME) :: law = 'penalty'
+        !> the velocity's mass: 'consistent' (P1) or 'redistributed' (the contact node massless,
+        !> docs/scheme.md)
+        character(len=LEN_NAME) :: mass = 'consistent'
     end type contact_t
 
     !> &mesh: uniform partition of [0,1] into n_elements elements (h = 1/s); with adaptive =
@@ -160,5 +166,22 @@ contains
             number_of_steps = ceiling(ratio)
         end if
     end function number_of_steps
+
+    !> The model with the velocity's mass of &contact mass (docs/scheme.md, "Mass
+    !> redistribution"): 'redistributed' blends 9/16 consistent and 7/16 lumped mass and moves
+    !> the contact node's element's mass to its other node; 'consistent' leaves the P1 mass.
+    pure function with_contact_mass(model, mass) result(m)
+        type(model_t), intent(in) :: model
+        character(len=*), intent(in) :: mass
+        type(model_t) :: m
+
+        m = model
+        m%mass_lumped = 0.0_dp
+        m%mass_end_moved = .false.
+        if (trim(mass) == 'redistributed') then
+            m%mass_lumped = 7.0_dp / 16.0_dp
+            m%mass_end_moved = .true.
+        end if
+    end function with_contact_mass
 
 end module config_m

@@ -113,6 +113,7 @@ contains
         call require_positive(contact%g, 'contact.g')
         call require_positive(contact%eps, 'contact.eps', scaled=.true.)
         call require_one_of(contact%law, [character(len=9) :: 'penalty', 'signorini'], 'contact.law')
+        call require_one_of(contact%mass, [character(len=13) :: 'consistent', 'redistributed'], 'contact.mass')
     end subroutine validate_contact
 
     subroutine validate_mesh(mesh)

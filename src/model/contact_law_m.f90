@@ -27,6 +27,7 @@ module contact_law_m
         procedure :: implicit_impulse => law_implicit_impulse
         procedure :: midpoint_impulse => law_midpoint_impulse
         procedure :: discrete_gradient => law_discrete_gradient
+        procedure :: equilibrium => law_equilibrium
     end type contact_law_t
 
 contains
@@ -178,5 +179,21 @@ contains
             dg = 0.5_dp * (high - self%g)**2 / (self%eps * (high - low))
         end if
     end function law_discrete_gradient
+
+    !> The end position u that minimises k/2 (u - a)^2 + the law's energy (Signorini: over
+    !> u <= g): the equilibrium of a massless contact node tied by the stiffness k > 0 to its
+    !> neighbour at a, i.e. k (u - a) + lambda(u) = 0 (penalty), or u = min(a, g) (Signorini).
+    pure real(dp) function law_equilibrium(self, a, k) result(u)
+        class(contact_law_t), intent(in) :: self
+        real(dp), intent(in) :: a, k
+
+        if (self%kind == LAW_SIGNORINI) then
+            u = min(a, self%g)
+        else if (a <= self%g) then
+            u = a
+        else
+            u = (k * a + self%g / self%eps) / (k + 1.0_dp / self%eps)
+        end if
+    end function law_equilibrium
 
 end module contact_law_m

@@ -8,6 +8,8 @@ module energy_m
     use time_scheme_m, only: time_scheme_t, energy_law_t, LAW_G_ENERGY
     use state_m, only: state_t
     use mesh_m, only: mesh_t
+    use reals_m, only: equal
+    use fe_m, only: inertia_difference_energy
     use errors_m, only: check_allocation
     use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
     implicit none
@@ -36,6 +38,13 @@ module energy_m
         real(dp) :: max_rise_step_change = 0.0_dp
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
+        !> the terms of E^n of the level observed last (step parts_step, time parts_t,
+        !> parts_nodes nodes), computed with its energy in the same pass; have_parts false
+        !> until a level is observed (and after a restart)
+        real(dp) :: last_parts(N_ENERGY_PARTS) = 0.0_dp
+        logical :: have_parts = .false.
+        integer :: parts_step = -1, parts_nodes = -1
+        real(dp) :: parts_t = 0.0_dp
     contains
         procedure :: init => monitor_init
         procedure :: observe => monitor_observe
@@ -64,50 +73,24 @@ contains
     end function discrete_energy
 
     !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
-    !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions.
-    !> On a uniform mesh the sums over the elements are scaled by h = 1/s once, at the end.
+    !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions
+    !> (linear_energy_parts, which also gives the terms one by one).
     pure function linear_energy(model, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:)
         real(dp), intent(in) :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
-        real(dp) :: mass_terms, strain_terms, h_e
-        integer :: e, s
+        real(dp) :: parts(N_ENERGY_PARTS)
 
-        ! One pass over the elements (this runs every time step): on element e the mass
-        ! product of P1 functions a, b is h/6 (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1), written
-        ! here as h/6 ((a0 + a1)(b0 + b1) + a0 b0 + a1 b1) for every pair of fields.
-        s = ubound(u, 1)
-        mass_terms = 0.0_dp
-        strain_terms = 0.0_dp
-        if (.not. mesh%is_uniform()) then
-            do e = 1, s
-                h_e = mesh%h(e)
-                mass_terms = mass_terms + h_e * element_energy_density(model, w(e - 1, :), w(e, :))
-                strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
-            end do
-            energy = 0.5_dp * (mass_terms / 6.0_dp + model%alpha * strain_terms)
-            return
-        end if
-        do e = 1, s
-            mass_terms = mass_terms &
-                + model%rho * element_mass_product(w(e - 1, F_V), w(e, F_V), w(e - 1, F_V), w(e, F_V)) &
-                + model%c * element_mass_product(w(e - 1, F_THETA), w(e, F_THETA), w(e - 1, F_THETA), w(e, F_THETA)) &
-                + model%r * element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_P), w(e, F_P)) &
-                + 2.0_dp * model%d * element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_THETA), w(e, F_THETA)) &
-                + model%tau0 * element_mass_product(w(e - 1, F_Q), w(e, F_Q), w(e - 1, F_Q), w(e, F_Q)) &
-                + model%tau * model%hbar * element_mass_product(w(e - 1, F_ETA), w(e, F_ETA), w(e - 1, F_ETA), w(e, F_ETA))
-            strain_terms = strain_terms + (u(e) - u(e - 1))**2
-        end do
-        energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp))
+        call linear_energy_parts(model, u, w, mesh, energy, parts)
     end function linear_energy
 
     !> The terms of E^n = discrete_energy of the level (u, w) on mesh, one by one (PART_*):
-    !> 1/2 int rho v^2, 1/2 int alpha u_x^2, 1/2 int c theta^2, 1/2 int r P^2, int d theta P,
-    !> 1/2 int tau0 q^2, 1/2 int tau hbar eta^2 (exact for P1 functions, as linear_energy)
-    !> and the contact term. They add up to discrete_energy to round-off (the sums are
-    !> grouped differently). Called when a series entry is written.
+    !> 1/2 int rho v^2 (with the velocity mass's inertia_difference), 1/2 int alpha u_x^2,
+    !> 1/2 int c theta^2, 1/2 int r P^2, int d theta P, 1/2 int tau0 q^2, 1/2 int tau hbar
+    !> eta^2 and the contact term. They add up to discrete_energy to round-off (the sums are
+    !> grouped differently).
     pure function energy_parts(model, law, u, w, mesh) result(parts)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
@@ -115,44 +98,94 @@ contains
         real(dp), intent(in) :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: parts(N_ENERGY_PARTS)
-        real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux, strain, h_e
+        real(dp) :: energy_lin
+
+        call linear_energy_parts(model, u, w, mesh, energy_lin, parts)
+        parts(PART_CONTACT) = law%energy(u(ubound(u, 1)))
+    end function energy_parts
+
+    !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) in one pass over the
+    !> elements, which runs every time step: on element e the mass product of P1 functions
+    !> a, b is h/6 (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1), written here as h/6 ((a0 + a1)(b0 + b1)
+    !> + a0 b0 + a1 b1) for every pair of fields; energy sums the weighted products of an
+    !> element first, the parts sum each product over the elements. On a uniform mesh the
+    !> sums are scaled by h = 1/s once, at the end.
+    pure subroutine linear_energy_parts(model, u, w, mesh, energy, parts)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(out) :: energy
+        real(dp), intent(out) :: parts(N_ENERGY_PARTS)
+        real(dp) :: mass_terms, strain_terms, h_e, scale, kinetic_difference
+        real(dp) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta, density
+        real(dp) :: rho, c, r, d2, tau0, tau_hbar   ! the model's coefficients, in registers
+        ! the parts' sums (scalars, so that the loop keeps them in registers)
+        real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux
         integer :: e, s
         logical :: uniform
 
-        ! the mass products of the parts (6/h times, as linear_energy: summed with weights
-        ! h_e on a graded mesh, 1 on a uniform one, scaled by h = 1/s at the end); scalar
-        ! sums, so that the loop keeps them in registers (it runs at every series entry)
         s = ubound(u, 1)
         uniform = mesh%is_uniform()
+        mass_terms = 0.0_dp; strain_terms = 0.0_dp
         kinetic = 0.0_dp; thermal = 0.0_dp; chemical = 0.0_dp; coupling = 0.0_dp
-        heat_flux = 0.0_dp; mass_flux = 0.0_dp; strain = 0.0_dp
+        heat_flux = 0.0_dp; mass_flux = 0.0_dp
         h_e = 1.0_dp
-        do e = 1, s
-            if (.not. uniform) h_e = mesh%h(e)
-            kinetic = kinetic + h_e * self_product(w(e - 1, F_V), w(e, F_V))
-            thermal = thermal + h_e * self_product(w(e - 1, F_THETA), w(e, F_THETA))
-            chemical = chemical + h_e * self_product(w(e - 1, F_P), w(e, F_P))
-            coupling = coupling + h_e * element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_THETA), w(e, F_THETA))
-            heat_flux = heat_flux + h_e * self_product(w(e - 1, F_Q), w(e, F_Q))
-            mass_flux = mass_flux + h_e * self_product(w(e - 1, F_ETA), w(e, F_ETA))
-            strain = strain + (u(e) - u(e - 1))**2 / h_e
-        end do
+        rho = model%rho; c = model%c; r = model%r; d2 = 2.0_dp * model%d
+        tau0 = model%tau0; tau_hbar = model%tau * model%hbar
         if (uniform) then
-            h_e = 1.0_dp / real(s, dp)
-            kinetic = kinetic * h_e; thermal = thermal * h_e; chemical = chemical * h_e
-            coupling = coupling * h_e; heat_flux = heat_flux * h_e; mass_flux = mass_flux * h_e
-            strain = strain * real(s, dp)
+            ! summed into mass_terms term by term (as before the parts existed)
+            do e = 1, s
+                call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
+                mass_terms = mass_terms + rho * p_v + c * p_theta + r * p_p + d2 * p_coupling + tau0 * p_q + tau_hbar * p_eta
+                strain_terms = strain_terms + (u(e) - u(e - 1))**2
+                kinetic = kinetic + p_v; thermal = thermal + p_theta; chemical = chemical + p_p
+                coupling = coupling + p_coupling; heat_flux = heat_flux + p_q; mass_flux = mass_flux + p_eta
+            end do
+        else
+            do e = 1, s
+                h_e = mesh%h(e)
+                call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
+                density = rho * p_v + c * p_theta + r * p_p + d2 * p_coupling + tau0 * p_q + tau_hbar * p_eta
+                mass_terms = mass_terms + h_e * density
+                strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
+                kinetic = kinetic + h_e * p_v; thermal = thermal + h_e * p_theta; chemical = chemical + h_e * p_p
+                coupling = coupling + h_e * p_coupling; heat_flux = heat_flux + h_e * p_q
+                mass_flux = mass_flux + h_e * p_eta
+            end do
+        end if
+        kinetic_difference = inertia_difference(model, w, mesh)
+        scale = 1.0_dp
+        if (uniform) then
+            energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp)) &
+                     + kinetic_difference
+            scale = 1.0_dp / real(s, dp)
+        else
+            energy = 0.5_dp * (mass_terms / 6.0_dp + model%alpha * strain_terms) + kinetic_difference
         end if
         ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
-        parts(PART_KINETIC) = model%rho * kinetic / 12.0_dp
-        parts(PART_STRAIN) = 0.5_dp * model%alpha * strain
-        parts(PART_THERMAL) = model%c * thermal / 12.0_dp
-        parts(PART_CHEMICAL) = model%r * chemical / 12.0_dp
-        parts(PART_COUPLING) = model%d * coupling / 6.0_dp
-        parts(PART_HEAT_FLUX) = model%tau0 * heat_flux / 12.0_dp
-        parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux / 12.0_dp
-        parts(PART_CONTACT) = law%energy(u(s))
-    end function energy_parts
+        parts(PART_KINETIC) = model%rho * kinetic * scale / 12.0_dp + kinetic_difference
+        parts(PART_STRAIN) = 0.5_dp * model%alpha * strain_terms / scale
+        parts(PART_THERMAL) = model%c * thermal * scale / 12.0_dp
+        parts(PART_CHEMICAL) = model%r * chemical * scale / 12.0_dp
+        parts(PART_COUPLING) = model%d * coupling * scale / 6.0_dp
+        parts(PART_HEAT_FLUX) = model%tau0 * heat_flux * scale / 12.0_dp
+        parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux * scale / 12.0_dp
+        parts(PART_CONTACT) = 0.0_dp
+    end subroutine linear_energy_parts
+
+    !> What the velocity's mass of &contact mass adds to the consistent kinetic energy above:
+    !> 1/2 rho v^T (M_v - M) v with fe_m's inertia_element (the matrix scheme_m assembles), so
+    !> the kinetic energy is the scheme's own; 0 for the consistent mass.
+    pure real(dp) function inertia_difference(model, w, mesh) result(energy)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+
+        energy = 0.0_dp
+        if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) energy = 0.5_dp * model%rho * &
+            inertia_difference_energy(mesh%h, model%mass_lumped, model%mass_end_moved, w(:, F_V))
+    end function inertia_difference
 
     !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
     !> of (2.11) tested with the new level,
@@ -192,6 +225,7 @@ contains
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
         integer :: stat
+        real(dp) :: energy_lin
         character(len=256) :: message
 
         self%scheme_law = scheme%energy_law()
@@ -200,7 +234,7 @@ contains
         self%own_law_model = self%scheme_law%step_model
         if (self%own_law_model) self%law_model = step_model
         self%law = law
-        self%energy = discrete_energy(model, law, state%u, state%w, state%mesh)
+        call measure_parts(self, state, energy_lin)
         self%law_energy = self%energy
         if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%mesh)
         ! the G-energy needs the level before: it is defined from the second level on
@@ -246,8 +280,7 @@ contains
         type(state_t), intent(in) :: state
         real(dp) :: energy_lin
 
-        energy_lin = linear_energy(self%model, state%u, state%w, state%mesh)
-        self%energy = energy_lin + self%law%energy(state%u(state%s))
+        call measure_parts(self, state, energy_lin)
         self%law_energy = self%energy
         if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%mesh)
         if (self%scheme_law%energy == LAW_G_ENERGY) then
@@ -259,6 +292,22 @@ contains
             end if
         end if
     end subroutine measure
+
+    !> E^n of the level `state` and its terms (kept for monitor_parts) in one pass; returns
+    !> E_lin, E^n without the contact term.
+    subroutine measure_parts(self, state, energy_lin)
+        class(energy_monitor_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(out) :: energy_lin
+
+        call linear_energy_parts(self%model, state%u, state%w, state%mesh, energy_lin, self%last_parts)
+        self%last_parts(PART_CONTACT) = self%law%energy(state%u(state%s))
+        self%energy = energy_lin + self%last_parts(PART_CONTACT)
+        self%have_parts = .true.
+        self%parts_step = state%step
+        self%parts_t = state%t
+        self%parts_nodes = size(state%u)
+    end subroutine measure_parts
 
     !> The level has moved to a new mesh (transfer_m): its energies on the new mesh, and
     !> the relative rise of the law energy across the move (0 where the law energy is not
@@ -318,7 +367,12 @@ contains
         type(state_t), intent(in) :: state
         real(dp) :: parts(N_ENERGY_PARTS)
 
-        parts = energy_parts(self%model, self%law, state%u, state%w, state%mesh)
+        if (self%have_parts .and. state%step == self%parts_step .and. equal(state%t, self%parts_t) &
+            .and. size(state%u) == self%parts_nodes) then
+            parts = self%last_parts   ! computed with E^n when the level was observed
+        else
+            parts = energy_parts(self%model, self%law, state%u, state%w, state%mesh)
+        end if
     end function monitor_parts
 
     !> The energies and the largest rises so far into a checkpoint.
@@ -343,29 +397,23 @@ contains
         self%have_law = ckpt%counters(COUNTER_HAVE_LAW) > 0.0_dp
         self%max_rise = ckpt%counters(COUNTER_MAX_RISE)
         self%max_rise_step_change = ckpt%max_rise_step_change
+        self%have_parts = .false.
     end subroutine monitor_restore_checkpoint
 
-    !> 6/h times the integrand of 2 E_lin without the strain term on one element whose
-    !> end nodes hold the fields w0, w1 (fields_m's F_*).
-    pure real(dp) function element_energy_density(model, w0, w1) result(density)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in) :: w0(:), w1(:)
+    !> The mass products (element_mass_product) of element e of the level w: v v, theta
+    !> theta, P P, P theta, q q, eta eta.
+    pure subroutine element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
+        real(dp), intent(in) :: w(0:, :)
+        integer, intent(in) :: e
+        real(dp), intent(out) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
 
-        density = model%rho * element_mass_product(w0(F_V), w1(F_V), w0(F_V), w1(F_V)) &
-            + model%c * element_mass_product(w0(F_THETA), w1(F_THETA), w0(F_THETA), w1(F_THETA)) &
-            + model%r * element_mass_product(w0(F_P), w1(F_P), w0(F_P), w1(F_P)) &
-            + 2.0_dp * model%d * element_mass_product(w0(F_P), w1(F_P), w0(F_THETA), w1(F_THETA)) &
-            + model%tau0 * element_mass_product(w0(F_Q), w1(F_Q), w0(F_Q), w1(F_Q)) &
-            + model%tau * model%hbar * element_mass_product(w0(F_ETA), w1(F_ETA), w0(F_ETA), w1(F_ETA))
-    end function element_energy_density
-
-    !> element_mass_product(a0, a1, a0, a1): 6/h times the mass product of a P1 function
-    !> with itself on one element.
-    pure real(dp) function self_product(a0, a1)
-        real(dp), intent(in) :: a0, a1
-
-        self_product = 2.0_dp * (a0 * a0 + a0 * a1 + a1 * a1)
-    end function self_product
+        p_v = element_mass_product(w(e - 1, F_V), w(e, F_V), w(e - 1, F_V), w(e, F_V))
+        p_theta = element_mass_product(w(e - 1, F_THETA), w(e, F_THETA), w(e - 1, F_THETA), w(e, F_THETA))
+        p_p = element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_P), w(e, F_P))
+        p_coupling = element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_THETA), w(e, F_THETA))
+        p_q = element_mass_product(w(e - 1, F_Q), w(e, F_Q), w(e - 1, F_Q), w(e, F_Q))
+        p_eta = element_mass_product(w(e - 1, F_ETA), w(e, F_ETA), w(e - 1, F_ETA), w(e, F_ETA))
+    end subroutine element_products
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
     !> and b0, b1).

@@ -10,6 +10,7 @@ module fe_m
     private
     public :: mesh_nodes, element_mass, element_stiffness, element_gradient
     public :: apply_assembled, apply_mass_graded, apply_stiffness_graded, evaluate_p1
+    public :: inertia_element, add_inertia_difference, inertia_difference_energy
 
 contains
 
@@ -114,5 +115,69 @@ contains
             if (equal(p(j), x(e))) values(j) = f(e)
         end do
     end function evaluate_p1
+
+    !> Element matrix of the velocity's mass, the inertia of (6.1)_1, with the mass
+    !> redistribution of docs/scheme.md ("Mass redistribution"): the blend
+    !> (1 - lumped) h/6 [2 1; 1 2] + lumped h/2 [1 0; 0 1], and, on the last element (it holds
+    !> the contact node x = 1) when end_moved, [h 0; 0 0]: the element's whole mass h on its
+    !> other node, the contact node massless. lumped = 0, end_moved = .false.: element_mass(h).
+    !> Every use of the velocity's mass goes through this function: the matrix
+    !> (scheme_m), the old level's term (add_inertia_difference) and the kinetic energy
+    !> (inertia_difference_energy), so that the energy is the scheme's own.
+    pure function inertia_element(h, lumped, end_moved, last) result(m)
+        real(dp), intent(in) :: h, lumped
+        logical, intent(in) :: end_moved, last
+        real(dp) :: m(2, 2)
+
+        if (end_moved .and. last) then
+            m = reshape([h, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2])
+        else
+            m = (1.0_dp - lumped) * element_mass(h) + lumped * reshape([h, 0.0_dp, 0.0_dp, h], [2, 2]) / 2.0_dp
+        end if
+    end function inertia_element
+
+    !> y += (M_v - M) x on the mesh with element sizes h(1:s): M_v the velocity's mass of
+    !> inertia_element, M the consistent P1 mass (apply_mass_graded); x, y bounds 0..s.
+    !> The blend's difference is h times that of h = 1 (inertia_element is linear in h), so the
+    !> interior is one vectorised pass; the contact node's element is taken as it is.
+    pure subroutine add_inertia_difference(h, lumped, end_moved, x, y)
+        real(dp), intent(in) :: h(:), lumped
+        logical, intent(in) :: end_moved
+        real(dp), intent(in) :: x(0:)
+        real(dp), intent(inout) :: y(0:)
+        real(dp) :: d(2, 2), d1(2, 2)
+        integer :: s
+
+        s = ubound(x, 1)
+        if (lumped > 0.0_dp) then
+            d1 = inertia_element(1.0_dp, lumped, .false., .false.) - element_mass(1.0_dp)
+            ! elements 1..s-1 (the last one below): rows e-1 and e of element e
+            y(0:s - 2) = y(0:s - 2) + h(1:s - 1) * (d1(1, 1) * x(0:s - 2) + d1(1, 2) * x(1:s - 1))
+            y(1:s - 1) = y(1:s - 1) + h(1:s - 1) * (d1(2, 1) * x(0:s - 2) + d1(2, 2) * x(1:s - 1))
+        end if
+        d = inertia_element(h(s), lumped, end_moved, .true.) - element_mass(h(s))
+        y(s - 1) = y(s - 1) + d(1, 1) * x(s - 1) + d(1, 2) * x(s)
+        y(s) = y(s) + d(2, 1) * x(s - 1) + d(2, 2) * x(s)
+    end subroutine add_inertia_difference
+
+    !> v^T (M_v - M) v (see add_inertia_difference): what the kinetic energy 1/2 rho v^T M_v v
+    !> adds to the consistent one.
+    pure real(dp) function inertia_difference_energy(h, lumped, end_moved, v) result(energy)
+        real(dp), intent(in) :: h(:), lumped
+        logical, intent(in) :: end_moved
+        real(dp), intent(in) :: v(0:)
+        real(dp) :: d(2, 2), d1(2, 2)
+        integer :: s
+
+        s = ubound(v, 1)
+        energy = 0.0_dp
+        if (lumped > 0.0_dp) then
+            d1 = inertia_element(1.0_dp, lumped, .false., .false.) - element_mass(1.0_dp)
+            energy = sum(h(1:s - 1) * (d1(1, 1) * v(0:s - 2)**2 + (d1(1, 2) + d1(2, 1)) * v(0:s - 2) * v(1:s - 1) &
+                                       + d1(2, 2) * v(1:s - 1)**2))
+        end if
+        d = inertia_element(h(s), lumped, end_moved, .true.) - element_mass(h(s))
+        energy = energy + d(1, 1) * v(s - 1)**2 + (d(1, 2) + d(2, 1)) * v(s - 1) * v(s) + d(2, 2) * v(s)**2
+    end function inertia_difference_energy
 
 end module fe_m

@@ -22,8 +22,9 @@
 module scheme_m
     use kinds_m, only: dp
     use reals_m, only: equal, is_zero
-    use config_m, only: model_t
-    use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled
+    use config_m, only: model_t, config_t
+    use fe_m, only: element_mass, element_stiffness, element_gradient, apply_assembled, inertia_element, &
+                    add_inertia_difference
     use mesh_m, only: mesh_t
     use banded_m, only: band_t
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
@@ -31,7 +32,7 @@ module scheme_m
     private
     public :: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
     public :: element_block, band_width, assemble_matrix, active_fields, slots_of
-    public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields
+    public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields, initial_data_present
 
     ! Field order within a node (fields_m's F_*). The coupling graph (q-theta, theta-v,
     ! theta-P, v-P, P-eta) is a triangle theta-v-P with q and eta hanging off theta and P;
@@ -48,14 +49,20 @@ module scheme_m
 contains
 
     !> Element matrix of the block (equation row, unknown col) of (6.1), scaled as in the
-    !> module header; zero where the equation does not involve the unknown.
-    pure function element_block(model, h, dt, row, col) result(m)
+    !> module header; zero where the equation does not involve the unknown. last: the element
+    !> holds the contact node x = 1 (the velocity's mass of &contact mass = 'redistributed'
+    !> differs there: fe_m's inertia_element).
+    pure function element_block(model, h, dt, row, col, last) result(m)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: h, dt
         integer, intent(in) :: row, col
+        logical, intent(in), optional :: last
         real(dp) :: m(2, 2)
         real(dp) :: me(2, 2), ke(2, 2), ge(2, 2)
+        logical :: is_last
 
+        is_last = .false.
+        if (present(last)) is_last = last
         me = element_mass(h)
         ke = element_stiffness(h)
         ge = element_gradient()
@@ -63,7 +70,8 @@ contains
         select case (row)
         case (F_V)        ! (6.1)_1, equation of motion; int (... - gamma1 theta - gamma2 P) w_x
             select case (col)
-            case (F_V); m = model%rho * me + dt * (model%varpi + dt * model%alpha) * ke
+            case (F_V); m = model%rho * inertia_element(h, model%mass_lumped, model%mass_end_moved, is_last) &
+                            + dt * (model%varpi + dt * model%alpha) * ke
             case (F_THETA); m = -dt * model%gamma1 * transpose(ge)
             case (F_P); m = -dt * model%gamma2 * transpose(ge)
             end select
@@ -153,6 +161,18 @@ contains
         end do
     end function active_fields
 
+    !> Which fields have nonzero initial data (a field with none may be left out: active_fields).
+    pure function initial_data_present(cfg) result(has_data)
+        type(config_t), intent(in) :: cfg
+        logical :: has_data(N_FIELDS)
+
+        has_data(F_V) = .true.
+        has_data(F_Q) = .not. all(is_zero(cfg%initial%q0_poly))
+        has_data(F_THETA) = .not. (all(is_zero(cfg%initial%theta0_poly)) .and. is_zero(cfg%initial%theta0_step(1)))
+        has_data(F_P) = .not. (all(is_zero(cfg%initial%p0_poly)) .and. is_zero(cfg%initial%p0_step(1)))
+        has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
+    end function initial_data_present
+
     !> Slots of the monolithic system holding only the active fields, in the order of
     !> MONOLITHIC_SLOTS (0: field left out).
     pure function slots_of(active) result(slots)
@@ -190,11 +210,11 @@ contains
         call a%init(nf * (s + 1), kw, kw)
         do e = 1, s
             h_e = mesh%h(e)
-            if (.not. equal(h_e, h_blocks)) then
-                ! the element blocks of this element size
+            if (.not. equal(h_e, h_blocks) .or. e == s) then
+                ! the element blocks of this element size (and of the contact node's element)
                 do row = 1, N_FIELDS
                     do col = 1, N_FIELDS
-                        blocks(:, :, row, col) = element_block(model, h_e, dt, row, col)
+                        blocks(:, :, row, col) = element_block(model, h_e, dt, row, col, last=e == s)
                     end do
                 end do
                 h_blocks = h_e
@@ -241,6 +261,8 @@ contains
         end do
         ! (6.1)_1: rho Me v^{n-1} - dt alpha Ke u^{n-1}
         call mesh%apply_mass(w_old(:, F_V), b(:, F_V))
+        if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) &
+            call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w_old(:, F_V), b(:, F_V))
         call mesh%apply_stiffness(u_old, work)
         b(:, F_V) = model%rho * b(:, F_V) - dt * model%alpha * work
         if (active(F_THETA)) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})

@@ -19,19 +19,21 @@ module stepper_m
     use kinds_m, only: dp
     use reals_m, only: equal, is_zero
     use ieee_arithmetic, only: ieee_is_finite
-    use config_m, only: config_t, model_t
+    use config_m, only: config_t, model_t, with_contact_mass
     use errors_m, only: check_allocation
     use banded_m, only: band_t, lapack_info_message
     use block_tridiagonal_m, only: block_tridiagonal_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
     use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
-                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields
+                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields, &
+                        initial_data_present
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
     use mesh_m, only: mesh_t, copy_mesh
     use sources_m, only: source_t, add_source_terms
     use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
+    use massless_end_m, only: settle_end
     implicit none
     private
     public :: stepper_t, step_result_t
@@ -114,7 +116,7 @@ contains
         integer :: k, s_finest, stat
         character(len=256) :: message
 
-        self%model = cfg%model
+        self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         self%dt = cfg%time%dt
         self%law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
         self%scheme = time_scheme(cfg%time%scheme)
@@ -179,18 +181,6 @@ contains
             self%systems(k)%last_used = 0
         end do
     end subroutine stepper_remesh
-
-    !> Which fields have nonzero initial data (a field with none may be left out: active_fields).
-    pure function initial_data_present(cfg) result(has_data)
-        type(config_t), intent(in) :: cfg
-        logical :: has_data(N_FIELDS)
-
-        has_data(F_V) = .true.
-        has_data(F_Q) = .not. all(is_zero(cfg%initial%q0_poly))
-        has_data(F_THETA) = .not. (all(is_zero(cfg%initial%theta0_poly)) .and. is_zero(cfg%initial%theta0_step(1)))
-        has_data(F_P) = .not. (all(is_zero(cfg%initial%p0_poly)) .and. is_zero(cfg%initial%p0_step(1)))
-        has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
-    end function initial_data_present
 
     !> The paper's Section 7 blocks for step dt, factored.
     subroutine setup_paper(self, dt, result)
@@ -401,6 +391,7 @@ contains
         else
             state%u = state%u + sys%dt_eff * state%w(:, F_V)
         end if
+        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u)
     end subroutine advance_monolithic
 
     !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the
@@ -433,6 +424,8 @@ contains
             end if
         end do
         state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
+        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u, &
+                        state%w(:, F_V), self%w_new(self%s, F_V))
     end subroutine advance_midpoint
 
     !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.

@@ -297,7 +297,7 @@ contains
         t_last = t_checkpoint * (1.0_dp + 1.0e-12_dp)
         call read_real_1d(file, '/series/'//trim(SERIES(S_T)%name), column)
         n = rows_to_copy(column, t_last)
-        allocate (rows(n, N_SERIES), stat=stat, errmsg=message)
+        allocate (rows(N_SERIES, n), stat=stat, errmsg=message)   ! one contiguous column per entry
         call check_allocation(stat, message, 'the copied series')
         do k = 1, N_SERIES
             if (SERIES(k)%is_integer) then
@@ -307,10 +307,10 @@ contains
                 call read_real_1d(file, '/series/'//trim(SERIES(k)%name), column)
             end if
             call require_rows(file, '/series/'//trim(SERIES(k)%name), size(column), n)
-            rows(:, k) = column(1:n)
+            rows(k, :) = column(1:n)
         end do
         do k = 1, n
-            call writer%append_series(rows(k, :))
+            call writer%append_series(rows(:, k))
         end do
         call read_real_1d(file, '/snapshots/t', snap_t)
         n = rows_to_copy(snap_t, t_last)

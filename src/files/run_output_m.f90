@@ -38,13 +38,17 @@ contains
     !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
     !> (normal compliance (3.4), or the Signorini multiplier). initial: the level is the
     !> initial data, reached without a step (its lambda is the law's force at its u(1)).
-    subroutine write_series(writer, stepper, state, monitor, result, initial)
+    !> dense = [t, u(1,t), E(t)]: the entry is at t between the steps, from the scheme's
+    !> interpolant (dense output, run_m; state: the step's end); lambda is the penalty law's
+    !> force at that u(1) (Signorini: the step's multiplier).
+    subroutine write_series(writer, stepper, state, monitor, result, initial, dense)
         type(h5_writer_t), intent(inout) :: writer
         type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
         type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
         type(step_result_t), intent(in) :: result
         logical, intent(in), optional :: initial
+        real(dp), intent(in), optional :: dense(3)
         real(dp) :: values(N_SERIES)
 
         values(S_T) = state%t
@@ -54,6 +58,13 @@ contains
         values(S_CONTACT_STRESS) = -result%contact_force
         if (present(initial)) then
             if (initial) values(S_CONTACT_STRESS) = -stepper%law%force(state%u(state%s))
+        end if
+        if (present(dense)) then
+            values(S_T) = dense(1)
+            values(S_U_END) = dense(2)
+            values(S_ENERGY) = dense(3)
+            values(S_PENETRATION) = stepper%law%penetration(dense(2))
+            if (.not. stepper%law%is_signorini()) values(S_CONTACT_STRESS) = -stepper%law%force(dense(2))
         end if
         values(S_ITERATIONS) = real(result%iterations, dp)
         values(S_DT) = state%dt_last

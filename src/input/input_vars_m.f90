@@ -89,7 +89,9 @@ contains
         case ('output')
             ! the steps land on the snapshot times (run_m)
             ! n_points: the width of the /snapshots rows a restart copies
-            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points'
+            ! series_dt: the times of the /series entries; snapshot_land: whether steps land
+            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points' .or. &
+                              var%name == 'series_dt' .or. var%name == 'snapshot_land'
         case default
             changes_history = .false.
         end select

@@ -95,6 +95,41 @@ def window_max(t, x):
     return (float(early.max()) if early.size else None), (float(late.max()) if late.size else None)
 
 
+def dense_grid(t_end):
+    """The grid the errors between the steps are taken on: every 1e-4 to t = 1, every 1e-3 after."""
+    g = np.arange(1, int(round(min(t_end, 1.0) / 1e-4)) + 1) * 1e-4
+    if t_end > 1.0:
+        g = np.concatenate([g, 1.0 + np.arange(1, int(round((t_end - 1.0) / 1e-3)) + 1) * 1e-3])
+    return g[g <= t_end * (1 + 1e-12)]
+
+
+def interpolant(t, u, ev_t, order, grid):
+    """u(1,t) on the grid from the scheme's interpolant (src/numerics/dense_output_m.f90, as the
+    code's &output series_dt writes it): the polynomial through the last order+1 levels since the
+    last contact event; the straight line in the step across an event and the one after it.
+    t, u: every step's level (the run's series, every step written)."""
+    n = np.clip(np.searchsorted(t, grid), 1, t.size - 1)      # t[n-1] < grid <= t[n]
+    step_of_event = np.searchsorted(t, ev_t)                   # the step across each event
+    first = np.zeros(t.size, dtype=int)                        # the first level since the last event
+    for m in step_of_event:
+        if m < t.size:
+            first[m:] = m
+    levels = n - first[n] + 1
+    quad = (order >= 2) & (levels >= 3)
+    out = np.empty(grid.size)
+    lin = ~quad
+    t0, t1 = t[n - 1], t[n]
+    out[lin] = (u[n - 1] + (u[n] - u[n - 1]) * (grid - t0) / (t1 - t0))[lin]
+    q = np.where(quad)[0]
+    if q.size:
+        a, b, c = t[n[q] - 2], t[n[q] - 1], t[n[q]]
+        x = grid[q]
+        out[q] = (u[n[q] - 2] * (x - b) * (x - c) / ((a - b) * (a - c))
+                  + u[n[q] - 1] * (x - a) * (x - c) / ((b - a) * (b - c))
+                  + u[n[q]] * (x - a) * (x - b) / ((c - a) * (c - b)))
+    return out
+
+
 def point(raw, ref, label, scheme, mode, param, t_end, *runs):
     t_end = float(t_end)
     d = read_run(runs[0])
@@ -110,12 +145,17 @@ def point(raw, ref, label, scheme, mode, param, t_end, *runs):
     o, r = events(d, t_end)
     big = d["dt_series"][1:] if d["dt_series"] is not None else np.zeros(0)
     du_early, du_late = window_max(t, du)
+    grid = dense_grid(t_end)
+    ref_grid = np.interp(grid, ref["t"], ref["u"])
+    du_dense = float(np.max(np.abs(interpolant(t, u, d["ev_t"], 1 if scheme == "euler" else 2, grid) - ref_grid)))
+    du_line = float(np.max(np.abs(np.interp(grid, t, u) - ref_grid)))
     row = {"label": label, "scheme": scheme, "mode": mode, "param": float(param), "param_text": param, "t_end": t_end,
            "steps": int(d["steps"]), "rejected": d["time_steps_rejected"],
            "at_dt_min": d["time_steps_at_dt_min"],
            "wall": statistics.median(walls), "walls": walls,
            "elapsed": statistics.median(times) if times else None, "runs": len(runs),
            "max_du": float(du[i]), "t_max_du": float(t[i]), "n_series": int(t.size),
+           "max_du_dense": du_dense, "max_du_line": du_line, "n_grid": int(grid.size),
            "max_du_early": du_early, "max_du_late": du_late,
            "onset": o, "release": r, "onset_ref": ro, "release_ref": rr,
            "onset_err": abs(o - ro) if o is not None and ro is not None else None,
@@ -127,8 +167,9 @@ def point(raw, ref, label, scheme, mode, param, t_end, *runs):
     with open(raw, "a") as f:
         f.write(json.dumps(row) + "\n")
     ev = max(x for x in (row["onset_err"], row["release_err"], 0.0) if x is not None)
-    print("  %-28s steps %8d  wall %7.3f s  max|du| %.2e (t = %.3g)  events %d (ref %d), max event error %.2e"
-          % (label, row["steps"], row["wall"], row["max_du"], row["t_max_du"], row["n_events"],
+    print("  %-28s steps %8d  wall %7.3f s  max|du| %.2e (t = %.3g), dense grid %.2e (straight line %.2e)  "
+          "events %d (ref %d), max event error %.2e"
+          % (label, row["steps"], row["wall"], row["max_du"], row["t_max_du"], du_dense, du_line, row["n_events"],
              row["n_events_ref"], ev), file=sys.stderr)
 
 

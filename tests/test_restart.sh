@@ -56,6 +56,18 @@ print(list(a['events/t'][:]) == list(b['events/t'][:]) and list(a['events/kind']
     [ "$ev" = True ] || fail "adaptive $scheme: /events differ after the restart (or are empty)"
 done
 
+# dense output (issue 24): series entries at k series_dt and snapshots at k snapshot_dt from the
+# scheme's interpolant, steps not landing on them; a checkpoint in the middle of a step sequence
+dense=(--set mesh.n_elements=100 --set output.quiet=.true. --set time.adaptive=.true. --set time.scheme="'bdf2'"
+       --set output.series_dt=0.01 --set output.snapshot_dt=0.25 --set output.snapshot_land=.false.)
+"$exe" "$src/input/exp1.nml" "${dense[@]}" --set time.t_end=0.6 --set output.prefix="'dfull'" || fail "dense: run exit $?"
+"$exe" "$src/input/exp1.nml" "${dense[@]}" --set time.t_end=0.3 --set output.checkpoint_every=37 \
+    --set output.prefix="'dhalf'" || fail "dense: first half exit $?"
+"$exe" "$src/input/exp1.nml" "${dense[@]}" --set time.t_end=0.6 --set time.restart_from="'dhalf.h5'" \
+    --set output.prefix="'drest'" || fail "dense: restarted run exit $?"
+if out=$(same dfull.h5 drest.h5); then echo "PASS dense output (series_dt, snapshot_land=.false.): restarted = uninterrupted ($out)"
+else fail "dense output: restarted run differs from the uninterrupted one:"; echo "$out"; fi
+
 # contact events of both kinds before the checkpoint (the impact's bounces, midpoint rule):
 # restored with their kinds
 imp=("$src/input/impact.nml" --set mesh.n_elements=100 --set output.quiet=.true. --set output.checkpoint_every=100)

@@ -13,8 +13,9 @@
 # of their step counts (set-up and output cancel): fixed steps dt = 1e-4 from t1 = 0.25 to
 # t2 = 0.5; adaptive steps (error_tol = 1e-5, 1e-7) over the same interval.
 # Environment: BUILD_DIR (as scripts/setup.sh; Release is forced), WP_SKIP_BUILD=1, WP_OUT
-# (default out/bench; --quick: out/bench-quick), STEP_COST_DOC (default docs/performance.md;
-# --quick writes no page).
+# (default out/bench; --quick: out/bench-quick), STEP_COST_DOC (the page the section is spliced
+# into, default docs/performance.md; empty: none, as scripts/bench.sh runs it, whose
+# bench/report.py takes $WP_OUT/step_cost.md; --quick writes no page).
 # Exit status: 0 done; 1 build or run failure; 2 usage.
 
 set -euo pipefail
@@ -63,7 +64,7 @@ for scheme in "${schemes[@]}"; do
     echo "fixed_$scheme $t1 $t2" >>"$raw_dir/cases.txt"
     for tol in "${tols[@]}"; do echo "adaptive_${scheme}_$tol $t1 $t2" >>"$raw_dir/cases.txt"; done
 done
-doc="${STEP_COST_DOC:-$repo_root/docs/performance.md}"
+doc="${STEP_COST_DOC-$repo_root/docs/performance.md}"
 ((quick)) && doc=""
 "$py" "$repo_root/bench/step_cost.py" "$raw_dir" "$out/step_cost.md" $doc
 cat "$out/step_cost.md"

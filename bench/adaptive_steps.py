@@ -20,6 +20,8 @@ Needs h5py and numpy: run it with the interpreter of scripts/lib/find_python.sh.
         OUTDIR/work_precision_adaptive.dat (gnuplot, one block per scheme/mode),
         OUTDIR/work_precision_adaptive_params.gp, OUTDIR/work_precision_adaptive.md (the section of
         docs/performance.md) and OUTDIR/work_precision_adaptive_targets.txt (rows of its Targets table).
+    PY adaptive_steps.py splice OUTDIR DOC
+        replaces that section and those target rows in DOC (docs/performance.md).
 """
 
 import json
@@ -544,10 +546,36 @@ def cmd_report(args):
         f.write("\n".join(md).rstrip() + "\n")
 
 
+def cmd_splice(args):
+    """The section and the target rows of OUTDIR into DOC (docs/performance.md): the section
+    '## Adaptive time steps: ...' replaced, the Targets table's rows of this benchmark (those
+    starting '| exp1 to t = ') replaced by work_precision_adaptive_targets.txt's."""
+    outdir, doc = args
+    section = open(os.path.join(outdir, "work_precision_adaptive.md")).read().rstrip("\n").split("\n")
+    rows = [l.rstrip("\n") for l in open(os.path.join(outdir, "work_precision_adaptive_targets.txt")) if l.strip()]
+    lines = open(doc).read().rstrip("\n").split("\n")
+    start = next((i for i, l in enumerate(lines) if l.startswith("## Adaptive time steps")), None)
+    if start is not None:
+        end = next((i for i in range(start + 1, len(lines)) if lines[i].startswith("## ")), len(lines))
+        lines[start:end] = section + ([""] if end < len(lines) else [])
+    else:
+        lines += [""] + section
+    t0 = next(i for i, l in enumerate(lines) if l == "## Targets")
+    t1 = next(i for i in range(t0 + 1, len(lines)) if lines[i].startswith("## "))
+    old = [i for i in range(t0, t1) if lines[i].startswith("| exp1 to t = ")]
+    at = old[0] if old else max(i for i in range(t0, t1) if lines[i].startswith("|")) + 1
+    lines = [l for i, l in enumerate(lines) if i not in old]
+    lines[at:at] = rows
+    with open(doc + ".tmp", "w") as f:
+        f.write("\n".join(lines) + "\n")
+    os.replace(doc + ".tmp", doc)
+
+
 def main():
-    if len(sys.argv) < 2 or sys.argv[1] not in ("points", "refcheck", "report"):
+    cmds = {"points": cmd_points, "refcheck": cmd_refcheck, "report": cmd_report, "splice": cmd_splice}
+    if len(sys.argv) < 2 or sys.argv[1] not in cmds:
         sys.exit(__doc__)
-    {"points": cmd_points, "refcheck": cmd_refcheck, "report": cmd_report}[sys.argv[1]](sys.argv[2:])
+    cmds[sys.argv[1]](sys.argv[2:])
 
 
 if __name__ == "__main__":

@@ -11,7 +11,9 @@
 #
 # One step's cost is the difference of two runs, to t1 and to t2, divided by the difference
 # of their step counts (set-up and output cancel): fixed steps dt = 1e-4 from t1 = 0.25 to
-# t2 = 0.5; adaptive steps (error_tol = 1e-5, 1e-7) over the same interval.
+# t2 = 0.5; adaptive steps (error_tol = 1e-5, 1e-7) over the same interval. And the whole run
+# of the benchmark's target, adaptive midpoint at error_tol = 1e-5 to t = 60 (all its step
+# sizes, from 1e-4 to 1: instructions of the run over its steps; not with --quick).
 # Environment: BUILD_DIR (as scripts/setup.sh; Release is forced), WP_SKIP_BUILD=1, WP_OUT
 # (default out/bench; --quick: out/bench-quick), STEP_COST_DOC (the page the section is spliced
 # into, default docs/performance.md; empty: none, as scripts/bench.sh runs it, whose
@@ -64,6 +66,10 @@ for scheme in "${schemes[@]}"; do
     echo "fixed_$scheme $t1 $t2" >>"$raw_dir/cases.txt"
     for tol in "${tols[@]}"; do echo "adaptive_${scheme}_$tol $t1 $t2" >>"$raw_dir/cases.txt"; done
 done
+if ((!quick)); then
+    measure adaptive_midpoint_1e-5 60 --set time.scheme="'midpoint'" --set time.adaptive=.true. --set time.error_tol=1e-5
+    echo "adaptive_midpoint_1e-5 0 60" >>"$raw_dir/cases.txt"
+fi
 doc="${STEP_COST_DOC-$repo_root/docs/performance.md}"
 ((quick)) && doc=""
 "$py" "$repo_root/bench/step_cost.py" "$raw_dir" "$out/step_cost.md" $doc

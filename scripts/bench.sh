@@ -343,7 +343,7 @@ fi
 if [[ "${SKIP_WPA:-0}" != 1 ]]; then
     wpa_args=()
     ((quick)) && wpa_args=(--quick)
-    WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/adaptive_steps.sh" "${wpa_args[@]}"
+    WP_SKIP_BUILD=1 WPA_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/adaptive_steps.sh" "${wpa_args[@]}"
     # the cost of an adaptive step against a fixed one (issue 24; callgrind, a few minutes)
     WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" STEP_COST_DOC='' "$repo_root/bench/step_cost.sh" "${wpa_args[@]}"
 fi

@@ -38,8 +38,10 @@ module step_control_m
     real(dp), parameter :: SAFETY = 0.9_dp
     real(dp), parameter :: GROWTH_MIN = 1.25_dp !< smaller growths are not taken
     real(dp), parameter :: SHRINK_MIN = 0.2_dp  !< smallest dt_new / dt after a rejection
-    !> ratio of neighbouring step sizes on the ladder (2 is 4 rungs: BDF2's growth bound is one)
-    real(dp), parameter :: LADDER_RATIO = 2.0_dp**0.25_dp
+    !> ratio of neighbouring step sizes on the ladder (2 is 3 rungs: BDF2's growth bound is one).
+    !> 2^(1/3) against 2^(1/4): on exp1 to t = 60 (midpoint, error_tol 1e-5) 1.4 % more steps,
+    !> a quarter fewer factorisations, fewer instructions in all (callgrind)
+    real(dp), parameter :: LADDER_RATIO = 2.0_dp**(1.0_dp / 3.0_dp)
 
     !> The last accepted levels, most recent first, with the steps that reached them.
     type :: error_estimator_t

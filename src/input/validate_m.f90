@@ -236,8 +236,8 @@ contains
         if (output%n_points < 0 .or. output%n_points == 1) call fatal(EXIT_INPUT, 'output.n_points', 'got ' // &
             int_str(output%n_points) // '; must be 0 (the nodes of the coarsest mesh, n_elements + 1) or at ' // &
             'least 2 (points of the snapshot grid /mesh/x)')
-        call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', '(0: snapshots every snapshot_every steps)')
-        call require_nonnegative(output%series_dt, 'output.series_dt', '(0: a series entry every series_every steps)')
+        call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', ' (0: snapshots every snapshot_every steps)')
+        call require_nonnegative(output%series_dt, 'output.series_dt', ' (0: a series entry every series_every steps)')
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
             'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')

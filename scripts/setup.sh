@@ -22,6 +22,7 @@ set -euo pipefail
 # Slurm packages (slurm-wlm, munge) are installed by tests/test_slurm.sh itself.
 REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
                    gnuplot-nox fonts-dejavu-core python3-h5py python3-numpy python3-scipy python3-matplotlib
+                   python3-xarray python3-h5netcdf netcdf-bin
                    valgrind parallel graphviz)
 
 repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

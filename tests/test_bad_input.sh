@@ -293,6 +293,22 @@ rm -rf "$dir" && mkdir -p "$dir"
 run_input file "$dir" "$dir"
 check_result file input "directory" "$dir" "(a directory as input file)"
 
+# --- no namelist group at all (an empty file, empty standard input, only comments): exit 2
+# with a message saying how to run with the defaults; nothing written (default prefix out/run,
+# relative to the working directory, which is the case's directory)
+for entry in "stdin|" "file|" "dash|" "file|! only a comment"; do
+    form=${entry%%|*} text=${entry#*|}
+    n_case=$((n_case + 1))
+    dir="$scratch/case$n_case"
+    rm -rf "$dir" && mkdir -p "$dir"
+    if [[ -n "$text" ]]; then printf '%s\n' "$text" > "$dir/input.nml"; else : > "$dir/input.nml"; fi
+    pushd "$dir" > /dev/null && run_input "$form" "$dir/input.nml" "$dir" && popd > /dev/null
+    check_result "$form" input "echo '&model /' | rodcontact" "$dir" "(no group: '$text')" "$dir/out/run"
+    if [[ -e "$dir/out" ]]; then
+        n_failed=$((n_failed + 1)); echo "FAIL case $n_case (no group, $form): $dir/out was created"
+    fi
+done
+
 # --- control: a valid input does write <prefix>.h5 (so the checks above can fail)
 dir="$scratch/control"
 rm -rf "$dir" && mkdir -p "$dir"

@@ -60,11 +60,12 @@ contains
                          cfg%initial%eta0_poly, cfg%initial%theta0_step, cfg%initial%p0_step])), 0.0_dp)
         ! the defaults must pass validation (validate_config stops with 2 otherwise)
         call validate_config(cfg, scheme_rules())
-        ! and so must an empty input
-        call write_file('empty.nml', [character(len=1) :: ''])
+        ! and so must an input of one empty group (an input with no group at all is refused:
+        ! tests/test_bad_input.sh)
+        call write_file('empty.nml', [character(len=9) :: '&model /'])
         call read_config(path('empty.nml'), cfg)
-        call check_close('empty input keeps rho', 1.2298e-17_dp, cfg%model%rho, 0.0_dp)
-        call check_true('empty input keeps n_elements', cfg%mesh%n_elements == 500)
+        call check_close('empty group keeps rho', 1.2298e-17_dp, cfg%model%rho, 0.0_dp)
+        call check_true('empty group keeps n_elements', cfg%mesh%n_elements == 500)
     end subroutine test_defaults
 
     !> Several groups in an unusual order, comments, upper case, '&end', arrays, subscripts,

@@ -7,7 +7,8 @@
 !>  - the interpolant's own error (the error between the steps less the interpolated errors
 !>    of the levels it is built from) falls at order p+1: a straight line between the levels
 !>    of a second-order scheme (order 2, dt^2 |u''| / 8) fails this;
-!>  - dense_series's u(1,t) is dense_level's u at x = 1 (the same interpolant).
+!>  - dense_series's u(1,t) is dense_level's u at x = 1 (the same interpolant), and its
+!>    energy parts add up to its energy.
 program test_dense_output
     use kinds_m, only: dp
     use config_m, only: config_t, model_t
@@ -17,7 +18,7 @@ program test_dense_output
     use step_driver_m, only: step_driver_t
     use mms_m, only: mms_t, mms_linear_in_x, U_FIELD
     use convergence_m, only: mms_initial_state
-    use fields_m, only: N_FIELDS
+    use fields_m, only: N_FIELDS, N_ENERGY_PARTS
     use testing_m, only: check_true, test_summary
     use dense_output_m, only: lagrange_weights
     implicit none
@@ -49,7 +50,7 @@ program test_dense_output
         call check_true(trim(SCHEMES(k))//': the interpolant''s own error falls at order p+1', &
                         order >= ORDERS(k) + 1 - 0.2_dp, trim(detail))
         write (detail, '(a,es10.2)') 'largest difference ', maxval(series_gap)
-        call check_true(trim(SCHEMES(k))//': dense_series''s u(1,t) is dense_level''s', &
+        call check_true(trim(SCHEMES(k))//': dense_series''s u(1,t) is dense_level''s, its parts add up to E', &
                         maxval(series_gap) <= 1.0e-14_dp, trim(detail))
     end do
     call test_summary('test_dense_output')
@@ -70,7 +71,7 @@ contains
         type(step_result_t) :: result
         type(energy_monitor_t) :: monitor
         type(step_driver_t) :: driver
-        real(dp) :: u(0:S), w(0:S, N_FIELDS), t_mid, u_end, energy, e_mid
+        real(dp) :: u(0:S), w(0:S, N_FIELDS), t_mid, u_end, energy, e_mid, parts(N_ENERGY_PARTS)
         real(dp) :: t_level(3), e_level(3)   !< the last levels' times and errors, newest first
         logical :: at_snapshot
         character(len=200) :: failure
@@ -83,6 +84,7 @@ contains
         cfg%time%dt = dt
         cfg%time%t_end = 1.0_dp
         cfg%time%scheme = scheme
+        cfg%output%series_dt = dt      ! dense output: fixed steps keep their levels (step_driver_m)
         call mms_initial_state(mms, S, state)
         call stepper%init(cfg, result, mms)
         call monitor%init(cfg%model, stepper%step_model, stepper%law, stepper%scheme, state)
@@ -104,8 +106,8 @@ contains
             e_mid = u(S) - mms%exact(U_FIELD, t_mid, 1.0_dp, 0)
             between = max(between, abs(e_mid))
             if (n > p) own = max(own, abs(e_mid - sum(lagrange_weights(t_level(1:p + 1), t_mid) * e_level(1:p + 1))))
-            call driver%dense_series(state, stepper%law, monitor%current_energy(), t_mid, u_end, energy)
-            series_gap = max(series_gap, abs(u_end - u(S)))
+            call driver%dense_series(state, stepper%law, monitor%current_energy(), t_mid, u_end, energy, parts)
+            series_gap = max(series_gap, abs(u_end - u(S)), abs(sum(parts) - energy) / max(abs(energy), 1.0_dp))
         end do
     end subroutine run
 

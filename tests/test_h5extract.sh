@@ -18,12 +18,13 @@ x() { "$py" "$src/scripts/h5extract.py" "$@"; }
 x series run.h5 > series.txt 2> series.err
 check "series: exit 0" equals 0 "$?"
 check "series: header line names every dataset with its units" equals \
-    "# t [1] contact_stress [1] dt [1] energy [1] iterations [1] n_elements [1] penetration [1] u_end [1]" "$(grep -v '^#  ' series.txt | sed -n 2p)"
+    "# t [1] contact_stress [1] dt [1] energy [1] energy_chemical [1] energy_contact [1] energy_coupling [1] energy_heat_flux [1] energy_kinetic [1] energy_mass_flux [1] energy_strain [1] energy_thermal [1] iterations [1] n_elements [1] penetration [1] u_end [1]" "$(grep -v '^#  ' series.txt | sed -n 2p)"
 check "series: the columns are the file's datasets" "$py" -c "
 import h5py, numpy as np, sys
 f = h5py.File('run.h5', 'r'); d = np.loadtxt('series.txt')
-names = ['t', 'contact_stress', 'dt', 'energy', 'iterations', 'n_elements', 'penetration', 'u_end']
-sys.exit(0 if d.shape == (f['series/t'].size, 8) and all(np.array_equal(d[:, k], f['series/' + n][:]) for k, n in enumerate(names)) else 1)"
+names = ['t', 'contact_stress', 'dt', 'energy'] + sorted(k for k in f['series'] if k.startswith('energy_')) + \
+    ['iterations', 'n_elements', 'penetration', 'u_end']
+sys.exit(0 if d.shape == (f['series/t'].size, 16) and all(np.array_equal(d[:, k], f['series/' + n][:]) for k, n in enumerate(names)) else 1)"
 x series run.h5 --datasets t,u_end --every 100 > some.txt
 check "series --datasets t,u_end --every 100: rows 0, 100, ..., last; two columns" "$py" -c "
 import h5py, numpy as np, sys
@@ -40,7 +41,7 @@ import h5py, numpy as np, sys
 f = h5py.File('run.h5', 'r'); d = np.loadtxt('snap.txt')
 sys.exit(0 if np.array_equal(d, np.column_stack([f['mesh/x'][:], f['snapshots/u'][1], f['snapshots/theta'][1]])) else 1)"
 x snapshot run.h5 --time 0 > snap0.txt 2> /dev/null
-check "snapshot without --fields: x and every field (7 columns)" equals 7 "$(grep -v '^#' snap0.txt | head -n 1 | wc -w)"
+check "snapshot without --fields: x, every field and sigma (8 columns)" equals 8 "$(grep -v '^#' snap0.txt | head -n 1 | wc -w)"
 
 # matrix: blocks 'x t value' separated by blank lines; nonuniform matrix
 x matrix run.h5 --field theta > theta.dat

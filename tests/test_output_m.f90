@@ -9,6 +9,7 @@ program test_output_m
                          read_attr_int, read_attr_real_1d, dataset_exists, attr_exists
     use fsys_m, only: file_exists, dir_exists, remove_file, parent_dir, mkdir_p
     use scratch_dirs_m, only: remove_dir
+    use fields_m, only: N_TABLE_SERIES => N_SERIES, N_SNAPSHOT_FIELDS
     implicit none
 
     integer, parameter :: S = 4             !< elements: s+1 = 5 nodes
@@ -76,13 +77,23 @@ contains
         end do
     end function snapshot_field
 
-    !> Snapshot m as append_snapshot takes it: column k is field k (u, v, theta, P, q, eta).
+    !> A series entry as append_series takes it: the first 8 datasets of fields_m's SERIES
+    !> (t .. n_elements) given, the energy parts zero.
+    function series_row(first) result(row)
+        real(dp), intent(in) :: first(8)
+        real(dp) :: row(N_TABLE_SERIES)
+
+        row = 0.0_dp
+        row(1:8) = first
+    end function series_row
+
+    !> Snapshot m as append_snapshot takes it: column k is dataset k (u, v, theta, P, q, eta, sigma).
     function snapshot_fields(m) result(f)
         integer, intent(in) :: m
-        real(dp) :: f(0:S, 6)
+        real(dp) :: f(0:S, N_SNAPSHOT_FIELDS)
         integer :: k
 
-        do k = 1, 6
+        do k = 1, N_SNAPSHOT_FIELDS
             f(:, k) = snapshot_field(k, m)
         end do
     end function snapshot_fields
@@ -139,7 +150,7 @@ contains
         integer :: i, k, m, ivalue
         character(len=14), parameter :: names(5) = &
             [character(len=14) :: 't', 'energy', 'u_end', 'penetration', 'contact_stress']
-        character(len=5), parameter :: fields(6) = [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta']
+        character(len=5), parameter :: fields(7) = [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta', 'sigma']
 
         call check_true('N_SERIES crosses the buffer boundary', N_SERIES > 2 * SERIES_BUFFER_SIZE)
         allocate (expected_series(0:N_SERIES - 1, 5), expected_iter(0:N_SERIES - 1))
@@ -165,7 +176,7 @@ contains
             call series_entry(i, t, energy, u_end, penetration, contact_stress, iterations)
             expected_series(i, :) = [t, energy, u_end, penetration, contact_stress]
             expected_iter(i) = iterations
-            call w%append_series([t, energy, u_end, penetration, contact_stress, real(iterations, dp), 0.0_dp, 0.0_dp])
+            call w%append_series(series_row([t, energy, u_end, penetration, contact_stress, real(iterations, dp), 0.0_dp, 0.0_dp]))
             if (i == 0 .or. i == FLUSH_AT .or. i == N_SERIES - 1) then
                 m = m + 1
                 call w%append_snapshot(snapshot_time(m), snapshot_fields(m))
@@ -193,7 +204,7 @@ contains
         call read_real_1d(file, '/snapshots/t', got_1d)
         call check_real_1d('/snapshots/t', [(snapshot_time(m), m = 1, N_SNAP)], got_1d)
         allocate (expected_2d(S + 1, N_SNAP))
-        do k = 1, 6
+        do k = 1, 7
             do m = 1, N_SNAP
                 expected_2d(:, m) = snapshot_field(k, m)
             end do
@@ -249,7 +260,7 @@ contains
         call check_true('nested directory absent before create', .not. dir_exists(base))
 
         call w%create(prefix, mesh_nodes())
-        call w%append_series([0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(0, dp), 0.0_dp, 0.0_dp])
+        call w%append_series(series_row([0.0_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(0, dp), 0.0_dp, 0.0_dp]))
         call w%append_snapshot(0.0_dp, snapshot_fields(1))
         call w%finish('complete')
 
@@ -273,7 +284,7 @@ contains
         call remove_file(prefix//'.h5.part')
         call w%create(prefix, mesh_nodes())
         do i = 1, SERIES_BUFFER_SIZE + 10
-            call w%append_series([real(i, dp), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(i, dp), 0.0_dp, 0.0_dp])
+            call w%append_series(series_row([real(i, dp), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(i, dp), 0.0_dp, 0.0_dp]))
         end do
         call w%attr_str('status', 'whatever')
         call w%abandon()
@@ -303,9 +314,9 @@ contains
 
         call w%create(prefix, mesh_nodes())
         call w%attr_int('run', 2)
-        call w%append_series([0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(1, dp), 0.0_dp, 0.0_dp])
-        call w%append_series([0.1_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(2, dp), 0.0_dp, 0.0_dp])
-        call w%append_series([0.2_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(3, dp), 0.0_dp, 0.0_dp])
+        call w%append_series(series_row([0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(1, dp), 0.0_dp, 0.0_dp]))
+        call w%append_series(series_row([0.1_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(2, dp), 0.0_dp, 0.0_dp]))
+        call w%append_series(series_row([0.2_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(3, dp), 0.0_dp, 0.0_dp]))
         call w%finish('failed: non-finite value at step 12')
 
         call read_attr_int(file, 'run', ivalue)

@@ -1,7 +1,7 @@
 # Figure 4: energy (log scale) and u(1,t) for varpi = 0.1, 0.5, 1 (experiment 1), with the
 # obstacle g and the contact interval of varpi = 0.1; when exp1.h5 holds the parts of the
-# energy (/series/energy_<part>, n_parts > 0 in params.gp) a third panel shows them for
-# varpi = 0.1 (kinetic, elastic, thermal, ... as the file names them).
+# energy (/series/energy_<part>, n_parts > 0 in params.gp) a third panel shows their
+# magnitudes for varpi = 0.1 (kinetic, strain, thermal, ... as the file names them).
 load 'common.gp'
 runs = 'exp1 exp1_varpi05 exp1_varpi1'
 rc = '#440154 #21918c #e08a00'
@@ -16,7 +16,7 @@ set style fill solid 1.0 noborder
 unset label 1000
 if (!exists('n_parts')) { n_parts = 0 }
 pnr = 1; pnc = (n_parts > 0) ? 3 : 2; pr = 0
-px0 = 0.08; pgx = (n_parts > 0) ? 0.085 : 0.10
+px0 = 0.08; pgx = (n_parts > 0) ? 0.11 : 0.10
 set xlabel it('t')
 set xrange [0:t_end_series]
 if (t_on_exp1 == t_on_exp1) {   # not NaN: shade the contact interval
@@ -40,12 +40,15 @@ if (n_parts > 0) {
     pc = 2
     @place
     unset arrow 1
-    set yrange [*:*]
+    # |part|: the theta-P coupling term changes sign (c r > d^2 keeps its sum with the
+    # thermal and chemical parts positive); zeros (a contact term out of contact) are left
+    # out. The top decades are left free for the key.
+    set yrange [*:1e8]
     set logscale y
     set format y '10^{%L}'
-    set ylabel 'parts of '.it('E').', ϖ = '.sprintf('%g', varpi_exp1)
+    set ylabel '|parts of '.it('E').'|, ϖ = '.sprintf('%g', varpi_exp1) offset 1.5, 0
     pcol = '#30123b #4145ab #2d9bd6 #1bbc8f #d9a800 #f36a00 #d0190f #7a0403'
-    set key inside right top reverse Left samplen 2 box opaque width 1 font ',14'
-    plot for [k=1:n_parts] datadir.'/exp1.series.dat' skip 1 using 1:(column(3 + k) > 0 ? column(3 + k) : NaN) with lines lw 2 lc rgb word(pcol, k) title word(part_names, k)
+    set key inside right top reverse Left samplen 2 box opaque width 1 font ',13' maxrows 4
+    plot for [k=1:n_parts] datadir.'/exp1.series.dat' skip 1 using 1:(column(3 + k) != 0 ? abs(column(3 + k)) : NaN) with lines lw 2 lc rgb word(pcol, k) title word(part_names, k) noenhanced
 }
 unset multiplot

@@ -1,5 +1,6 @@
-!> Adaptive time steps (&time adaptive = .true.): the local error estimate of every step,
-!> the step-size controller, and the a-posteriori estimate of fixed-step runs.
+!> Adaptive time steps (&time adaptive = .true.): the local error estimate of every step
+!> and the step-size controller. (Fixed steps compute no estimate; the error of a run is
+!> error_companion_m's, with &output error_estimate.)
 !>
 !> Estimate (docs/scheme.md, "Adaptive time steps"): the predictor-corrector difference, as
 !> in the BDF codes (DASSL, CVODE). P^n is the polynomial of degree p (the scheme's order)
@@ -270,8 +271,8 @@ contains
         self%scale = max(self%scale, norm)
     end subroutine controller_observe_size
 
-    !> The time error of the run and the counts of the step control (the root attributes
-    !> time_error_estimate*, time_steps_*).
+    !> The controller's error sum and counts (the root attributes step_control_error_sum*,
+    !> time_steps_* of adaptive runs).
     pure subroutine controller_counts(self, error_sum, scale, n_estimated, n_rejected, n_forced)
         class(step_controller_t), intent(in) :: self
         real(dp), intent(out) :: error_sum, scale

@@ -8,8 +8,8 @@
 !> retried to end just before the crossing, so that the step across a contact event is at
 !> most that long. Steps are shortened to land on the snapshot times (&output snapshot_dt)
 !> and on the end of the run. An accepted step adds its contact event to the event log,
-!> its level to the error estimator, its estimate to the run's time error, and its energy
-!> to the energy monitor.
+!> (adaptive steps) its level to the error estimator and its estimate to the controller's
+!> error sum, and its energy to the energy monitor. Fixed steps compute no estimate.
 module step_driver_m
     use kinds_m, only: dp
     use reals_m, only: equal
@@ -19,7 +19,8 @@ module step_driver_m
     use state_m, only: state_t, advance_time, land_on, copy_state
     use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
-    use energy_m, only: energy_monitor_t, discrete_energy
+    use energy_m, only: energy_monitor_t, discrete_energy, energy_parts
+    use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
     use step_control_m, only: error_estimator_t, step_controller_t, energy_norm, MAX_LEVELS
@@ -34,6 +35,9 @@ module step_driver_m
         private
         logical :: adaptive = .false.          !< &time adaptive
         logical :: mesh_adaptive = .false.     !< &mesh adaptive
+        !> dense output (&output series_dt, snapshot_land = .false.): fixed steps keep their
+        !> levels in the estimator too (dense_level, dense_series)
+        logical :: dense = .false.
         real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
         real(dp) :: event_tol = 0.0_dp         !< longest step across a contact event (adaptive)
         real(dp) :: v_front = 0.0_dp           !< adaptive_mesh_m's front_speed
@@ -46,6 +50,7 @@ module step_driver_m
         logical :: warned_forced = .false.
         !> dense output: E of the j-th most recent level (dense_series), for the step energies_step
         real(dp) :: level_energy(MAX_LEVELS) = 0.0_dp
+        real(dp) :: level_parts(N_ENERGY_PARTS, MAX_LEVELS) = 0.0_dp   !< their parts (energy_parts)
         integer :: energies_step = -1
     contains
         procedure :: init => driver_init
@@ -75,6 +80,8 @@ contains
 
         self%adaptive = cfg%time%adaptive
         self%mesh_adaptive = cfg%mesh%adaptive
+        self%dense = cfg%output%series_dt > 0.0_dp .or. (cfg%output%snapshot_dt > 0.0_dp .and. &
+                                                         .not. cfg%output%snapshot_land)
         self%dt = cfg%time%dt
         self%dt_min = cfg%time%dt_min
         self%dt_max = cfg%time%dt_max
@@ -168,11 +175,12 @@ contains
             flipped = contact_now .neqv. self%in_contact
             est = 0.0_dp
             err = -1.0_dp
+            ! fixed steps compute no estimate (the run's error: &output error_estimate)
+            if (.not. self%adaptive) exit
             if (self%estimator%ready() .and. .not. flipped) then
                 est = self%estimator%estimate(self%model, state%u, state%w, dt_try, state%mesh)
                 err = self%control%ratio(est)
             end if
-            if (.not. self%adaptive) exit
             if (flipped .and. dt_try > self%event_tol) then
                 ! retry to end just before the crossing (or, close to it, across it within event_tol)
                 call self%undo_step(stepper, result, state)
@@ -200,15 +208,18 @@ contains
             if (self%adaptive) call self%estimator%reset()
         end if
         self%in_contact = contact_now
-        call self%estimator%push(state%u, state%w, dt_try)
-        if (err >= 0.0_dp) call self%control%add_estimate(est)
-        if (self%adaptive) call self%control%accept(dt_try, err, shortened=lands)
+        if (self%dense .and. .not. self%adaptive) call self%estimator%push(state%u, state%w, dt_try)
+        if (self%adaptive) then
+            call self%estimator%push(state%u, state%w, dt_try)
+            if (err >= 0.0_dp) call self%control%add_estimate(est)
+            call self%control%accept(dt_try, err, shortened=lands)
+        end if
         call monitor%observe(state, step_changed=.not. equal(dt_try, saved_dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
             failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
             return
         end if
-        call self%control%observe_size(energy_norm(monitor%current_energy()))
+        if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))
     end subroutine driver_take_step
 
     !> The next step: &time dt or the controller's proposal (at most the scheme's step-ratio
@@ -337,34 +348,40 @@ contains
         end do
     end subroutine driver_dense_level
 
-    !> u(1,t) and E(t) at time t of the last accepted step for a series entry: the scheme's
-    !> interpolant (dense_weights) of the levels' u(1) and E^k (Corollary 6.2; energy_now:
-    !> E^n). The energies of the earlier levels are computed once per step, from the levels
-    !> the estimator holds (so a restart gives the same bits).
-    subroutine driver_dense_series(self, state, law, energy_now, t, u_end, energy)
+    !> u(1,t), E(t) and E's parts (energy_m's energy_parts) at time t of the last accepted
+    !> step for a series entry: the scheme's interpolant (dense_weights) of the levels' u(1),
+    !> E^k (Corollary 6.2; energy_now: E^n) and parts. The energies and parts of the levels
+    !> are computed once per step, from the state and the levels the estimator holds (so a
+    !> restart gives the same bits).
+    subroutine driver_dense_series(self, state, law, energy_now, t, u_end, energy, parts)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         type(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: energy_now, t
-        real(dp), intent(out) :: u_end, energy
+        real(dp), intent(out) :: u_end, energy, parts(N_ENERGY_PARTS)
         real(dp) :: weight(MAX_LEVELS)
         integer :: j, n, slot
 
         call dense_weights(self, state, t, n, weight)
         if (self%energies_step /= state%step) then
             self%energies_step = state%step
+            self%level_parts(:, 1) = energy_parts(self%model, law, state%u, state%w, state%mesh)
             if (n < 2) then
                 self%level_energy(2) = discrete_energy(self%model, law, self%saved%u, self%saved%w, self%saved%mesh)
+                self%level_parts(:, 2) = energy_parts(self%model, law, self%saved%u, self%saved%w, self%saved%mesh)
             else
                 do j = 2, n
                     slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
-                    self%level_energy(j) = discrete_energy(self%model, law, self%estimator%levels(:, 0, slot), &
-                                                           self%estimator%levels(:, 1:, slot), state%mesh)
+                    associate (u => self%estimator%levels(:, 0, slot), w => self%estimator%levels(:, 1:, slot))
+                        self%level_energy(j) = discrete_energy(self%model, law, u, w, state%mesh)
+                        self%level_parts(:, j) = energy_parts(self%model, law, u, w, state%mesh)
+                    end associate
                 end do
             end if
         end if
         u_end = weight(1) * state%u(state%s)
         energy = weight(1) * energy_now
+        parts = weight(1) * self%level_parts(:, 1)
         do j = 2, max(n, 2)
             if (n < 2) then
                 u_end = u_end + weight(2) * self%saved%u(self%saved%s)
@@ -373,6 +390,7 @@ contains
                 u_end = u_end + weight(j) * self%estimator%levels(state%s, 0, slot)
             end if
             energy = energy + weight(j) * self%level_energy(j)
+            parts = parts + weight(j) * self%level_parts(:, j)
         end do
     end subroutine driver_dense_series
 

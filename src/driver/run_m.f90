@@ -14,11 +14,16 @@ module run_m
     use remesh_m, only: initial_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
+    use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
     use step_driver_m, only: step_driver_t, step_failure
+    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
+    use strings_m, only: int_str
+    use reals_m, only: is_zero
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, write_checkpoint, copy_history
-    use run_output_m, only: output_grid, write_series, write_snapshot
+    use run_output_m, only: output_grid, write_series, write_snapshot, write_error_estimate
+    use error_companion_m, only: error_companions_t
     use run_attributes_m, only: record_inputs, record_scales, record_results
     use provenance_m, only: record_provenance
     use progress_m, only: progress_t
@@ -38,6 +43,7 @@ module run_m
         type(energy_monitor_t) :: monitor
         type(step_driver_t) :: driver
         type(adaptive_mesh_t) :: mesh          !< &mesh adaptive only
+        type(error_companions_t) :: companions !< &output error_estimate only
         type(h5_writer_t) :: writer
         real(dp), allocatable :: x_out(:)      !< the fixed output grid
         integer :: n_steps = 0                 !< fixed steps: number_of_steps
@@ -86,6 +92,7 @@ contains
         if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
         call run%monitor%init(cfg%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
+        if (cfg%output%error_estimate) call run%companions%init(cfg, run%state)
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
             call run%state%restore_checkpoint(ckpt)
@@ -98,6 +105,7 @@ contains
             call run%monitor%restore_checkpoint(ckpt)
             call run%stepper%restore_checkpoint(ckpt)
             call run%driver%restore_checkpoint(ckpt, run%state, run%stepper)
+            if (cfg%output%error_estimate) call run%companions%restore_checkpoint(ckpt)
         end if
         if (cfg%output%snapshot_dt > 0.0_dp) &
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
@@ -127,7 +135,7 @@ contains
             call run%writer%attr_int('restart_step', run%state%step)
         else
             call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
-            call write_snapshot(run%writer, run%state, run%x_out)
+            call snapshot(run, cfg)
         end if
         call run%writer%flush()
     end subroutine open_output
@@ -160,6 +168,7 @@ contains
                                               at_snapshot, failure)
                 end if
                 if (failure /= '') exit
+                if (cfg%output%error_estimate) call run%companions%follow(state)
                 if (at_snapshot) run%n_snapshot_next = run%n_snapshot_next + 1
                 last = finished(run, cfg)
                 call write_dense_output(run, cfg, t_before, dense_at_end)
@@ -170,7 +179,7 @@ contains
                     call write_series(run%writer, run%stepper, state, run%monitor, run%result)
                 end if
                 if (snapshot_due(cfg, state%step, at_snapshot) .or. (last .and. .not. dense_at_end)) &
-                    call write_snapshot(run%writer, state, run%x_out)
+                    call snapshot(run, cfg)
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
                     call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
@@ -199,6 +208,7 @@ contains
         type(config_t), intent(in) :: cfg
         character(len=*), intent(in) :: failure, interrupted
         integer(int64) :: clock_now
+        real(dp) :: wall
 
         if (interrupted /= '') then
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
@@ -213,13 +223,15 @@ contains
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
             if (mod(run%last_written, cfg%output%series_every) /= 0) &
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
-            if (.not. snapshot_due(cfg, run%last_written, .false.)) call write_snapshot(run%writer, run%state, run%x_out)
+            if (.not. snapshot_due(cfg, run%last_written, .false.)) call snapshot(run, cfg)
         end if
         call system_clock(clock_now)
-        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, &
-                            real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp), run%n_elements_max)
+        wall = real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp)
+        call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, run%companions, &
+                            wall, run%n_elements_max)
         if (interrupted /= '') then
             call run%writer%finish('interrupted: '//interrupted, keep_part=.true.)
+            call report_end(run, cfg, '.h5.part', 'interrupted: '//interrupted, wall)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
                 step_failure(run%state%step, run%state%t, 'checkpoint written')//"; continue with "// &
                 "--set time.restart_from='"//trim(cfg%output%prefix)//".h5.part' and another output.prefix"
@@ -228,11 +240,80 @@ contains
         end if
         if (failure /= '') then
             call run%writer%finish('failed: '//trim(failure))
+            call report_end(run, cfg, '.h5', 'failed', wall)
             call fatal(EXIT_NUMERIC, 'solver', trim(failure)//'; every step before it is in '// &
                        trim(cfg%output%prefix)//'.h5 (status attribute: failed)')
         end if
         call run%writer%finish('complete')
+        call report_end(run, cfg, '.h5', 'complete', wall)
     end subroutine close_output
+
+    !> The run's last line on stderr (unless &output quiet): where its file is, its status,
+    !> the contact onsets and releases (how many, the first of each) and the wall time, e.g.
+    !>   rodcontact: out/exp1.h5 complete; contact: 1 onset (first t = 0.1973), 1 release
+    !>   (first t = 0.5812); 30000 steps, t = 3, wall 12 s
+    !> (one line). suffix: '.h5', or '.h5.part' for a file left to be continued.
+    subroutine report_end(run, cfg, suffix, status, wall)
+        type(run_t), intent(in) :: run
+        type(config_t), intent(in) :: cfg
+        character(len=*), intent(in) :: suffix, status
+        real(dp), intent(in) :: wall
+        type(event_log_t) :: events
+
+        if (cfg%output%quiet) return
+        events = run%driver%events_log()
+        write (error_unit, '(a)') 'rodcontact: '//trim(cfg%output%prefix)//suffix//' '//status//'; contact: '// &
+            event_summary(events%times(), events%kinds(), EVENT_ONSET, 'onset')//', '// &
+            event_summary(events%times(), events%kinds(), EVENT_RELEASE, 'release')//'; '// &
+            int_str(run%state%step)//' steps, t = '//short_real(run%state%t)//', wall '//short_real(wall)//' s'
+        flush (error_unit)
+    end subroutine report_end
+
+    !> '<n> <name>s (first t = <t>)' of the events of kind `kind` ('no <name>s' when none).
+    pure function event_summary(times, kinds, kind, name) result(text)
+        real(dp), intent(in) :: times(:)
+        integer, intent(in) :: kinds(:), kind
+        character(len=*), intent(in) :: name
+        character(len=:), allocatable :: text
+        integer :: n, first
+
+        n = count(kinds == kind)
+        if (n == 0) then
+            text = 'no '//name//'s'
+            return
+        end if
+        first = findloc(kinds, kind, dim=1)
+        text = int_str(n)//' '//name//merge('s', ' ', n > 1)
+        text = trim(text)//' (first t = '//short_real(times(first))//')'
+    end function event_summary
+
+    !> x with 4 significant digits and no padding: 0.1973, 12.5, 3, 1.234E-05.
+    pure function short_real(x) result(text)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+        character(len=32) :: buffer
+        integer :: decimals, last
+
+        if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
+            decimals = max(0, 3 - floor(log10(abs(x))))
+            write (buffer, '(f0.' // int_str(decimals) // ')') x
+            text = trim(adjustl(buffer))
+            if (decimals > 0) then   ! no trailing zeros, no bare point
+                last = len_trim(text)
+                do while (text(last:last) == '0')
+                    last = last - 1
+                end do
+                if (text(last:last) == '.') last = last - 1
+                text = text(:last)
+            end if
+            if (text(1:1) == '.') text = '0'//text
+        else if (is_zero(x)) then
+            text = '0'
+        else
+            write (buffer, '(es10.3)') x
+            text = trim(adjustl(buffer))
+        end if
+    end function short_real
 
     !> /checkpoint: every type that the run continues from saves itself (checkpoint_m), so
     !> that a restart continues exactly.
@@ -246,12 +327,23 @@ contains
         call run%monitor%save_checkpoint(ckpt)
         call run%driver%save_checkpoint(ckpt)
         if (cfg%mesh%adaptive) call run%mesh%save_checkpoint(ckpt)
+        if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
         call write_checkpoint(run%writer, ckpt, step_failure(run%state%step, run%state%t, ''))
     end subroutine checkpoint
 
+    !> A snapshot of the level in run%state, with its error estimate (&output error_estimate).
+    subroutine snapshot(run, cfg)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+
+        call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
+        if (cfg%output%error_estimate) call write_error_estimate(run%writer, run%companions, run%state)
+    end subroutine snapshot
+
     !> Dense output of the step just taken from t_before: the series entries at the times
     !> k series_dt and (snapshot_land = .false.) the snapshots at k snapshot_dt in (t_before,
-    !> t_n], from the scheme's interpolant (step_driver_t%dense_level, dense_output_m).
+    !> t_n], from the scheme's interpolant (step_driver_t%dense_level, dense_output_m); no
+    !> error estimate (validate_m refuses &output error_estimate with snapshot_land = .false.).
     !> at_end: an entry or snapshot so written is at t_n (to round-off), so the last step's
     !> own would repeat it.
     subroutine write_dense_output(run, cfg, t_before, at_end)
@@ -260,7 +352,7 @@ contains
         real(dp), intent(in) :: t_before
         logical, intent(out) :: at_end
         type(state_t) :: level
-        real(dp) :: t, slack, u_end, energy
+        real(dp) :: t, slack, u_end, energy, parts(N_ENERGY_PARTS)
 
         at_end = .false.
         slack = 1.0e-9_dp * run%state%dt_last
@@ -269,9 +361,9 @@ contains
                 t = real(run%n_series_next, dp) * cfg%output%series_dt
                 if (t > run%state%t + slack .or. t <= t_before) exit
                 call run%driver%dense_series(run%state, run%stepper%law, run%monitor%current_energy(), t, &
-                                             u_end, energy)
+                                             u_end, energy, parts)
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, &
-                                  dense=[t, u_end, energy])
+                                  dense=[t, u_end, energy, parts])
                 run%n_series_next = run%n_series_next + 1
                 at_end = at_end .or. t >= run%state%t - slack
             end do
@@ -281,7 +373,7 @@ contains
                 t = real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt
                 if (t > run%state%t + slack .or. t <= t_before) exit
                 call dense_level(t)
-                call write_snapshot(run%writer, level, run%x_out)
+                call write_snapshot(run%writer, level, cfg%model, run%x_out)
                 run%n_snapshot_next = run%n_snapshot_next + 1
                 at_end = at_end .or. t >= run%state%t - slack
             end do

@@ -14,7 +14,8 @@ contains
     !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
     !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
     !> flushed). A run killed at any moment leaves the last complete checkpoint readable.
-    module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
+    module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
+                                                    companion_levels, companion_scalars)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: state(:, :)
         real(dp), intent(in) :: counters(:)
@@ -25,6 +26,8 @@ contains
         real(dp), intent(in), optional :: events(:, :)    !< (n_events, 2): t and kind of each event
         !> adaptive mesh: its field scales, the remesh counters, then its node keys (restart_m)
         real(dp), intent(in), optional :: mesh(:)
+        !> &output error_estimate: its companions' levels and scalars (error_companion_m)
+        real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
 
         integer(hid_t) :: group_id
         logical :: exists
@@ -59,6 +62,10 @@ contains
         if (present(control)) call w%put_real(slot//'/control', control, [size(control), 1])
         if (present(history)) call w%put_real(slot//'/history', history, [size(history, 1), size(history, 2)])
         if (present(mesh)) call w%put_real(slot//'/mesh', mesh, [size(mesh), 1])
+        if (present(companion_levels)) call w%put_real(slot//'/companion_levels', companion_levels, &
+                                                       [size(companion_levels, 1), size(companion_levels, 2)])
+        if (present(companion_scalars)) call w%put_real(slot//'/companion_scalars', companion_scalars, &
+                                                        [size(companion_scalars), 1])
         call w%drop(slot//'/events')
         if (present(events)) then
             if (size(events, 1) > 0) call w%put_real(slot//'/events', events, [size(events, 1), size(events, 2)])

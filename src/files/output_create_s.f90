@@ -2,6 +2,7 @@
 !> empty extendible /series and /snapshots datasets. A submodule of output_m, so that it
 !> sets up the writer's private state.
 submodule (output_m) output_create_s
+    use hdf5, only: h5lcreate_hard_f
     implicit none
 
 contains
@@ -37,6 +38,7 @@ contains
         w%n_snap = 0
         w%n_native_snap = 0
         w%n_native_values = 0
+        w%n_si = 0
         w%n_buf = 0
         w%logical_names = ''
         w%checkpoint_note = ''
@@ -137,8 +139,8 @@ contains
         call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
                         SERIES(S_T)%units)
         dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
-        do k = 1, N_OUTPUT_FIELDS
-            associate (field => FIELDS(OUTPUT_ORDER(k)))
+        do k = 1, N_SNAPSHOT_FIELDS
+            associate (field => SNAPSHOTS(k))
                 call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
                                          dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k), &
                                          compress=.true.)
@@ -146,9 +148,34 @@ contains
                                 described(field%long_name, field%scale), field%units)
             end associate
         end do
+        call name_dimensions(w, group_id)
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /snapshots')
     end subroutine create_datasets
+
+    !> The dimension scales (netCDF-4 dimensions and coordinates, docs/output.md): /series/t
+    !> of every /series dataset; /snapshots/t and x of every /snapshots field, where
+    !> /snapshots/x is /mesh/x itself (a second link to it: netCDF and xarray look for a
+    !> dimension's coordinate in the group of the variable or above). snap_group_id: /snapshots.
+    subroutine name_dimensions(w, snap_group_id)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: snap_group_id
+        integer :: hdferr, k
+
+        call w%make_scale(w%mesh_x_id, 'x', '/mesh/x')
+        call h5lcreate_hard_f(w%file_id, '/mesh/x', snap_group_id, 'x', hdferr)
+        call w%check(hdferr, 'h5lcreate_hard_f /snapshots/x')
+        call w%make_scale(w%series_ids(S_T), 't', '/series/t')
+        do k = 1, N_SERIES
+            if (k == S_T) cycle
+            call w%attach_scale(w%series_ids(k), w%series_ids(S_T), 0, '/series/'//trim(SERIES(k)%name))
+        end do
+        call w%make_scale(w%snap_t_id, 't', '/snapshots/t')
+        do k = 1, N_SNAPSHOT_FIELDS
+            call w%attach_scale(w%snap_field_ids(k), w%snap_t_id, 0, '/snapshots/'//trim(SNAPSHOTS(k)%name))
+            call w%attach_scale(w%snap_field_ids(k), w%mesh_x_id, 1, '/snapshots/'//trim(SNAPSHOTS(k)%name))
+        end do
+    end subroutine name_dimensions
 
     !> Create an empty dataset `name` in group_id whose last dimension is unlimited.
     !> dims gives the initial size (last entry 0), chunk the chunk shape.

@@ -11,7 +11,7 @@ contains
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: t(:)
         integer, intent(in) :: kind(:)
-        integer(hid_t) :: group_id, space_id, dset_id
+        integer(hid_t) :: group_id, space_id, dset_id, t_id
         integer(hsize_t) :: dims(1)
         integer :: hdferr
 
@@ -30,8 +30,9 @@ contains
         call w%describe(dset_id, '/events/t', described(SERIES(S_T)%long_name//' of a change of the '// &
                         'contact state (interpolated in the step that crosses it)', SERIES(S_T)%scale), &
                         SERIES(S_T)%units)
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /events/t')
+        call w%describe_si_of(dset_id, SERIES(S_T)%scale)
+        call w%make_scale(dset_id, 't', '/events/t')   ! the coordinate of kind (docs/output.md, "netCDF")
+        t_id = dset_id
         call h5dcreate_f(group_id, 'kind', H5T_STD_I32LE, space_id, dset_id, hdferr)
         call w%check(hdferr, 'h5dcreate_f /events/kind')
         if (size(kind) > 0) then
@@ -40,8 +41,12 @@ contains
         end if
         call w%describe(dset_id, '/events/kind', 'contact event: +1 onset (the rod end reaches the obstacle), '// &
                         '-1 release', '1')
+        call w%describe_si_of(dset_id, '')
+        call w%attach_scale(dset_id, t_id, 0, '/events/kind')
         call h5dclose_f(dset_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /events/kind')
+        call h5dclose_f(t_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /events/t')
         call h5sclose_f(space_id, hdferr)
         call w%check(hdferr, 'h5sclose_f /events')
         call h5gclose_f(group_id, hdferr)

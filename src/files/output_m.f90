@@ -3,7 +3,7 @@
 !>     /mesh/x                                          (s+1,)          float64
 !>     /series/<name>   one per fields_m's SERIES table (n_series,)     float64 or int32
 !>     /snapshots/t                                     (n_snap,)       float64
-!>     /snapshots/<field>  fields_m's FIELDS in OUTPUT_ORDER (n_snap, s+1) float64
+!>     /snapshots/<name>   fields_m's SNAPSHOTS (fields, sigma)  (n_snap, s+1)  float64
 !>     root attributes: input values 'group.variable', version, counters, 'status'
 !>     dataset attributes: long_name, units (from the tables)
 !>
@@ -22,7 +22,7 @@ module output_m
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
                       write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
-    use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
+    use fields_m, only: FIELDS, OUTPUT_ORDER, SNAPSHOTS, N_SNAPSHOT_FIELDS, N_OUTPUT_FIELDS, SERIES, N_SERIES, S_T
     use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
     use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
                     h5pset_cache_f, H5F_ACC_TRUNC_F, &
@@ -51,6 +51,8 @@ module output_m
     !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
     !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
     integer, parameter :: ISTORE_K = 4
+    !> At most this many SI scales (material_m's si_scales, and '' for counts)
+    integer, parameter :: MAX_SI_SCALES = 16
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
     !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
@@ -67,7 +69,7 @@ module output_m
         integer(hid_t) :: file_id = -1
         integer(hid_t) :: series_ids(N_SERIES) = -1
         integer(hid_t) :: snap_t_id = -1
-        integer(hid_t) :: snap_field_ids(N_OUTPUT_FIELDS) = -1
+        integer(hid_t) :: snap_field_ids(N_SNAPSHOT_FIELDS) = -1
         integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
         integer(hsize_t) :: n_snap = 0             !< snapshots in the file
         integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
@@ -79,11 +81,22 @@ module output_m
         integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
         integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
+        !> the SI scales given to describe_si (&material), for the datasets created later
+        !> (/snapshots/native, /events)
+        integer :: n_si = 0
+        character(len=24) :: si_names(MAX_SI_SCALES) = ''
+        real(dp) :: si_factors(MAX_SI_SCALES) = 0.0_dp
+        character(len=16) :: si_units(MAX_SI_SCALES) = ''
+        integer(hsize_t) :: n_estimate_snap = 0    !< snapshots in /snapshots/error_estimate* (output_estimate_s)
+        integer(hid_t) :: estimate_ids(N_OUTPUT_FIELDS, 3) = -1   !< its datasets, open until finish()
+        integer :: n_estimate_buf = 0              !< estimates waiting in estimate_buf
+        real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
         procedure :: append_snapshot => writer_append_snapshot
         procedure :: append_native => writer_append_native
+        procedure :: append_estimate => writer_append_estimate
         procedure :: attr_real => writer_attr_real
         procedure :: attr_int => writer_attr_int
         procedure :: attr_str => writer_attr_str
@@ -106,6 +119,9 @@ module output_m
         procedure, private :: select_append => writer_select_append
         procedure, private :: close_spaces => writer_close_spaces
         procedure, private :: describe => writer_describe
+        procedure, private :: describe_si_of => writer_describe_si_of
+        procedure, private :: make_scale => writer_make_scale
+        procedure, private :: attach_scale => writer_attach_scale
     end type h5_writer_t
 
     interface   ! creating the file (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
@@ -142,7 +158,21 @@ module output_m
             real(dp), intent(in) :: values(:, :)
         end subroutine writer_append_native
 
-        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh)
+        module subroutine writer_append_estimate(w, values)
+            class(h5_writer_t), intent(inout) :: w
+            real(dp), intent(in) :: values(:, :)
+        end subroutine writer_append_estimate
+
+        module subroutine writer_close_estimate(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_close_estimate
+
+        module subroutine writer_flush_estimate(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_flush_estimate
+
+        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
+                                                   companion_levels, companion_scalars)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: state(:, :)
             real(dp), intent(in) :: counters(:)
@@ -152,6 +182,7 @@ module output_m
             real(dp), intent(in), optional :: history(:, :)
             real(dp), intent(in), optional :: events(:, :)
             real(dp), intent(in), optional :: mesh(:)
+            real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
         end subroutine writer_write_checkpoint
 
         module subroutine writer_drop(w, name)
@@ -178,6 +209,25 @@ module output_m
             real(dp), intent(in) :: factor
         end subroutine writer_describe_si
 
+        module subroutine writer_make_scale(w, dset_id, name, what)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: name, what
+        end subroutine writer_make_scale
+
+        module subroutine writer_attach_scale(w, dset_id, scale_id, dim, what)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id, scale_id
+            integer, intent(in) :: dim
+            character(len=*), intent(in) :: what
+        end subroutine writer_attach_scale
+
+        module subroutine writer_describe_si_of(w, dset_id, scale)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: scale
+        end subroutine writer_describe_si_of
+
         pure module function described(long_name, scale) result(text)
             character(len=*), intent(in) :: long_name, scale
             character(len=:), allocatable :: text
@@ -200,7 +250,7 @@ contains
     end subroutine writer_append_series
 
     !> Add one snapshot at time t: values(:, k) holds the nodal values (boundary zeros
-    !> included) of field OUTPUT_ORDER(k). Written to the file at once (one new row per dataset).
+    !> included) of fields_m's SNAPSHOTS(k). Written to the file at once (one new row per dataset).
     subroutine writer_append_snapshot(w, t, values)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: t
@@ -212,7 +262,7 @@ contains
         character(len=:), allocatable :: what
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_snapshot() on a closed writer')
-        if (any(shape(values) /= [w%n_nodes, N_OUTPUT_FIELDS])) &
+        if (any(shape(values) /= [w%n_nodes, N_SNAPSHOT_FIELDS])) &
             call w%fail('internal error: append_snapshot() given arrays whose size is not the number of mesh nodes')
 
         call w%select_append(w%snap_t_id, '/snapshots/t', [1_hsize_t], w%n_snap, file_space, mem_space)
@@ -222,8 +272,8 @@ contains
         call w%close_spaces('/snapshots/t', file_space, mem_space)
 
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
-        do k = 1, N_OUTPUT_FIELDS
-            what = '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
+        do k = 1, N_SNAPSHOT_FIELDS
+            what = '/snapshots/'//trim(SNAPSHOTS(k)%name)
             call w%select_append(w%snap_field_ids(k), what, row, w%n_snap, file_space, mem_space)
             call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, values(:, k), row, hdferr, &
                             mem_space_id=mem_space, file_space_id=file_space)
@@ -316,6 +366,7 @@ contains
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
         call w%flush_series()
+        call writer_flush_estimate(w)
         call w%reserve()
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
@@ -372,11 +423,12 @@ contains
         call h5dclose_f(w%snap_t_id, hdferr)
         call w%check(hdferr, 'h5dclose_f /snapshots/t')
         w%snap_t_id = -1
-        do k = 1, N_OUTPUT_FIELDS
+        do k = 1, N_SNAPSHOT_FIELDS
             call h5dclose_f(w%snap_field_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
+            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(SNAPSHOTS(k)%name))
             w%snap_field_ids(k) = -1
         end do
+        call writer_close_estimate(w)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
         w%file_id = -1
@@ -408,6 +460,8 @@ contains
         w%mesh_x_id = -1
         w%snap_t_id = -1
         w%snap_field_ids = -1
+        w%estimate_ids = -1
+        w%n_estimate_buf = 0
         w%n_buf = 0
         if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)

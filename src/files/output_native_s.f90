@@ -18,7 +18,7 @@ submodule (output_m) output_native_s
 contains
 
     !> Append one snapshot on its own mesh: nodes x(0:s), values(0:s, k) of the field
-    !> OUTPUT_ORDER(k).
+    !> fields_m's SNAPSHOTS(k).
     module subroutine writer_append_native(w, x, values)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(:)
@@ -27,13 +27,13 @@ contains
         integer :: k
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_native() on a closed writer')
-        if (size(values, 1) /= size(x) .or. size(values, 2) /= N_OUTPUT_FIELDS) &
+        if (size(values, 1) /= size(x) .or. size(values, 2) /= N_SNAPSHOT_FIELDS) &
             call w%fail('internal error: append_native() given fields that do not match the nodes')
         if (w%n_native_snap == 0) call create_native(w)
         n = int(size(x), hsize_t)
         call append_real(w, 'x', x, n)
-        do k = 1, N_OUTPUT_FIELDS
-            call append_real(w, trim(FIELDS(OUTPUT_ORDER(k))%name), values(:, k), n)
+        do k = 1, N_SNAPSHOT_FIELDS
+            call append_real(w, trim(SNAPSHOTS(k)%name), values(:, k), n)
         end do
         call append_int(w, 'offset', w%n_native_values)
         call append_int(w, 'count', int(n, int64))
@@ -41,35 +41,45 @@ contains
         w%n_native_snap = w%n_native_snap + 1
     end subroutine writer_append_native
 
-    !> The group and its empty datasets.
+    !> The group and its empty datasets. Dimension scales (docs/output.md, "netCDF"): native/x
+    !> is the coordinate of the fields (dimension x of this group: every snapshot's nodes one
+    !> after the other), /snapshots/t that of offset and count.
     subroutine create_native(w)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t) :: group_id, dset_id
+        integer(hid_t) :: group_id, dset_id, x_id
         integer(hsize_t) :: dims(1)
         integer :: hdferr, k
 
         call h5gcreate_f(w%file_id, GROUP, group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f '//GROUP)
         dims = 0
-        call w%create_extendible(group_id, GROUP//'/', 'x', H5T_IEEE_F64LE, dims, [int(VALUES_CHUNK, hsize_t)], dset_id)
-        call w%describe(dset_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', '1')
-        call close_dataset(w, dset_id, 'x')
-        do k = 1, N_OUTPUT_FIELDS
-            associate (field => FIELDS(OUTPUT_ORDER(k)))
+        call w%create_extendible(group_id, GROUP//'/', 'x', H5T_IEEE_F64LE, dims, [int(VALUES_CHUNK, hsize_t)], x_id)
+        call w%describe(x_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', '1')
+        call w%describe_si_of(x_id, 'position')
+        call w%make_scale(x_id, 'x', GROUP//'/x')
+        do k = 1, N_SNAPSHOT_FIELDS
+            associate (field => SNAPSHOTS(k))
                 call w%create_extendible(group_id, GROUP//'/', trim(field%name), H5T_IEEE_F64LE, dims, &
                                          [int(VALUES_CHUNK, hsize_t)], dset_id)
                 call w%describe(dset_id, GROUP//'/'//trim(field%name), described(trim(field%long_name)// &
                                 ' at the nodes of its own mesh (native/x)', field%scale), field%units)
+                call w%describe_si_of(dset_id, field%scale)
+                call w%attach_scale(dset_id, x_id, 0, GROUP//'/'//trim(field%name))
                 call close_dataset(w, dset_id, trim(field%name))
             end associate
         end do
+        call close_dataset(w, x_id, 'x')
         call w%create_extendible(group_id, GROUP//'/', 'offset', H5T_STD_I64LE, dims, [int(SERIES_CHUNK, hsize_t)], &
                                  dset_id)
         call w%describe(dset_id, GROUP//'/offset', 'first entry of each snapshot in native/x and the fields', '1')
+        call w%describe_si_of(dset_id, '')
+        call w%attach_scale(dset_id, w%snap_t_id, 0, GROUP//'/offset')
         call close_dataset(w, dset_id, 'offset')
         call w%create_extendible(group_id, GROUP//'/', 'count', H5T_STD_I64LE, dims, [int(SERIES_CHUNK, hsize_t)], &
                                  dset_id)
         call w%describe(dset_id, GROUP//'/count', 'number of nodes of each snapshot''s mesh', '1')
+        call w%describe_si_of(dset_id, '')
+        call w%attach_scale(dset_id, w%snap_t_id, 0, GROUP//'/count')
         call close_dataset(w, dset_id, 'count')
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f '//GROUP)

@@ -23,7 +23,7 @@ module restart_m
     use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
     use reals_m, only: equal
     use checkpoint_m, only: checkpoint_t, N_COUNTERS, COUNTER_STEP, COUNTER_T
-    use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, SERIES, N_SERIES, S_T
+    use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists
@@ -57,7 +57,9 @@ contains
                                          history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt))
         else
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
-                                         history=ckpt%history, events=ckpt%events)
+                                         history=ckpt%history, events=ckpt%events, &
+                                         companion_levels=ckpt%companion_levels, &
+                                         companion_scalars=ckpt%companion_scalars)
         end if
     end subroutine write_checkpoint
 
@@ -98,6 +100,7 @@ contains
         if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
         call require_same_history_inputs(file, cfg)
+        call require_history_datasets(file)
         s = cfg%mesh%n_elements
         call read_real_1d(file, '/checkpoint/current', values)
         slot = '/checkpoint/slot0'
@@ -127,6 +130,14 @@ contains
             ckpt%max_rise_step_change = values(n + 2)
         end if
         if (dataset_exists(file, slot//'/history')) call read_real_2d(file, slot//'/history', ckpt%history)
+        if (cfg%output%error_estimate) then
+            if (.not. dataset_exists(file, slot//'/companion_scalars')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+                "': its checkpoint has no error-estimate companions")
+            call read_real_2d(file, slot//'/companion_levels', ckpt%companion_levels)
+            call read_real_1d(file, slot//'/companion_scalars', ckpt%companion_scalars)
+            if (size(ckpt%companion_levels, 1) /= s / 2 + 1) &
+                call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/companion_levels has the wrong shape")
+        end if
         if (dataset_exists(file, slot//'/events')) then
             call read_real_2d(file, slot//'/events', ckpt%events)
         else
@@ -244,7 +255,7 @@ contains
     end function real_list
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
-    !> (see rows_to_copy): every dataset of fields_m's SERIES and FIELDS tables.
+    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables.
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
@@ -275,11 +286,11 @@ contains
         end do
         call read_real_1d(file, '/snapshots/t', snap_t)
         n = rows_to_copy(snap_t, t_last)
-        do k = 1, N_OUTPUT_FIELDS
-            call read_real_2d(file, '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name), snap)
-            call require_rows(file, '/snapshots/'//trim(FIELDS(OUTPUT_ORDER(k))%name), size(snap, 2), n)
+        do k = 1, N_SNAPSHOT_FIELDS
+            call read_real_2d(file, '/snapshots/'//trim(SNAPSHOTS(k)%name), snap)
+            call require_rows(file, '/snapshots/'//trim(SNAPSHOTS(k)%name), size(snap, 2), n)
             if (.not. allocated(snaps)) then
-                allocate (snaps(size(snap, 1), N_OUTPUT_FIELDS, n), stat=stat, errmsg=message)
+                allocate (snaps(size(snap, 1), N_SNAPSHOT_FIELDS, n), stat=stat, errmsg=message)
                 call check_allocation(stat, message, 'the copied snapshots')
             end if
             snaps(:, k, :) = snap(:, 1:n)
@@ -288,7 +299,55 @@ contains
             call writer%append_snapshot(snap_t(k), snaps(:, :, k))
         end do
         if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
+        if (dataset_exists(file, '/snapshots/error_estimate/'//trim(FIELDS(OUTPUT_ORDER(1))%name))) &
+            call copy_estimate(writer, file, n)
     end subroutine copy_history
+
+    !> Every dataset copy_history copies is in `file` (a file of an older version lacks the
+    !> energy parts and sigma): checked before the new file is created.
+    subroutine require_history_datasets(file)
+        character(len=*), intent(in) :: file
+        character(len=:), allocatable :: missing
+        integer :: k
+
+        missing = ''
+        do k = 1, N_SERIES
+            if (.not. dataset_exists(file, '/series/'//trim(SERIES(k)%name))) missing = '/series/'//trim(SERIES(k)%name)
+        end do
+        do k = 1, N_SNAPSHOT_FIELDS
+            if (.not. dataset_exists(file, '/snapshots/'//trim(SNAPSHOTS(k)%name))) &
+                missing = '/snapshots/'//trim(SNAPSHOTS(k)%name)
+        end do
+        if (missing /= '') call fatal(EXIT_INPUT, WHERE, "'"//file//"' has no "//missing//': it was written by '// &
+                                      'an older version of rodcontact, whose checkpoints this version cannot continue')
+    end subroutine require_history_datasets
+
+    !> The first n snapshots' error estimates (/snapshots/error_estimate*) of `file` into writer.
+    subroutine copy_estimate(writer, file, n)
+        type(h5_writer_t), intent(inout) :: writer
+        character(len=*), intent(in) :: file
+        integer, intent(in) :: n
+        character(len=*), parameter :: GROUPS(3) = [character(len=32) :: '/snapshots/error_estimate', &
+                                                    '/snapshots/error_estimate_time', '/snapshots/error_estimate_space']
+        real(dp), allocatable :: column(:), values(:, :, :)
+        character(len=:), allocatable :: path
+        integer :: j, k, part, stat
+        character(len=256) :: message
+
+        allocate (values(N_OUTPUT_FIELDS, size(GROUPS), n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the copied error estimates')
+        do part = 1, size(GROUPS)
+            do k = 1, N_OUTPUT_FIELDS
+                path = trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
+                call read_real_1d(file, path, column)
+                call require_rows(file, path, size(column), n)
+                values(k, part, :) = column(1:n)
+            end do
+        end do
+        do j = 1, n
+            call writer%append_estimate(values(:, :, j))
+        end do
+    end subroutine copy_estimate
 
     !> The first n snapshots of /snapshots/native (adaptive mesh) of `file` into writer.
     subroutine copy_native(writer, file, n)
@@ -305,11 +364,11 @@ contains
         call require_rows(file, '/snapshots/native/offset', size(offset), n)
         call require_rows(file, '/snapshots/native/count', size(count), n)
         call read_real_1d(file, '/snapshots/native/x', x)
-        allocate (values(size(x), N_OUTPUT_FIELDS), stat=stat, errmsg=message)
+        allocate (values(size(x), N_SNAPSHOT_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the copied native snapshots')
-        do k = 1, N_OUTPUT_FIELDS
-            call read_real_1d(file, '/snapshots/native/'//trim(FIELDS(OUTPUT_ORDER(k))%name), column)
-            call require_rows(file, '/snapshots/native/'//trim(FIELDS(OUTPUT_ORDER(k))%name), size(column), size(x))
+        do k = 1, N_SNAPSHOT_FIELDS
+            call read_real_1d(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), column)
+            call require_rows(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), size(column), size(x))
             values(:, k) = column(1:size(x))
         end do
         do j = 1, n

@@ -1,6 +1,7 @@
 !> The root attributes of a run besides its provenance (provenance_m): every input value
 !> at the start, the SI scales of &material, and at the end what the run did (steps,
-!> energy law, solver, step control and mesh counts) with its contact events.
+!> energy law, solver, step control and mesh counts, the error estimate) with its contact
+!> events.
 module run_attributes_m
     use kinds_m, only: dp
     use config_m, only: config_t
@@ -13,10 +14,16 @@ module run_attributes_m
     use events_m, only: event_log_t
     use step_control_m, only: step_controller_t
     use step_driver_m, only: step_driver_t
+    use error_companion_m, only: error_companions_t, N_ESTIMATE_PARTS
+    use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
     use output_m, only: h5_writer_t
     implicit none
     private
-    public :: record_inputs, record_scales, record_results
+    public :: record_inputs, record_scales, record_results, ERROR_ESTIMATE_NONE
+
+    !> The root attribute error_estimate of a run without &output error_estimate.
+    character(len=*), parameter :: ERROR_ESTIMATE_NONE = &
+        'none: set &output error_estimate=.true. or run scripts/converge.sh'
 
 contains
 
@@ -79,19 +86,23 @@ contains
             call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
             call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
         end do
+        ! the counts (fields_m's scale ''): SI factor 1, so that every dataset converts
+        call writer%describe_si('', 1.0_dp, '1')
     end subroutine record_scales
 
     !> At the end of the run cfg: the contact events (/events) and the root attributes of
     !> what the run did (docs/output.md): its steps and end time, wall_seconds, the energy
-    !> law's largest rises, the solver's counts, the time error and the step control's
-    !> counts, and on an adaptive mesh its counts (n_elements_max: the most elements held).
-    subroutine record_results(writer, cfg, state, stepper, monitor, driver, wall_seconds, n_elements_max)
+    !> law's largest rises, the solver's counts, the step control's error sum and counts
+    !> (adaptive steps), the error estimate (or that there is none), and on an adaptive mesh
+    !> its counts (n_elements_max: the most elements held).
+    subroutine record_results(writer, cfg, state, stepper, monitor, driver, companions, wall_seconds, n_elements_max)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
         type(state_t), intent(in) :: state
         type(stepper_t), intent(in) :: stepper
         type(energy_monitor_t), intent(in) :: monitor
         type(step_driver_t), intent(in) :: driver
+        type(error_companions_t), intent(in) :: companions
         real(dp), intent(in) :: wall_seconds
         integer, intent(in) :: n_elements_max
         type(event_log_t) :: events
@@ -112,7 +123,8 @@ contains
         call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
         call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
         call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
-        call record_time_error(writer, driver%controller(), cfg%time%adaptive)
+        if (cfg%time%adaptive) call record_step_control(writer, driver%controller())
+        call record_error_estimate(writer, companions)
         if (cfg%mesh%adaptive) then
             call writer%attr_int('mesh.remeshes', state%mesh%n_remeshes())
             call writer%attr_int('mesh.n_elements_max', n_elements_max)
@@ -120,23 +132,48 @@ contains
         end if
     end subroutine record_results
 
-    !> The time error of the run (root attributes): the sum of the local error estimates of
-    !> the accepted steps (step_control_m), absolute (energy norm) and relative to the largest
-    !> energy norm of the solution; with it the counts of the step control.
-    subroutine record_time_error(writer, control, adaptive)
+    !> What the step controller of an adaptive run used (root attributes): the sum of the
+    !> local error estimates of the accepted steps (step_control_m), absolute (energy norm)
+    !> and relative to the largest energy norm of the solution, and its counts. Not the error
+    !> of the run (that is error_estimate*, &output error_estimate); fixed steps have none.
+    subroutine record_step_control(writer, control)
         type(h5_writer_t), intent(inout) :: writer
         type(step_controller_t), intent(in) :: control
-        logical, intent(in) :: adaptive
         real(dp) :: error_sum, scale
         integer :: n_estimated, n_rejected, n_forced
 
         call control%counts(error_sum, scale, n_estimated, n_rejected, n_forced)
-        call writer%attr_real('time_error_estimate', error_sum)
-        call writer%attr_real('time_error_estimate_relative', error_sum / max(scale, tiny(1.0_dp)))
+        call writer%attr_real('step_control_error_sum', error_sum)
+        call writer%attr_real('step_control_error_sum_relative', error_sum / max(scale, tiny(1.0_dp)))
         call writer%attr_int('time_steps_estimated', n_estimated)
-        if (.not. adaptive) return
         call writer%attr_int('time_steps_rejected', n_rejected)
         call writer%attr_int('time_steps_at_dt_min', n_forced)
-    end subroutine record_time_error
+    end subroutine record_step_control
+
+    !> The run's error estimate (root attributes): without &output error_estimate, the
+    !> attribute error_estimate says that there is none and how to get one; with it,
+    !> error_estimate names the method and error_estimate.<field>, error_estimate_time.<field>,
+    !> error_estimate_space.<field> hold the estimate of the final state (error_companion_m).
+    subroutine record_error_estimate(writer, companions)
+        type(h5_writer_t), intent(inout) :: writer
+        type(error_companions_t), intent(in) :: companions
+        character(len=*), parameter :: PART_NAMES(N_ESTIMATE_PARTS) = &
+            [character(len=20) :: 'error_estimate', 'error_estimate_time', 'error_estimate_space']
+        integer :: k, part
+
+        if (.not. companions%on) then
+            call writer%attr_str('error_estimate', ERROR_ESTIMATE_NONE)
+            return
+        end if
+        call writer%attr_str('error_estimate', 'companion solutions at (2 dt, 2 h), (4 dt, 4 h), (8 dt, 4 h); '// &
+                             'Richardson with observed orders (docs/scheme.md)')
+        if (companions%failure /= '') call writer%attr_str('error_estimate_failure', trim(companions%failure))
+        do part = 1, N_ESTIMATE_PARTS
+            do k = 1, N_OUTPUT_FIELDS
+                call writer%attr_real(trim(PART_NAMES(part))//'.'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
+                                      companions%last(k, part))
+            end do
+        end do
+    end subroutine record_error_estimate
 
 end module run_attributes_m

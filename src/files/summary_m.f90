@@ -49,18 +49,23 @@ module summary_m
         real(dp) :: t_final = 0.0_dp                   !< t_K, the last stored time
         integer :: steps = -1                          !< root attribute 'steps'
         real(dp) :: wall_seconds = 0.0_dp              !< root attribute 'wall_seconds'
-        !> root attribute 'time_error_estimate_relative' (NaN if absent)
+        !> root attribute 'step_control_error_sum_relative' of adaptive steps (NaN if absent)
         real(dp) :: time_error = 0.0_dp   ! set to NaN by summarise_file when absent
+        !> root attributes 'error_estimate.<field>' (&output error_estimate; NaN if absent),
+        !> the fields in ESTIMATE_FIELDS' order
+        real(dp) :: error_estimate(6) = 0.0_dp
         !> /events: the onset and the release times, ';'-separated ('' if none or absent)
         character(len=:), allocatable :: onsets, releases
     end type summary_t
 
-    integer, parameter :: N_COLUMNS = 21
+    integer, parameter :: N_COLUMNS = 27
+    character(len=*), parameter :: ESTIMATE_FIELDS(6) = [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta']
     character(len=*), parameter :: COLUMNS(N_COLUMNS) = [character(len=16) :: &
         'file', 'status', 'contact', 'first_contact_t', 'last_contact_t', 'contact_time', &
         'max_penetration', 'max_u_end', 't_max_u_end', 'max_u_end_over_g', 'energy_ratio', &
         'decay_rate', 'decay_fit_from_t', 'decay_fit_to_t', 't_final', 'steps', 'wall_seconds', 'g', &
-        'time_error_rel', 'onset_times', 'release_times']
+        'step_control_err', 'onset_times', 'release_times', &
+        'error_u', 'error_v', 'error_theta', 'error_P', 'error_q', 'error_eta']
 
 contains
 
@@ -140,6 +145,7 @@ contains
         type(summary_t) :: s
         real(dp), allocatable :: t(:), energy(:), u_end(:), penetration(:), contact_stress(:)
         real(dp) :: g
+        integer :: k
         character(len=:), allocatable :: status
 
         call read_real_1d(file, '/series/t', t)
@@ -160,8 +166,13 @@ contains
         s%wall_seconds = ieee_value(0.0_dp, ieee_quiet_nan)
         if (attr_exists(file, 'wall_seconds')) call read_attr_real(file, 'wall_seconds', s%wall_seconds)
         s%time_error = ieee_value(0.0_dp, ieee_quiet_nan)
-        if (attr_exists(file, 'time_error_estimate_relative')) &
-            call read_attr_real(file, 'time_error_estimate_relative', s%time_error)
+        if (attr_exists(file, 'step_control_error_sum_relative')) &
+            call read_attr_real(file, 'step_control_error_sum_relative', s%time_error)
+        s%error_estimate = ieee_value(0.0_dp, ieee_quiet_nan)
+        do k = 1, size(ESTIMATE_FIELDS)
+            if (attr_exists(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)))) &
+                call read_attr_real(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)), s%error_estimate(k))
+        end do
         call read_events(file, s)
     end function summarise_file
 
@@ -236,6 +247,7 @@ contains
         character(len=:), allocatable :: line
         character(len=16) :: buf
         character(len=:), allocatable :: steps, contact
+        integer :: k
 
         contact = 'no'
         if (s%contact) contact = 'yes'
@@ -251,6 +263,9 @@ contains
                ',' // num(s%decay_fit_from_t) // ',' // num(s%decay_fit_to_t) // ',' // num(s%t_final) // &
                ',' // steps // ',' // num(s%wall_seconds) // ',' // num(s%g) // ',' // num(s%time_error) // &
                ',' // csv_field(text_or_empty(s%onsets)) // ',' // csv_field(text_or_empty(s%releases))
+        do k = 1, size(s%error_estimate)
+            line = line // ',' // num(s%error_estimate(k))
+        end do
     end function summary_row
 
     pure function text_or_empty(text) result(out)

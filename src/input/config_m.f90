@@ -109,6 +109,9 @@ module config_m
         !> points of the fixed output grid /mesh/x of the snapshots (0: the coarsest mesh's
         !> nodes, n_elements + 1)
         integer :: n_points = 0
+        !> per-field error estimates in /snapshots/error_estimate* (companion solutions,
+        !> docs/scheme.md); uniform meshes of an even number of elements
+        logical :: error_estimate = .false.
     end type output_t
 
     !> &material (optional): physical quantities of Table 1 in SI units, from which the

@@ -61,6 +61,7 @@ contains
         call read_source(source, lines)
         call strip_comments(lines)
         call find_groups(lines, groups)
+        if (size(groups) == 0 .and. size(sets) == 0) call no_group(source)
         call check_model_material(groups, sets)
         do k = 1, size(groups)
             call read_group(lines, groups(k), cfg)
@@ -97,6 +98,19 @@ contains
         end do
         if (grp%name == 'material') cfg%material%present = .true.
     end subroutine read_group
+
+    !> An input text without any namelist group (an empty file, empty standard input: a
+    !> forgotten '< input.nml') and no --set: stop rather than run every default silently.
+    subroutine no_group(source)
+        character(len=*), intent(in) :: source
+        character(len=:), allocatable :: what
+
+        what = 'standard input'
+        if (source /= '-') what = quoted(source)
+        call fatal(EXIT_INPUT, 'input', what // ' holds no namelist group (it is empty or only comments); ' // &
+                   'give an input file, or to run with every default value an empty group: ' // &
+                   "echo '&model /' | rodcontact")
+    end subroutine no_group
 
     !> &material and &model together are ambiguous, whether from the text or from --set.
     subroutine check_model_material(groups, sets)

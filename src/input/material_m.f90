@@ -38,13 +38,21 @@ module material_m
 
 contains
 
-    !> The scales of (2.10) for &material `mat`: x* = x/ell, u* = delta u/ell, t* = t/omega,
+    !> The scales of (2.10) for &material `mat`: x* = x/ell, t* = t/omega,
     !> theta = beta1 (T - T0)/((lambda + 2 mu) delta), P* = P/(beta2 delta),
-    !> sigma* = sigma/(lambda + 2 mu), q* = omega beta1 q/(rho0 cE delta ell (lambda + 2 mu)),
-    !> eta* = ell eta/(D beta2 delta); v = u_t takes the displacement over the time scale.
+    !> q* = omega beta1 q/(rho0 cE delta ell (lambda + 2 mu)), eta* = ell eta/(D beta2 delta).
+    !> Displacement and stress: (2.10) follows from (2.1)-(2.9) only with u* = u/(delta ell)
+    !> (the coupling a-check of the heat equation and u_xx - theta_x of the momentum equation
+    !> both need it; the paper prints u* = delta u/ell), so u = delta ell u*, v = u_t takes the
+    !> displacement over the time scale, and the stress of (2.10) is (lambda + 2 mu) delta
+    !> times sigma*; the sigma of (2.11) (the code's, /series/contact_stress, /snapshots/sigma)
+    !> is a-check times that of (2.10), hence (lambda + 2 mu) delta / a-check.
+    !> The energy E^n of Corollary 6.2 (per unit cross-section, J/m^2): its thermal term
+    !> 1/2 int theta^2 dx* is 1/2 int rho0 cE (T - T0)^2 / T0 dx over ell, which with the
+    !> temperature scale is ell (lambda + 2 mu) delta^2 / a-check times it.
     pure function si_scales(mat) result(scales)
         type(material_t), intent(in) :: mat
-        type(si_scale_t) :: scales(9)
+        type(si_scale_t) :: scales(10)
         type(nondim_t) :: nd
         real(dp) :: stiffness
 
@@ -52,14 +60,15 @@ contains
         stiffness = mat%lambda + 2.0_dp * mat%mu
         scales(1) = si_scale_t('time', nd%omega, 's')
         scales(2) = si_scale_t('position', mat%ell, 'm')
-        scales(3) = si_scale_t('displacement', mat%ell / nd%delta, 'm')
-        scales(4) = si_scale_t('velocity', mat%ell / (nd%delta * nd%omega), 'm/s')
+        scales(3) = si_scale_t('displacement', mat%ell * nd%delta, 'm')
+        scales(4) = si_scale_t('velocity', mat%ell * nd%delta / nd%omega, 'm/s')
         scales(5) = si_scale_t('temperature', stiffness * nd%delta / nd%beta1, 'K')   ! of T - T0
         scales(6) = si_scale_t('chemical_potential', nd%beta2 * nd%delta, 'J/kg')
-        scales(7) = si_scale_t('stress', stiffness, 'Pa')
+        scales(7) = si_scale_t('stress', stiffness * nd%delta / nd%a_check, 'Pa')
         scales(8) = si_scale_t('heat_flux', mat%rho0 * mat%cE * nd%delta * mat%ell * stiffness / (nd%omega * nd%beta1), &
                                'W/m^2')
         scales(9) = si_scale_t('diffusion_flux', mat%D * nd%beta2 * nd%delta / mat%ell, 'kg/(m^2 s)')
+        scales(10) = si_scale_t('energy', mat%ell * stiffness * nd%delta**2 / nd%a_check, 'J/m^2')
     end function si_scales
 
     !> The nondimensional groups of (2.10) for the physical quantities `mat`.

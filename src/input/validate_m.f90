@@ -7,7 +7,7 @@ module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
-    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SERIES
+    use fields_m, only: N_FIELDS, N_SNAPSHOT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
                         number_of_steps, MAX_COMPRESSION, LEN_NAME
@@ -64,7 +64,26 @@ contains
         call validate_solver(cfg%solver)
         call validate_combination(cfg, schemes)
         call validate_output(cfg%output, cfg%mesh%n_elements, n_steps, cfg%time%t_end)
+        call validate_error_estimate(cfg)
     end subroutine validate_config
+
+    !> &output error_estimate: its companion solutions live on every other and every fourth
+    !> node of a uniform mesh.
+    subroutine validate_error_estimate(cfg)
+        type(config_t), intent(in) :: cfg
+
+        if (.not. cfg%output%error_estimate) return
+        if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'output.error_estimate', 'got .true. with mesh.adaptive = ' // &
+            '.true.; the built-in estimate needs a uniform mesh (its companion solutions use every other node): ' // &
+            'set mesh.adaptive = .false., or check convergence with scripts/converge.sh')
+        if (mod(cfg%mesh%n_elements, 4) /= 0 .or. cfg%mesh%n_elements < 8) call fatal(EXIT_INPUT, &
+            'output.error_estimate', 'got .true. with mesh.n_elements = ' // int_str(cfg%mesh%n_elements) // &
+            '; the built-in estimate needs a multiple of 4 elements, at least 8 (its companion solutions ' // &
+            'use every other and every fourth node)')
+        if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) call fatal(EXIT_INPUT, &
+            'output.error_estimate', 'got .true. with output.snapshot_land = .false.; the built-in estimate is ' // &
+            'that of the levels the steps reach: let the steps land on the snapshot times (snapshot_land = .true.)')
+    end subroutine validate_error_estimate
 
     ! ---------------------------------------------------------------- one check per group
 
@@ -245,9 +264,9 @@ contains
         nodes = real(n_elements, dp) + 1.0_dp
         if (output%n_points > 0) nodes = real(output%n_points, dp)
         if (output%snapshot_dt > 0.0_dp) then
-            snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
+            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
         else
-            snapshot_bytes = 8.0_dp * N_OUTPUT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
+            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
         end if
         series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
         if (output%series_dt > 0.0_dp) &

@@ -13,7 +13,8 @@ module fields_m
     public :: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA
     public :: field_t, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, is_dirichlet
     public :: series_t, SERIES, N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
-              S_N_ELEMENTS
+              S_N_ELEMENTS, N_ENERGY_PARTS, S_ENERGY_PARTS
+    public :: snapshot_t, SNAPSHOTS, N_SNAPSHOT_FIELDS, K_SIGMA
 
     integer, parameter :: N_FIELDS = 5
     integer, parameter :: F_U = 0, F_Q = 1, F_THETA = 2, F_V = 3, F_P = 4, F_ETA = 5
@@ -51,18 +52,53 @@ module fields_m
         character(len=24) :: scale       !< as field_t's scale; '' when there is no physical scale
     end type series_t
 
-    integer, parameter :: N_SERIES = 8
+    !> The terms of E^n (energy_m's energy_parts, in this order), each a /series dataset:
+    !> they add up to /series/energy to round-off.
+    integer, parameter :: N_ENERGY_PARTS = 8
+    integer, parameter :: N_SERIES = 8 + N_ENERGY_PARTS
     integer, parameter :: S_T = 1, S_ENERGY = 2, S_U_END = 3, S_PENETRATION = 4, S_CONTACT_STRESS = 5, &
                           S_ITERATIONS = 6, S_DT = 7, S_N_ELEMENTS = 8
+    integer, parameter :: S_ENERGY_PARTS(N_ENERGY_PARTS) = [9, 10, 11, 12, 13, 14, 15, 16]
     type(series_t), parameter :: SERIES(N_SERIES) = [ &
         series_t('t', 'time t_n', .false., '1', 'time'), &
-        series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1', ''), &
+        series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1', 'energy'), &
         series_t('u_end', 'displacement of the free end u(1,t)', .false., '1', 'displacement'), &
         series_t('penetration', 'penetration [u(1,t) - g]_+', .false., '1', 'displacement'), &
         series_t('contact_stress', 'contact stress sigma(1,t)', .false., '1', 'stress'), &
         series_t('iterations', 'linear solves of the step', .true., '1', ''), &
         series_t('dt', 'step t_n - t_{n-1} (0 at t = 0)', .false., '1', 'time'), &
-        series_t('n_elements', 'elements of the mesh of t_n', .true., '1', '')]
+        series_t('n_elements', 'elements of the mesh of t_n', .true., '1', ''), &
+        series_t('energy_kinetic', 'kinetic part of E^n: 1/2 int rho v^2', .false., '1', 'energy'), &
+        series_t('energy_strain', 'strain part of E^n: 1/2 int alpha u_x^2', .false., '1', 'energy'), &
+        series_t('energy_thermal', 'thermal part of E^n: 1/2 int c theta^2', .false., '1', 'energy'), &
+        series_t('energy_chemical', 'chemical part of E^n: 1/2 int r P^2', .false., '1', 'energy'), &
+        series_t('energy_coupling', 'theta-P part of E^n: int d theta P', .false., '1', 'energy'), &
+        series_t('energy_heat_flux', 'heat-flux part of E^n: 1/2 int tau0 q^2', .false., '1', 'energy'), &
+        series_t('energy_mass_flux', 'mass-flux part of E^n: 1/2 int tau hbar eta^2', .false., '1', 'energy'), &
+        series_t('energy_contact', 'contact part of E^n: [u(1) - g]_+^2 / (2 eps)', .false., '1', 'energy')]
+
+    !> One /snapshots dataset (docs/output.md): a field of OUTPUT_ORDER, or a quantity derived
+    !> from the fields (K_SIGMA: the stress of (2.14), stress_m).
+    type :: snapshot_t
+        character(len=8) :: name
+        character(len=64) :: long_name
+        character(len=8) :: units        !< '1': nondimensional
+        character(len=24) :: scale       !< as field_t's scale
+    end type snapshot_t
+
+    type(field_t), parameter :: OUT(N_OUTPUT_FIELDS) = FIELDS(OUTPUT_ORDER)   !< the output fields in order
+    integer, parameter :: N_SNAPSHOT_FIELDS = N_OUTPUT_FIELDS + 1
+    integer, parameter :: K_SIGMA = N_OUTPUT_FIELDS + 1
+    !> The /snapshots datasets in their order: the fields of OUTPUT_ORDER (one row each,
+    !> N_OUTPUT_FIELDS of them), then sigma.
+    type(snapshot_t), parameter :: SNAPSHOTS(N_SNAPSHOT_FIELDS) = [ &
+        snapshot_t(OUT(1)%name, OUT(1)%long_name, OUT(1)%units, OUT(1)%scale), &
+        snapshot_t(OUT(2)%name, OUT(2)%long_name, OUT(2)%units, OUT(2)%scale), &
+        snapshot_t(OUT(3)%name, OUT(3)%long_name, OUT(3)%units, OUT(3)%scale), &
+        snapshot_t(OUT(4)%name, OUT(4)%long_name, OUT(4)%units, OUT(4)%scale), &
+        snapshot_t(OUT(5)%name, OUT(5)%long_name, OUT(5)%units, OUT(5)%scale), &
+        snapshot_t(OUT(6)%name, OUT(6)%long_name, OUT(6)%units, OUT(6)%scale), &
+        snapshot_t('sigma', 'stress sigma = alpha u_x + varpi v_x - gamma1 theta - gamma2 P', '1', 'stress')]
 
 contains
 

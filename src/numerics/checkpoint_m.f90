@@ -11,6 +11,8 @@
 !>   step_controller_t, error_estimator_t (step_control_m)   control, history
 !>   step_driver_t (step_driver_m)   in_contact, events
 !>   adaptive_mesh_t (adaptive_mesh_m)   mesh_scale, mesh_keys (has_mesh)
+!>   error_companions_t (error_companion_m)   companion_levels, companion_scalars
+!>                                   (&output error_estimate only)
 !> How the record is laid out in the file's /checkpoint group is restart_m's business.
 module checkpoint_m
     use kinds_m, only: dp
@@ -42,6 +44,8 @@ module checkpoint_m
         real(dp) :: max_rise_remesh = 0.0_dp
         integer :: n_remeshes = 0
         integer(int64), allocatable :: mesh_keys(:)   !< (0:s)
+        real(dp), allocatable :: companion_levels(:, :)   !< the error estimate's companions (unallocated: none)
+        real(dp), allocatable :: companion_scalars(:)
     end type checkpoint_t
 
 end module checkpoint_m

@@ -3,7 +3,7 @@
 module energy_m
     use kinds_m, only: dp
     use config_m, only: model_t
-    use fields_m, only: F_Q, F_THETA, F_V, F_P, F_ETA
+    use fields_m, only: F_Q, F_THETA, F_V, F_P, F_ETA, N_ENERGY_PARTS
     use contact_law_m, only: contact_law_t
     use time_scheme_m, only: time_scheme_t, energy_law_t, LAW_G_ENERGY
     use state_m, only: state_t
@@ -12,7 +12,13 @@ module energy_m
     use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
     implicit none
     private
-    public :: discrete_energy, linear_energy, bdf2_energy, energy_monitor_t
+    public :: discrete_energy, linear_energy, bdf2_energy, energy_parts, energy_monitor_t
+    public :: PART_KINETIC, PART_STRAIN, PART_THERMAL, PART_CHEMICAL, PART_COUPLING, PART_HEAT_FLUX, &
+              PART_MASS_FLUX, PART_CONTACT
+
+    !> The terms of E^n in energy_parts (the order of fields_m's energy_* series).
+    integer, parameter :: PART_KINETIC = 1, PART_STRAIN = 2, PART_THERMAL = 3, PART_CHEMICAL = 4, &
+                          PART_COUPLING = 5, PART_HEAT_FLUX = 6, PART_MASS_FLUX = 7, PART_CONTACT = 8
 
     !> The discrete energy of every level and the largest relative rise of the energy the
     !> scheme's law is stated for (time_scheme_m's energy_law: E^n, or BDF2's G-energy).
@@ -39,6 +45,7 @@ module energy_m
         procedure :: restore_checkpoint => monitor_restore_checkpoint
         procedure :: current_energy => monitor_current_energy
         procedure :: rises => monitor_rises
+        procedure :: parts => monitor_parts
     end type energy_monitor_t
 
 contains
@@ -95,6 +102,57 @@ contains
         end do
         energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp))
     end function linear_energy
+
+    !> The terms of E^n = discrete_energy of the level (u, w) on mesh, one by one (PART_*):
+    !> 1/2 int rho v^2, 1/2 int alpha u_x^2, 1/2 int c theta^2, 1/2 int r P^2, int d theta P,
+    !> 1/2 int tau0 q^2, 1/2 int tau hbar eta^2 (exact for P1 functions, as linear_energy)
+    !> and the contact term. They add up to discrete_energy to round-off (the sums are
+    !> grouped differently). Called when a series entry is written.
+    pure function energy_parts(model, law, u, w, mesh) result(parts)
+        type(model_t), intent(in) :: model
+        type(contact_law_t), intent(in) :: law
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp) :: parts(N_ENERGY_PARTS)
+        real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux, strain, h_e
+        integer :: e, s
+        logical :: uniform
+
+        ! the mass products of the parts (6/h times, as linear_energy: summed with weights
+        ! h_e on a graded mesh, 1 on a uniform one, scaled by h = 1/s at the end); scalar
+        ! sums, so that the loop keeps them in registers (it runs at every series entry)
+        s = ubound(u, 1)
+        uniform = mesh%is_uniform()
+        kinetic = 0.0_dp; thermal = 0.0_dp; chemical = 0.0_dp; coupling = 0.0_dp
+        heat_flux = 0.0_dp; mass_flux = 0.0_dp; strain = 0.0_dp
+        h_e = 1.0_dp
+        do e = 1, s
+            if (.not. uniform) h_e = mesh%h(e)
+            kinetic = kinetic + h_e * self_product(w(e - 1, F_V), w(e, F_V))
+            thermal = thermal + h_e * self_product(w(e - 1, F_THETA), w(e, F_THETA))
+            chemical = chemical + h_e * self_product(w(e - 1, F_P), w(e, F_P))
+            coupling = coupling + h_e * element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_THETA), w(e, F_THETA))
+            heat_flux = heat_flux + h_e * self_product(w(e - 1, F_Q), w(e, F_Q))
+            mass_flux = mass_flux + h_e * self_product(w(e - 1, F_ETA), w(e, F_ETA))
+            strain = strain + (u(e) - u(e - 1))**2 / h_e
+        end do
+        if (uniform) then
+            h_e = 1.0_dp / real(s, dp)
+            kinetic = kinetic * h_e; thermal = thermal * h_e; chemical = chemical * h_e
+            coupling = coupling * h_e; heat_flux = heat_flux * h_e; mass_flux = mass_flux * h_e
+            strain = strain * real(s, dp)
+        end if
+        ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
+        parts(PART_KINETIC) = model%rho * kinetic / 12.0_dp
+        parts(PART_STRAIN) = 0.5_dp * model%alpha * strain
+        parts(PART_THERMAL) = model%c * thermal / 12.0_dp
+        parts(PART_CHEMICAL) = model%r * chemical / 12.0_dp
+        parts(PART_COUPLING) = model%d * coupling / 6.0_dp
+        parts(PART_HEAT_FLUX) = model%tau0 * heat_flux / 12.0_dp
+        parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux / 12.0_dp
+        parts(PART_CONTACT) = law%energy(u(s))
+    end function energy_parts
 
     !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
     !> of (2.11) tested with the new level,
@@ -252,6 +310,17 @@ contains
         max_rise_step_change = self%max_rise_step_change
     end subroutine monitor_rises
 
+    !> The terms of E^n (energy_parts, PART_*) of the level in state, with the monitor's
+    !> model and contact law: they add up to current_energy() when state is the level
+    !> observed last.
+    pure function monitor_parts(self, state) result(parts)
+        class(energy_monitor_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp) :: parts(N_ENERGY_PARTS)
+
+        parts = energy_parts(self%model, self%law, state%u, state%w, state%mesh)
+    end function monitor_parts
+
     !> The energies and the largest rises so far into a checkpoint.
     subroutine monitor_save_checkpoint(self, ckpt)
         class(energy_monitor_t), intent(in) :: self
@@ -289,6 +358,14 @@ contains
             + model%tau0 * element_mass_product(w0(F_Q), w1(F_Q), w0(F_Q), w1(F_Q)) &
             + model%tau * model%hbar * element_mass_product(w0(F_ETA), w1(F_ETA), w0(F_ETA), w1(F_ETA))
     end function element_energy_density
+
+    !> element_mass_product(a0, a1, a0, a1): 6/h times the mass product of a P1 function
+    !> with itself on one element.
+    pure real(dp) function self_product(a0, a1)
+        real(dp), intent(in) :: a0, a1
+
+        self_product = 2.0_dp * (a0 * a0 + a0 * a1 + a1 * a1)
+    end function self_product
 
     !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
     !> and b0, b1).

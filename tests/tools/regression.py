@@ -98,11 +98,28 @@ def _equal(x, y):
     return x.shape == y.shape and x.dtype == y.dtype and x.tobytes() == y.tobytes()
 
 
+#: The attributes of HDF5 dimension scales (H5DS) that hold object references: compared by
+#: the names the references resolve to (their addresses may differ between equal files).
+REFERENCE_ATTRIBUTES = ("DIMENSION_LIST", "REFERENCE_LIST")
+
+
+def _resolved(obj, name):
+    """Attribute `name` (one of REFERENCE_ATTRIBUTES) of obj with every object reference
+    replaced by the path it points to."""
+    value = obj.attrs[name]
+    if name == "DIMENSION_LIST":
+        return [[obj.file[ref].name for ref in refs] for refs in value]
+    return [(obj.file[ref].name, int(dim)) for ref, dim in value]
+
+
 def _attribute_problems(where, a, b, skip=()):
     bad = []
     for k in sorted((set(a.attrs) | set(b.attrs)) - set(skip)):
         if k not in a.attrs or k not in b.attrs:
             bad.append(f"{where}attribute {k}: only in {'the first' if k in a.attrs else 'the second'} file")
+        elif k in REFERENCE_ATTRIBUTES:
+            if _resolved(a, k) != _resolved(b, k):
+                bad.append(f"{where}attribute {k}: {_resolved(a, k)} vs {_resolved(b, k)}")
         elif not _equal(a.attrs[k], b.attrs[k]):
             bad.append(f"{where}attribute {k}: {a.attrs[k]} vs {b.attrs[k]}")
     return bad

@@ -1,0 +1,197 @@
+"""How well the built-in error estimate (&output error_estimate = .true.) tracks the true
+error: its ratio to the true relative L2 error of each field at each snapshot, for Euler,
+BDF2 and the midpoint rule, fixed and adaptive steps, on
+
+  smooth    experiment 1 before contact (t = 0.05, 0.10, 0.15), against the exact solution
+            of the linear problem (tests/tools/exact_linear.py); target ratio in [1/3, 3];
+  front     experiment 2 before contact (t = 0.05 .. 0.25: the pulses' jumps travel as
+            fronts), against the exact solution; target [1/10, 10];
+  contact   experiment 1 after contact (t = 0.25 .. 0.45, in contact from t ~ 0.19),
+            against a fine run (4x finer mesh, 8x smaller steps, midpoint rule); target [1/10, 10].
+
+The true error is the relative L2 error of the run's P1 solution (exact_linear.rel_l2, or
+the same norm against the fine run on its nodes). Writes a Markdown section (the built-in
+part of docs/verification.md "How accurate is my run?") to stdout or --out; --splice puts
+it into docs/verification.md between the markers <!-- error_estimate:begin/end -->.
+--check exits 1 when a ratio is outside its target (tests/test_error_estimate.sh runs
+--quick --check: the smooth and front cases, fixed steps). Needs h5py, numpy, scipy.
+
+    <python> bench/error_estimate.py [--exe build/rodcontact] [--work DIR] [--quick] [--check]
+                                     [--out FILE] [--splice]
+"""
+
+import argparse
+import math
+import os
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "tools"))
+sys.path.insert(0, os.path.join(ROOT, "scripts", "lib"))
+import exact_linear  # noqa: E402
+import rodrun  # noqa: E402
+
+FIELDS = ["u", "v", "theta", "P", "q", "eta"]
+SCHEMES = ["euler", "bdf2", "midpoint"]
+S, DT = 248, 2.5e-4          # the runs checked: exp1's element size x 2, its step x 2.5
+TARGETS = {"smooth": 3.0, "front": 10.0, "contact": 10.0}
+N_MODES = 2**16
+
+
+def run(exe, work, name, inp, sets):
+    """Run rodcontact once (kept: a second call reuses the file); the path of its file."""
+    path = os.path.join(work, name + ".h5")
+    if not os.path.exists(path):
+        args = [exe, os.path.join(ROOT, "input", inp), "--set", "output.quiet=.true.",
+                "--set", f"output.prefix='{os.path.join(work, name)}'"]
+        for s in sets:
+            args += ["--set", s]
+        subprocess.run(args, check=True)
+    return path
+
+
+def case_sets(scheme, adaptive, t_end, snap_dt, s=S, dt=DT, estimate=True):
+    sets = [f"time.scheme='{scheme}'", f"mesh.n_elements={s}", f"time.dt={dt}", f"time.t_end={t_end}",
+            f"output.snapshot_dt={snap_dt}"]
+    if estimate:
+        sets.append("output.error_estimate=.true.")
+    if adaptive:
+        sets += ["time.adaptive=.true.", "time.error_tol=1e-5"]
+    return sets
+
+
+def truth_exact(path, cache):
+    """{k: {field: true relative L2 error}} at every snapshot k > 0 before contact."""
+    out = {}
+    with rodrun.open_run(path) as f:
+        attrs = rodrun.attributes(f)
+        ts = f["snapshots/t"][:]
+        t_contact = exact_linear.first_contact_time(f)
+        for k, t in enumerate(ts):
+            if t <= 0.0 or t >= t_contact:
+                continue
+            ex, fields = cache.get(attrs, float(t))
+            x, nodal = rodrun.snapshot(f, k, FIELDS)
+            out[k] = ex.rel_l2(fields, x, nodal)
+    return out
+
+
+def truth_fine(path, ref_path, t_from):
+    """{k: {field: relative L2 error against the fine run}} at the snapshots at or after t_from."""
+    out = {}
+    with h5py.File(path, "r") as f, h5py.File(ref_path, "r") as r:
+        ts, tr = f["snapshots/t"][:], r["snapshots/t"][:]
+        x, xr = f["mesh/x"][:], r["mesh/x"][:]
+        for k, t in enumerate(ts):
+            if t < t_from - 1e-12:
+                continue
+            j = int(np.argmin(abs(tr - t)))
+            if abs(tr[j] - t) > 1e-9:
+                continue
+            err = {}
+            for name in FIELDS:
+                fine = r["snapshots/" + name][j]
+                coarse = np.interp(xr, x, f["snapshots/" + name][k])
+                w = np.full(xr.size, 1.0)
+                w[0] = w[-1] = 0.5
+                norm = math.sqrt(np.sum(w * fine**2))
+                err[name] = math.sqrt(np.sum(w * (coarse - fine) ** 2)) / norm if norm > 0 else float("nan")
+            out[k] = err
+    return out
+
+
+def ratios(path, truth):
+    """[(t, field, estimate, true, ratio)] of a run with estimates."""
+    rows = []
+    with h5py.File(path, "r") as f:
+        ts = f["snapshots/t"][:]
+        for k, err in truth.items():
+            for name in FIELDS:
+                est = float(f["snapshots/error_estimate/" + name][k])
+                rows.append((float(ts[k]), name, est, err[name], est / err[name] if err[name] > 0 else float("nan")))
+    return rows
+
+
+def measure(exe, work, quick):
+    """{(case, scheme, steps): rows}."""
+    cache = exact_linear.Cache(N_MODES)
+    results = {}
+    step_kinds = ["fixed"] if quick else ["fixed", "adaptive"]
+    for scheme in SCHEMES:
+        for steps in step_kinds:
+            ad = steps == "adaptive"
+            p = run(exe, work, f"smooth_{scheme}_{steps}", "exp1.nml", case_sets(scheme, ad, 0.15, 0.05))
+            results[("smooth", scheme, steps)] = ratios(p, truth_exact(p, cache))
+            p = run(exe, work, f"front_{scheme}_{steps}", "exp2.nml", case_sets(scheme, ad, 0.25, 0.05))
+            results[("front", scheme, steps)] = ratios(p, truth_exact(p, cache))
+            if quick:
+                continue
+            ref = run(exe, work, "contact_ref", "exp1.nml",
+                      case_sets("midpoint", False, 0.45, 0.05, s=4 * S, dt=DT / 8, estimate=False))
+            p = run(exe, work, f"contact_{scheme}_{steps}", "exp1.nml", case_sets(scheme, ad, 0.45, 0.05))
+            results[("contact", scheme, steps)] = ratios(p, truth_fine(p, ref, 0.25))
+    return results
+
+
+def table(results):
+    lines = ["| case | scheme | steps | ratio estimate / true error: min | median | max | "
+             "field and t of the min | of the max | target | met |",
+             "|---|---|---|---:|---:|---:|---|---|---|---|"]
+    bad = []
+    for (case, scheme, steps), rows in results.items():
+        rs = [r for r in rows if np.isfinite(r[4])]
+        lo = min(rs, key=lambda r: r[4])
+        hi = max(rs, key=lambda r: r[4])
+        med = float(np.median([r[4] for r in rs]))
+        target = TARGETS[case]
+        met = lo[4] >= 1.0 / target and hi[4] <= target
+        if not met:
+            bad.append((case, scheme, steps))
+        lines.append(f"| {case} | {scheme} | {steps} | {lo[4]:.2f} | {med:.2f} | {hi[4]:.2f} | "
+                     f"{lo[1]} t={lo[0]:.2f} | {hi[1]} t={hi[0]:.2f} | [1/{target:g}, {target:g}] | "
+                     f"{'yes' if met else '**no**'} |")
+    return "\n".join(lines), bad
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--exe", default=os.path.join(ROOT, "build", "rodcontact"))
+    ap.add_argument("--work", default=os.path.join(ROOT, "out", "bench", "error_estimate"))
+    ap.add_argument("--quick", action="store_true", help="smooth and front cases, fixed steps only")
+    ap.add_argument("--check", action="store_true", help="exit 1 if a ratio misses its target")
+    ap.add_argument("--out", help="write the Markdown section here (default: stdout)")
+    ap.add_argument("--splice", action="store_true", help="put the section into docs/verification.md")
+    args = ap.parse_args(argv)
+    os.makedirs(args.work, exist_ok=True)
+    start = time.time()
+    results = measure(os.path.abspath(args.exe), args.work, args.quick)
+    text, bad = table(results)
+    load = os.getloadavg()[0]
+    md = (f"Generated by `bench/error_estimate.py` ({time.time() - start:.0f} s, load {load:.1f}): s = {S}, "
+          f"dt = {DT:g} (adaptive steps: error_tol = 1e-5), snapshots every 0.05; every field and snapshot "
+          f"of each run counts.\n\n{text}\n")
+    if args.out:
+        with open(args.out, "w") as f:
+            f.write(md)
+    elif not args.splice:
+        print(md)
+    if args.splice:
+        doc = os.path.join(ROOT, "docs", "verification.md")
+        with open(doc) as f:
+            page = f.read()
+        begin, end = "<!-- error_estimate:begin -->\n", "<!-- error_estimate:end -->"
+        a, b = page.index(begin) + len(begin), page.index(end)
+        with open(doc, "w") as f:
+            f.write(page[:a] + md + page[b:])
+    for b in bad:
+        print("target missed: %s %s %s" % b, file=sys.stderr)
+    return 1 if (args.check and bad) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

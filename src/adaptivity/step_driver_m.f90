@@ -313,6 +313,9 @@ contains
         associate (e => self%estimator)
             n = min(e%order + 1, e%n_levels)
             if (n < 2) then
+                ! a programming error (fixed steps keep their levels when dense output is on)
+                if (.not. allocated(self%saved%u)) &
+                    error stop 'step_driver_m: dense output without the level before the step'
                 weight(1:2) = lagrange_weights([state%t, self%saved%t], t)
                 return
             end if

@@ -25,7 +25,9 @@
 # Environment: BUILD_DIR (as scripts/setup.sh; Release is forced), WP_SKIP_BUILD=1 (the caller
 # has built), WP_OUT (data directory, default out/bench; --quick: out/bench-quick),
 # WPA_REUSE_REF=1 (keep a reference and check already in $WP_OUT/adaptive/ from an earlier run
-# with the same settings), WPA_KEEP=1 (keep every run's .h5, not only the reference's).
+# with the same settings), WPA_KEEP=1 (keep every run's .h5, not only the reference's),
+# WPA_NO_SPLICE=1 (leave docs/performance.md alone; without it a full run splices its section
+# and target rows in, as bench/adaptive_mesh.sh does).
 # Exit status: 0 done (targets met or not: see the page); 1 build, run or plot failure; 2 usage.
 
 set -euo pipefail
@@ -198,5 +200,9 @@ figure="$repo_root/figures/work_precision_adaptive.png"
 gnuplot -e "datadir='$out'; out='$figure'" "$repo_root/scripts/gnuplot/work_precision_adaptive.gp"
 if [[ "${WPA_KEEP:-0}" != 1 ]]; then      # keep the reference and its check only
     find "$raw_dir" -maxdepth 1 -name '*_r[0-9]*.*' -delete
+fi
+if ((!quick)) && [[ "${WPA_NO_SPLICE:-0}" != 1 ]]; then
+    "$py" "$helper" splice "$out" "$repo_root/docs/performance.md"
+    say "spliced the section and its target rows into docs/performance.md"
 fi
 say "wrote $figure and $out/work_precision_adaptive.md; took $(($(date +%s) - t_start)) s"

@@ -8,6 +8,7 @@ with blas= run=), exp1.raw, alloc.raw, callgrind_<method>_<t_end>.txt (callgrind
 work_precision_schemes.md (bench/work_precision_schemes.sh).
 work_precision_adaptive.md and work_precision_adaptive_targets.txt (bench/adaptive_steps.sh,
 whose helper bench/adaptive_steps.py writes that section's prose).
+step_cost.md (bench/step_cost.sh: instructions per adaptive and fixed step).
 work_precision_mesh.md and work_precision_mesh_targets.txt (bench/adaptive_mesh.sh, whose helper
 bench/adaptive_mesh.py writes that section's prose).
 Every number on the page comes from these files; the prose around them is here.
@@ -526,6 +527,10 @@ def main():
     wpa = os.path.join(outdir, "work_precision_adaptive.md")
     if os.path.exists(wpa):
         md.extend(open(wpa).read().splitlines())
+        w("")
+    sc = os.path.join(outdir, "step_cost.md")       # bench/step_cost.sh (issue 24)
+    if os.path.exists(sc):
+        md.extend(open(sc).read().splitlines())
         w("")
     # ---------------------------------------------------------------- adaptive mesh (issue 13)
     wpm = os.path.join(outdir, "work_precision_mesh.md")

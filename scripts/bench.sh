@@ -25,7 +25,8 @@
 #     the work-precision of Euler, BDF2 and the midpoint rule on exp1 and the impact case,
 #     bench/work_precision_schemes.sh (figures/work_precision_schemes.png, ~2.5 minutes).
 #  5b. adaptive against fixed time steps on exp1 to t = 60 (issue 12),
-#     bench/adaptive_steps.sh (figures/work_precision_adaptive.png, about 5 minutes).
+#     bench/adaptive_steps.sh (figures/work_precision_adaptive.png, about 5 minutes), and the
+#     instructions per adaptive and per fixed step, bench/step_cost.sh (issue 24, ~3 minutes).
 #  5c. the adaptive mesh on exp2 against the exact solution (issue 13),
 #     bench/adaptive_mesh.sh (figures/work_precision_mesh.png, 20-40 minutes),
 #  5d. the error budget of exp2 (mesh size against time step, where the error sits),
@@ -342,7 +343,9 @@ fi
 if [[ "${SKIP_WPA:-0}" != 1 ]]; then
     wpa_args=()
     ((quick)) && wpa_args=(--quick)
-    WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/adaptive_steps.sh" "${wpa_args[@]}"
+    WP_SKIP_BUILD=1 WPA_NO_SPLICE=1 WP_OUT="$out" BUILD_DIR="$build_dir" "$repo_root/bench/adaptive_steps.sh" "${wpa_args[@]}"
+    # the cost of an adaptive step against a fixed one (issue 24; callgrind, a few minutes)
+    WP_SKIP_BUILD=1 WP_OUT="$out" BUILD_DIR="$build_dir" STEP_COST_DOC='' "$repo_root/bench/step_cost.sh" "${wpa_args[@]}"
 fi
 
 # --- 5c. the adaptive mesh: work and precision on exp2 against the exact solution (issue 13) ----

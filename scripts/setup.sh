@@ -137,6 +137,6 @@ fi
 if grep -q -E 'Building|Linking' "$log"; then
     say "built $build_type in $build_dir/"
 fi
-if grep -q -i 'warning' "$log"; then
+if grep -q -i -E '(^|[^a-z])warning:' "$log"; then
     say "the build printed warnings: see $log"
 fi

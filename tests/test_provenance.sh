@@ -49,7 +49,7 @@ for name in ("plain.h5", "mat.h5"):
     check("GCC" in a.get("compiler_version", "") or "Fortran" in a.get("compiler_version", ""),
           f"{name}: compiler_version = {a.get('compiler_version')!r}")
     logicals = a.get("logical_attributes", "").split()
-    check(set(logicals) == {"mesh.adaptive", "time.adaptive", "output.quiet", "output.error_estimate", "solver.block_solver"}, f"{name}: logical_attributes = {logicals}")
+    check(set(logicals) == {"mesh.adaptive", "time.adaptive", "output.quiet", "output.error_estimate", "output.snapshot_land", "solver.block_solver"}, f"{name}: logical_attributes = {logicals}")
     for k in logicals:
         check(k in a and int(a[k]) in (0, 1), f"{name}: logical attribute {k} = {a.get(k)!r}, not 0/1")
     def visit(path, obj):

@@ -56,6 +56,24 @@ print(list(a['events/t'][:]) == list(b['events/t'][:]) and list(a['events/kind']
     [ "$ev" = True ] || fail "adaptive $scheme: /events differ after the restart (or are empty)"
 done
 
+# dense output (issue 24): series entries at k series_dt and snapshots at k snapshot_dt from the
+# scheme's interpolant, steps not landing on them; a checkpoint in the middle of a step sequence;
+# adaptive BDF2, and fixed midpoint steps (which keep their levels only for dense output)
+for mode in "--set time.adaptive=.true. --set time.scheme='bdf2' --set output.checkpoint_every=37" \
+            "--set time.scheme='midpoint' --set output.checkpoint_every=777"; do
+    read -r -a how <<<"$mode"
+    dense=(--set mesh.n_elements=100 --set output.quiet=.true. "${how[@]}"
+           --set output.series_dt=0.0137 --set output.snapshot_dt=0.05 --set output.snapshot_land=.false.)
+    "$exe" "$src/input/exp1.nml" "${dense[@]}" --set time.t_end=0.6 --set output.prefix="'dfull'" || fail "dense: run exit $?"
+    "$exe" "$src/input/exp1.nml" "${dense[@]}" --set time.t_end=0.3 --set output.prefix="'dhalf'" ||
+        fail "dense: first half exit $?"
+    "$exe" "$src/input/exp1.nml" "${dense[@]}" --set time.t_end=0.6 --set time.restart_from="'dhalf.h5'" \
+        --set output.prefix="'drest'" || fail "dense: restarted run exit $?"
+    if out=$(same dfull.h5 drest.h5); then echo "PASS dense output ($mode): restarted = uninterrupted ($out)"
+    else fail "dense output ($mode): restarted run differs from the uninterrupted one:"; echo "$out"; fi
+    rm -f dfull.h5 dhalf.h5 drest.h5
+done
+
 # contact events of both kinds before the checkpoint (the impact's bounces, midpoint rule):
 # restored with their kinds
 imp=("$src/input/impact.nml" --set mesh.n_elements=100 --set output.quiet=.true. --set output.checkpoint_every=100)

@@ -76,12 +76,18 @@ contains
         call check('ratio est / (tol S) = 8 for est = 8e-3', abs(c%ratio(8.0e-3_dp) - 8.0_dp) < 1.0e-12_dp)
         call c%reject(0.01_dp, 8.0_dp)
         call c%counts(error_sum, scale, n_estimated, n_rejected, n_forced)
-        call check('a rejected step is retried smaller (0.45 dt for err = 8, order 2)', &
-                   abs(c%proposal() - 0.01_dp * 0.9_dp * 0.5_dp) < 1.0e-15_dp .and. n_rejected == 1)
+        ! proposals are rounded down to the ladder dt_first 2^(k/3) (step_control_m's on_ladder)
+        call check('a rejected step is retried smaller (0.45 dt for err = 8, order 2, down to the ladder: ' // &
+                   '2^(-4/3) dt)', abs(c%proposal() - 0.01_dp * 2.0_dp**(-4.0_dp / 3.0_dp)) < 1.0e-15_dp .and. &
+                   n_rejected == 1)
         call c%accept(c%proposal(), 1.0e-6_dp)
-        call check('no growth on the step right after a rejection', abs(c%proposal() - 0.0045_dp) < 1.0e-15_dp)
+        call check('no growth on the step right after a rejection', &
+                   abs(c%proposal() - 0.01_dp * 2.0_dp**(-4.0_dp / 3.0_dp)) < 1.0e-15_dp)
         call c%accept(0.0045_dp, 1.0e-6_dp)
-        call check('a quiet step grows dt by the largest factor, 2', abs(c%proposal() - 0.009_dp) < 1.0e-15_dp)
+        call check('a quiet step grows dt by the largest factor, 2 (0.009, down to the ladder: 2^(-1/3) 0.01)', &
+                   abs(c%proposal() - 0.01_dp * 2.0_dp**(-1.0_dp / 3.0_dp)) < 1.0e-15_dp)
+        call c%accept(0.01_dp, 1.0e-6_dp)
+        call check('a step on the ladder that doubles stays on it (0.02)', abs(c%proposal() - 0.02_dp) < 1.0e-15_dp)
         call c%accept(0.009_dp, 0.5_dp)
         call check('err = 0.5 (growth 1.13 < 1.25): dt is kept', abs(c%proposal() - 0.009_dp) < 1.0e-15_dp)
         call c%accept(0.09_dp, 0.0_dp)

@@ -15,7 +15,12 @@
 !> standard one, dt_new = dt * safety * (error_tol S / est)^(1/(p+1)), limited to
 !> [SHRINK_MIN, growth_max] (growth_max: the scheme's max_step_ratio, for BDF2 below the
 !> step-ratio bound of its zero-stability) and to [dt_min, dt_max]; a growth below
-!> GROWTH_MIN is not taken, because every new step size costs a factorisation.
+!> GROWTH_MIN is not taken, because every new step size costs a factorisation. The steps the
+!> controller proposes are rounded down to the ladder dt_first * LADDER_RATIO**k (k an
+!> integer; on_ladder), so that a run moves between few step sizes whose factored systems
+!> stay in the stepper's cache (system_cache_m): a new size is a new factorisation, a size
+!> met before is not. (Steps shortened to land on an output time or to end before a contact
+!> event are not on the ladder.)
 module step_control_m
     use kinds_m, only: dp
     use config_m, only: model_t
@@ -34,6 +39,10 @@ module step_control_m
     real(dp), parameter :: SAFETY = 0.9_dp
     real(dp), parameter :: GROWTH_MIN = 1.25_dp !< smaller growths are not taken
     real(dp), parameter :: SHRINK_MIN = 0.2_dp  !< smallest dt_new / dt after a rejection
+    !> ratio of neighbouring step sizes on the ladder (2 is 3 rungs: BDF2's growth bound is one).
+    !> 2^(1/3) against 2^(1/4): on exp1 to t = 60 (midpoint, error_tol 1e-5) 1.4 % more steps,
+    !> a quarter fewer factorisations, fewer instructions in all (callgrind)
+    real(dp), parameter :: LADDER_RATIO = 2.0_dp**(1.0_dp / 3.0_dp)
 
     !> The last accepted levels, most recent first, with the steps that reached them.
     type :: error_estimator_t
@@ -62,6 +71,7 @@ module step_control_m
         integer :: order = 1               !< p: the scheme's order
         real(dp) :: growth_max = 2.0_dp    !< largest dt_n / dt_{n-1}: the scheme's max_step_ratio
         real(dp) :: dt_next = 0.0_dp       !< the step the controller proposes next
+        real(dp) :: ladder_base = 0.0_dp   !< dt_first: the ladder's rung k = 0 (on_ladder)
         logical :: no_growth = .false.     !< after a rejection: no growth on the next step
         real(dp) :: scale = 0.0_dp         !< S: the largest |X^k|_E so far
         real(dp) :: error_sum = 0.0_dp     !< sum of est_n over the accepted steps
@@ -210,6 +220,7 @@ contains
         self%order = scheme%order()
         self%growth_max = scheme%max_step_ratio()
         self%dt_next = dt_first
+        self%ladder_base = dt_first
         if (present(scale)) self%scale = scale
     end subroutine controller_init
 
@@ -221,7 +232,8 @@ contains
 
         dt = self%dt_next
         if (present(dt_last)) then
-            if (dt_last > 0.0_dp) dt = min(dt, self%growth_max * dt_last)
+            if (dt_last > 0.0_dp .and. self%growth_max * dt_last < dt) &
+                dt = on_ladder(self%growth_max * dt_last, self%ladder_base)
         end if
     end function controller_proposal
 
@@ -295,7 +307,7 @@ contains
         if (err >= 0.0_dp .and. .not. self%no_growth) then
             factor = self%growth_max
             if (err > 0.0_dp) factor = min(self%growth_max, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))
-            if (factor >= GROWTH_MIN) self%dt_next = min(dt * factor, self%dt_max)
+            if (factor >= GROWTH_MIN) self%dt_next = min(on_ladder(dt * factor, self%ladder_base), self%dt_max)
         end if
         self%dt_next = max(self%dt_next, self%dt_min)
         self%no_growth = .false.
@@ -308,12 +320,26 @@ contains
     subroutine controller_reject(self, dt, err)
         class(step_controller_t), intent(inout) :: self
         real(dp), intent(in) :: dt, err
+        real(dp) :: shrink
 
         self%n_rejected = self%n_rejected + 1
-        self%dt_next = max(dt * max(SHRINK_MIN, min(SAFETY, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))), &
-                           self%dt_min)
+        shrink = max(SHRINK_MIN, min(SAFETY, SAFETY * err**(-1.0_dp / real(self%order + 1, dp))))
+        self%dt_next = max(on_ladder(dt * shrink, self%ladder_base), self%dt_min)
         self%no_growth = .true.
     end subroutine controller_reject
+
+    !> The largest step base * LADDER_RATIO**k (k an integer) that is at most dt (to a relative
+    !> 1e-12: a dt on the ladder stays where it is). A function of k alone, so that a size met
+    !> twice is the same number bit for bit.
+    pure real(dp) function on_ladder(dt, base) result(rung)
+        real(dp), intent(in) :: dt, base
+        integer :: k
+
+        rung = dt
+        if (.not. (dt > 0.0_dp .and. base > 0.0_dp)) return
+        k = floor(log(dt / base) / log(LADDER_RATIO) + 1.0e-12_dp)
+        rung = base * LADDER_RATIO**k
+    end function on_ladder
 
     ! ------------------------------------------------------------------ checkpoint
 

@@ -19,10 +19,12 @@ module step_driver_m
     use state_m, only: state_t, advance_time, land_on, copy_state
     use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
-    use energy_m, only: energy_monitor_t
+    use energy_m, only: energy_monitor_t, discrete_energy, energy_parts
+    use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
-    use step_control_m, only: error_estimator_t, step_controller_t, energy_norm
+    use step_control_m, only: error_estimator_t, step_controller_t, energy_norm, MAX_LEVELS
+    use dense_output_m, only: lagrange_weights, interpolant_root
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
     use remesh_m, only: remesh
     implicit none
@@ -33,6 +35,9 @@ module step_driver_m
         private
         logical :: adaptive = .false.          !< &time adaptive
         logical :: mesh_adaptive = .false.     !< &mesh adaptive
+        !> dense output (&output series_dt, snapshot_land = .false.): fixed steps keep their
+        !> levels in the estimator too (dense_level, dense_series)
+        logical :: dense = .false.
         real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
         real(dp) :: event_tol = 0.0_dp         !< longest step across a contact event (adaptive)
         real(dp) :: v_front = 0.0_dp           !< adaptive_mesh_m's front_speed
@@ -43,6 +48,10 @@ module step_driver_m
         type(state_t) :: saved                 !< the state before a tried step (adaptive)
         logical :: in_contact = .false.        !< the contact state after the last accepted step
         logical :: warned_forced = .false.
+        !> dense output: E of the j-th most recent level (dense_series), for the step energies_step
+        real(dp) :: level_energy(MAX_LEVELS) = 0.0_dp
+        real(dp) :: level_parts(N_ENERGY_PARTS, MAX_LEVELS) = 0.0_dp   !< their parts (energy_parts)
+        integer :: energies_step = -1
     contains
         procedure :: init => driver_init
         procedure :: take_step => driver_take_step
@@ -51,6 +60,9 @@ module step_driver_m
         procedure :: controller => driver_controller
         procedure :: save_checkpoint => driver_save_checkpoint
         procedure :: restore_checkpoint => driver_restore_checkpoint
+        procedure :: dense_level => driver_dense_level
+        procedure :: dense_series => driver_dense_series
+        procedure, private :: event_time => driver_event_time
         procedure, private :: choose_step => driver_choose_step
         procedure, private :: undo_step => driver_undo_step
     end type step_driver_t
@@ -68,6 +80,8 @@ contains
 
         self%adaptive = cfg%time%adaptive
         self%mesh_adaptive = cfg%mesh%adaptive
+        self%dense = cfg%output%series_dt > 0.0_dp .or. (cfg%output%snapshot_dt > 0.0_dp .and. &
+                                                         .not. cfg%output%snapshot_land)
         self%dt = cfg%time%dt
         self%dt_min = cfg%time%dt_min
         self%dt_max = cfg%time%dt_max
@@ -188,11 +202,13 @@ contains
         ! the step is accepted
         if (lands .and. self%adaptive) call land_on(state, target)
         if (flipped) then
-            call self%events%add(crossing_time(t_before, dt_try, gap_start, gap_end), &
+            call self%events%add(self%event_time(t_before, dt_try, gap_start, gap_end, result%trial_gap, contact_now, &
+                                                 stepper%law%g), &
                                  merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
             if (self%adaptive) call self%estimator%reset()
         end if
         self%in_contact = contact_now
+        if (self%dense .and. .not. self%adaptive) call self%estimator%push(state%u, state%w, dt_try)
         if (self%adaptive) then
             call self%estimator%push(state%u, state%w, dt_try)
             if (err >= 0.0_dp) call self%control%add_estimate(est)
@@ -249,6 +265,137 @@ contains
         end if
         at_snapshot = at_snapshot .and. lands
     end subroutine driver_choose_step
+
+    !> The time of the contact event in the step from t_before of size dt whose gap went from
+    !> gap_start to gap_end: adaptive steps of a scheme of order 2, with a level before
+    !> t_before since the last event, take the root of the quadratic interpolant of the gap
+    !> (dense_output_m) through the two levels before the step and its end: for an onset
+    !> (onset = .true.) the end's trial gap (no contact force in the step: the free motion,
+    !> which the solution follows up to the onset; the stiff penalty bends u^n(1) away from
+    !> it within the step), for a release u^n(1) - g (gap_end). Otherwise (and if that has no
+    !> root in the step) the straight line's (events_m's crossing_time). Fixed steps keep the
+    !> straight line (and their results).
+    real(dp) function driver_event_time(self, t_before, dt, gap_start, gap_end, trial_gap, onset, g) result(t_event)
+        class(step_driver_t), intent(in) :: self
+        real(dp), intent(in) :: t_before, dt, gap_start, gap_end, trial_gap, g
+        logical, intent(in) :: onset
+        real(dp) :: times(3), gaps(3)
+        integer :: slot
+        logical :: found
+
+        t_event = crossing_time(t_before, dt, gap_start, gap_end)
+        if (.not. self%adaptive .or. self%estimator%order < 2 .or. self%estimator%n_levels < 2) return
+        associate (e => self%estimator)
+            slot = modulo(e%head - 2, MAX_LEVELS) + 1     ! the level before t_before
+            times = [t_before + dt, t_before, t_before - e%steps(e%head)]
+            gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, slot) - g]
+        end associate
+        call interpolant_root(times, gaps, t_before, t_before + dt, t_event, found)
+        if (.not. found) t_event = crossing_time(t_before, dt, gap_start, gap_end)
+    end function driver_event_time
+
+    !> The interpolant at time t of the last accepted step [t_{n-1}, t_n] (state holds X^n;
+    !> dense_output_m): the polynomial through the levels since the last contact event, p+1
+    !> of them (p the scheme's order) when held, else fewer. n points, weight(j) of the j-th
+    !> most recent level (j = 1: X^n); n = 1: one level since the event, and the straight
+    !> line from the state saved before the step is taken instead (weight(2) is the saved
+    !> state's).
+    subroutine dense_weights(self, state, t, n, weight)
+        type(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: t
+        integer, intent(out) :: n
+        real(dp), intent(out) :: weight(MAX_LEVELS)
+        real(dp) :: times(MAX_LEVELS)
+        integer :: j
+
+        weight = 0.0_dp
+        associate (e => self%estimator)
+            n = min(e%order + 1, e%n_levels)
+            if (n < 2) then
+                ! a programming error (fixed steps keep their levels when dense output is on)
+                if (.not. allocated(self%saved%u)) &
+                    error stop 'step_driver_m: dense output without the level before the step'
+                weight(1:2) = lagrange_weights([state%t, self%saved%t], t)
+                return
+            end if
+            times(1) = state%t
+            do j = 2, n
+                times(j) = times(j - 1) - e%steps(modulo(e%head - j + 1, MAX_LEVELS) + 1)
+            end do
+            weight(1:n) = lagrange_weights(times(1:n), t)
+        end associate
+    end subroutine dense_weights
+
+    !> The level (u, w) at time t of the last accepted step, from the scheme's interpolant
+    !> (dense_weights): a snapshot between the steps.
+    subroutine driver_dense_level(self, state, t, u, w)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: t
+        real(dp), intent(out) :: u(0:), w(0:, :)
+        real(dp) :: weight(MAX_LEVELS)
+        integer :: j, n, slot
+
+        call dense_weights(self, state, t, n, weight)
+        u = weight(1) * state%u
+        w = weight(1) * state%w
+        if (n < 2) then
+            u = u + weight(2) * self%saved%u
+            w = w + weight(2) * self%saved%w
+        end if
+        do j = 2, n
+            slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
+            u = u + weight(j) * self%estimator%levels(:, 0, slot)
+            w = w + weight(j) * self%estimator%levels(:, 1:, slot)
+        end do
+    end subroutine driver_dense_level
+
+    !> u(1,t), E(t) and E's parts (energy_m's energy_parts) at time t of the last accepted
+    !> step for a series entry: the scheme's interpolant (dense_weights) of the levels' u(1),
+    !> E^k (Corollary 6.2; energy_now: E^n) and parts. The energies and parts of the levels
+    !> are computed once per step, from the state and the levels the estimator holds (so a
+    !> restart gives the same bits).
+    subroutine driver_dense_series(self, state, law, energy_now, t, u_end, energy, parts)
+        class(step_driver_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        type(contact_law_t), intent(in) :: law
+        real(dp), intent(in) :: energy_now, t
+        real(dp), intent(out) :: u_end, energy, parts(N_ENERGY_PARTS)
+        real(dp) :: weight(MAX_LEVELS)
+        integer :: j, n, slot
+
+        call dense_weights(self, state, t, n, weight)
+        if (self%energies_step /= state%step) then
+            self%energies_step = state%step
+            self%level_parts(:, 1) = energy_parts(self%model, law, state%u, state%w, state%mesh)
+            if (n < 2) then
+                self%level_energy(2) = discrete_energy(self%model, law, self%saved%u, self%saved%w, self%saved%mesh)
+                self%level_parts(:, 2) = energy_parts(self%model, law, self%saved%u, self%saved%w, self%saved%mesh)
+            else
+                do j = 2, n
+                    slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
+                    associate (u => self%estimator%levels(:, 0, slot), w => self%estimator%levels(:, 1:, slot))
+                        self%level_energy(j) = discrete_energy(self%model, law, u, w, state%mesh)
+                        self%level_parts(:, j) = energy_parts(self%model, law, u, w, state%mesh)
+                    end associate
+                end do
+            end if
+        end if
+        u_end = weight(1) * state%u(state%s)
+        energy = weight(1) * energy_now
+        parts = weight(1) * self%level_parts(:, 1)
+        do j = 2, max(n, 2)
+            if (n < 2) then
+                u_end = u_end + weight(2) * self%saved%u(self%saved%s)
+            else
+                slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
+                u_end = u_end + weight(j) * self%estimator%levels(state%s, 0, slot)
+            end if
+            energy = energy + weight(j) * self%level_energy(j)
+            parts = parts + weight(j) * self%level_parts(:, j)
+        end do
+    end subroutine driver_dense_series
 
     !> A rejected step: the state as before it, and the step's contact count taken back.
     subroutine driver_undo_step(self, stepper, result, state)

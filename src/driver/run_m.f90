@@ -9,11 +9,12 @@ module run_m
     use config_m, only: config_t, number_of_steps
     use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
-    use state_m, only: state_t, initial_state, set_mesh
+    use state_m, only: state_t, initial_state, set_mesh, copy_state
     use adaptive_mesh_m, only: adaptive_mesh_t
     use remesh_m, only: initial_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
+    use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
     use step_driver_m, only: step_driver_t, step_failure
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
@@ -47,6 +48,7 @@ module run_m
         real(dp), allocatable :: x_out(:)      !< the fixed output grid
         integer :: n_steps = 0                 !< fixed steps: number_of_steps
         integer :: n_snapshot_next = 0         !< with snapshot_dt: the next snapshot is at n snapshot_dt
+        integer :: n_series_next = 0           !< with series_dt: the next series entry is at n series_dt
         integer :: n_elements_max = 0
         integer :: last_written = 0            !< the last step whose output was written
         integer(int64) :: clock_start = 0, clock_rate = 1
@@ -107,6 +109,8 @@ contains
         end if
         if (cfg%output%snapshot_dt > 0.0_dp) &
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
+        if (cfg%output%series_dt > 0.0_dp) &
+            run%n_series_next = floor(run%state%t / cfg%output%series_dt * (1.0_dp + 1.0e-12_dp)) + 1
         run%n_elements_max = run%state%s
     end subroutine set_up
 
@@ -145,7 +149,8 @@ contains
         character(len=*), intent(inout) :: failure
         character(len=:), allocatable, intent(out) :: interrupted
         type(progress_t) :: progress
-        logical :: at_snapshot, last, remeshed
+        logical :: at_snapshot, last, remeshed, dense_at_end
+        real(dp) :: t_before
 
         interrupted = ''
         call install_stop_handlers()
@@ -154,7 +159,8 @@ contains
             if (failure /= '' .or. interrupted /= '') exit
             if (finished(run, cfg)) exit
             associate (state => run%state)
-                if (cfg%output%snapshot_dt > 0.0_dp) then
+                t_before = state%t
+                if (cfg%output%snapshot_dt > 0.0_dp .and. cfg%output%snapshot_land) then
                     call run%driver%take_step(state, run%stepper, run%monitor, run%result, t_stop(run, cfg), &
                                               at_snapshot, failure, real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt)
                 else
@@ -165,9 +171,15 @@ contains
                 if (cfg%output%error_estimate) call run%companions%follow(state)
                 if (at_snapshot) run%n_snapshot_next = run%n_snapshot_next + 1
                 last = finished(run, cfg)
-                if (mod(state%step, cfg%output%series_every) == 0 .or. last) &
+                call write_dense_output(run, cfg, t_before, dense_at_end)
+                if (cfg%output%series_dt > 0.0_dp) then
+                    if (last .and. .not. dense_at_end) &
+                        call write_series(run%writer, run%stepper, state, run%monitor, run%result)
+                else if (mod(state%step, cfg%output%series_every) == 0 .or. last) then
                     call write_series(run%writer, run%stepper, state, run%monitor, run%result)
-                if (snapshot_due(cfg, state%step, at_snapshot) .or. last) call snapshot(run, cfg)
+                end if
+                if (snapshot_due(cfg, state%step, at_snapshot) .or. (last .and. .not. dense_at_end)) &
+                    call snapshot(run, cfg)
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
                     call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
@@ -327,6 +339,57 @@ contains
         call write_snapshot(run%writer, run%state, cfg%model, run%x_out)
         if (cfg%output%error_estimate) call write_error_estimate(run%writer, run%companions, run%state)
     end subroutine snapshot
+
+    !> Dense output of the step just taken from t_before: the series entries at the times
+    !> k series_dt and (snapshot_land = .false.) the snapshots at k snapshot_dt in (t_before,
+    !> t_n], from the scheme's interpolant (step_driver_t%dense_level, dense_output_m); no
+    !> error estimate (validate_m refuses &output error_estimate with snapshot_land = .false.).
+    !> at_end: an entry or snapshot so written is at t_n (to round-off), so the last step's
+    !> own would repeat it.
+    subroutine write_dense_output(run, cfg, t_before, at_end)
+        type(run_t), intent(inout) :: run
+        type(config_t), intent(in) :: cfg
+        real(dp), intent(in) :: t_before
+        logical, intent(out) :: at_end
+        type(state_t) :: level
+        real(dp) :: t, slack, u_end, energy, parts(N_ENERGY_PARTS)
+
+        at_end = .false.
+        slack = 1.0e-9_dp * run%state%dt_last
+        if (cfg%output%series_dt > 0.0_dp) then
+            do
+                t = real(run%n_series_next, dp) * cfg%output%series_dt
+                if (t > run%state%t + slack .or. t <= t_before) exit
+                call run%driver%dense_series(run%state, run%stepper%law, run%monitor%current_energy(), t, &
+                                             u_end, energy, parts)
+                call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, &
+                                  dense=[t, u_end, energy, parts])
+                run%n_series_next = run%n_series_next + 1
+                at_end = at_end .or. t >= run%state%t - slack
+            end do
+        end if
+        if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) then
+            do
+                t = real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt
+                if (t > run%state%t + slack .or. t <= t_before) exit
+                call dense_level(t)
+                call write_snapshot(run%writer, level, cfg%model, run%x_out)
+                run%n_snapshot_next = run%n_snapshot_next + 1
+                at_end = at_end .or. t >= run%state%t - slack
+            end do
+        end if
+
+    contains
+
+        !> level: the state with the interpolated values at t.
+        subroutine dense_level(t)
+            real(dp), intent(in) :: t
+
+            call copy_state(run%state, level)
+            call run%driver%dense_level(run%state, t, level%u, level%w)
+            level%t = t
+        end subroutine dense_level
+    end subroutine write_dense_output
 
     !> Has the run reached its end? Fixed steps without snapshot_dt: n_steps steps (as
     !> always, t_N = N dt); otherwise t_end (adaptive) or N dt (fixed), to round-off.

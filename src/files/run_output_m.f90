@@ -7,7 +7,8 @@ module run_output_m
     use fe_m, only: mesh_nodes, evaluate_p1
     use config_m, only: model_t
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
-                        S_N_ELEMENTS, S_ENERGY_PARTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, K_SIGMA
+                        S_N_ELEMENTS, S_ENERGY_PARTS, N_ENERGY_PARTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, &
+                        K_SIGMA
     use state_m, only: state_t, field_values
     use stress_m, only: nodal_stress
     use stepper_m, only: stepper_t, step_result_t
@@ -41,13 +42,17 @@ contains
     !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
     !> (normal compliance (3.4), or the Signorini multiplier). initial: the level is the
     !> initial data, reached without a step (its lambda is the law's force at its u(1)).
-    subroutine write_series(writer, stepper, state, monitor, result, initial)
+    !> dense = [t, u(1,t), E(t), E's parts]: the entry is at t between the steps, from the scheme's
+    !> interpolant (dense output, run_m; state: the step's end); lambda is the penalty law's
+    !> force at that u(1) (Signorini: the step's multiplier).
+    subroutine write_series(writer, stepper, state, monitor, result, initial, dense)
         type(h5_writer_t), intent(inout) :: writer
         type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
         type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
         type(step_result_t), intent(in) :: result
         logical, intent(in), optional :: initial
+        real(dp), intent(in), optional :: dense(3 + N_ENERGY_PARTS)
         real(dp) :: values(N_SERIES)
 
         values(S_T) = state%t
@@ -58,10 +63,21 @@ contains
         if (present(initial)) then
             if (initial) values(S_CONTACT_STRESS) = -stepper%law%force(state%u(state%s))
         end if
+        if (present(dense)) then
+            values(S_T) = dense(1)
+            values(S_U_END) = dense(2)
+            values(S_ENERGY) = dense(3)
+            values(S_PENETRATION) = stepper%law%penetration(dense(2))
+            if (.not. stepper%law%is_signorini()) values(S_CONTACT_STRESS) = -stepper%law%force(dense(2))
+        end if
         values(S_ITERATIONS) = real(result%iterations, dp)
         values(S_DT) = state%dt_last
         values(S_N_ELEMENTS) = real(state%s, dp)
-        values(S_ENERGY_PARTS) = monitor%parts(state)
+        if (present(dense)) then
+            values(S_ENERGY_PARTS) = dense(4:)
+        else
+            values(S_ENERGY_PARTS) = monitor%parts(state)
+        end if
         call writer%append_series(values)
     end subroutine write_series
 

@@ -101,6 +101,12 @@ module config_m
         integer :: snapshot_every = 100
         real(dp) :: snapshot_dt = 0.0_dp   !< > 0: snapshots at t = k snapshot_dt (then snapshot_every is unused)
         integer :: series_every = 1
+        !> > 0: series entries at t = k series_dt, from the scheme's interpolant between the
+        !> steps (then series_every is unused; steps are not shortened to land there)
+        real(dp) :: series_dt = 0.0_dp
+        !> with snapshot_dt: steps end on the snapshot times (.false.: snapshots from the
+        !> scheme's interpolant, steps not shortened)
+        logical :: snapshot_land = .true.
         integer :: checkpoint_every = 0
         !> deflate level of the /snapshots fields, 0 (none) .. MAX_COMPRESSION; the default is
         !> chosen by measurement (docs/performance.md, "Output: chunks and compression")

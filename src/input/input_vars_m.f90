@@ -89,8 +89,10 @@ contains
         case ('output')
             ! the steps land on the snapshot times (run_m)
             ! n_points: the width of the /snapshots rows a restart copies
+            ! series_dt: the times of the /series entries; snapshot_land: whether steps land
             ! error_estimate: the checkpoint holds the companions or not
-            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points' .or. var%name == 'error_estimate'
+            changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points' .or. &
+                              var%name == 'series_dt' .or. var%name == 'snapshot_land' .or. var%name == 'error_estimate'
         case default
             changes_history = .false.
         end select

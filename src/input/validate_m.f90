@@ -80,6 +80,9 @@ contains
             'output.error_estimate', 'got .true. with mesh.n_elements = ' // int_str(cfg%mesh%n_elements) // &
             '; the built-in estimate needs a multiple of 4 elements, at least 8 (its companion solutions ' // &
             'use every other and every fourth node)')
+        if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) call fatal(EXIT_INPUT, &
+            'output.error_estimate', 'got .true. with output.snapshot_land = .false.; the built-in estimate is ' // &
+            'that of the levels the steps reach: let the steps land on the snapshot times (snapshot_land = .true.)')
     end subroutine validate_error_estimate
 
     ! ---------------------------------------------------------------- one check per group
@@ -253,7 +256,8 @@ contains
         if (output%n_points < 0 .or. output%n_points == 1) call fatal(EXIT_INPUT, 'output.n_points', 'got ' // &
             int_str(output%n_points) // '; must be 0 (the nodes of the coarsest mesh, n_elements + 1) or at ' // &
             'least 2 (points of the snapshot grid /mesh/x)')
-        call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', '(0: snapshots every snapshot_every steps)')
+        call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', ' (0: snapshots every snapshot_every steps)')
+        call require_nonnegative(output%series_dt, 'output.series_dt', ' (0: a series entry every series_every steps)')
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
             'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
@@ -266,10 +270,13 @@ contains
             snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
         end if
         series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
+        if (output%series_dt > 0.0_dp) &
+            series_bytes = 8.0_dp * N_SERIES * (aint(min(t_end / output%series_dt, 1.0e12_dp)) + 2.0_dp)
         total = snapshot_bytes + series_bytes + 8.0_dp * nodes
         where = 'output.snapshot_every'
         if (output%snapshot_dt > 0.0_dp) where = 'output.snapshot_dt'
         if (series_bytes > snapshot_bytes) where = 'output.series_every'
+        if (series_bytes > snapshot_bytes .and. output%series_dt > 0.0_dp) where = 'output.series_dt'
         if (total > OUTPUT_LIMIT) call fatal(EXIT_INPUT, where, 'the output file would be about ' // &
             gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots, ' // gib_str(series_bytes) // &
             ' GiB of series), more than the ' // gib_str(OUTPUT_LIMIT) // ' GiB allowed; raise ' // where)

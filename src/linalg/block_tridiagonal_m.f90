@@ -110,14 +110,19 @@ contains
             self%h(:, :, i) = block_product(self%g(:, :, i), self%e(:, :, i), nb)
         end do
     contains
+        !> The nb x nb block (row_node, col_node) of a: band_get's entries, read from the
+        !> band storage here (the type-bound call per entry was half of a factorisation).
         pure function block(a, row_node, col_node) result(blk)
             type(band_t), intent(in) :: a
             integer, intent(in) :: row_node, col_node
             real(dp) :: blk(nb, nb)
-            integer :: p, q
+            integer :: p, q, r, c
             do q = 1, nb
+                c = nb * col_node + q
                 do p = 1, nb
-                    blk(p, q) = a%get(nb * row_node + p, nb * col_node + q)
+                    r = nb * row_node + p
+                    blk(p, q) = 0.0_dp
+                    if (c - r <= a%ku .and. r - c <= a%kl) blk(p, q) = a%ab(a%kl + a%ku + 1 + r - c, c)
                 end do
             end do
         end function block

@@ -22,7 +22,7 @@ module stepper_m
     use config_m, only: config_t, model_t, with_contact_mass
     use errors_m, only: check_allocation
     use banded_m, only: band_t, lapack_info_message
-    use block_tridiagonal_m, only: block_tridiagonal_t
+    use system_cache_m, only: monolithic_system_t, system_cache_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
     use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
                         assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields, &
@@ -39,7 +39,6 @@ module stepper_m
     public :: stepper_t, step_result_t
 
     integer, parameter :: METHOD_MONOLITHIC = 1, METHOD_PAPER = 2
-    integer, parameter :: N_SYSTEMS = 2    !< factored matrices kept (distinct dt_eff)
 
     !> What one step did; ok = .false. with a message on a numerical failure.
     type :: step_result_t
@@ -54,17 +53,6 @@ module stepper_m
                                             !< Signorini multiplier
     end type step_result_t
 
-    !> The monolithic matrix of (6.1) for one step size, factored, with its contact response.
-    type :: monolithic_system_t
-        real(dp) :: dt_eff = 0.0_dp    !< the step of (6.1) it was assembled with (0: unused)
-        integer :: last_used = 0       !< step counter of its last use (to replace the oldest)
-        type(band_t) :: a              !< factored with dgbtrf
-        type(block_tridiagonal_t) :: blocks   !< the same matrix, block LU (fast per-step solve)
-        logical :: use_blocks = .false.       !< block LU solves as well as dgbtrf (checked at set-up)
-        real(dp), allocatable :: z(:)  !< A^{-1} e_s, the response to a unit contact force
-        integer :: contact_dof = 0     !< row of the v equation at x = 1
-    end type monolithic_system_t
-
     type :: stepper_t
         type(model_t) :: model         !< the paper's coefficients (&model)
         type(model_t) :: step_model    !< what the steps use (time_scheme_m's stiff_limit)
@@ -77,13 +65,15 @@ module stepper_m
         !> the mesh the factored systems belong to (s = mesh%s()): the uniform mesh of &mesh
         !> n_elements from init, a copy of the state's after remesh
         type(mesh_t) :: mesh
-        !> adaptive mesh: the block LU has passed blocks_agree on a system of this run
+        !> adaptive mesh or steps: the block LU has passed blocks_agree on a system of this run
         logical :: blocks_trusted = .false.
+        !> &time adaptive: systems are factored as on a graded mesh (setup_monolithic)
+        logical :: adaptive_steps = .false.
         logical :: active(N_FIELDS) = .true.   !< fields in the system (others stay zero)
         integer :: slots(N_FIELDS) = MONOLITHIC_SLOTS
         class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
-        type(monolithic_system_t) :: systems(N_SYSTEMS)
-        integer :: uses = 0
+        !> the factored systems of (6.1), by dt_eff and mesh (system_cache_m)
+        type(system_cache_t) :: cache
         real(dp) :: paper_dt = 0.0_dp  !< step the paper's blocks are factored for
         type(band_t) :: thermal        !< paper: (q, theta, P, eta) block, factored
         type(band_t) :: mechanical     !< paper: v block, factored
@@ -118,6 +108,7 @@ contains
 
         self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         self%dt = cfg%time%dt
+        self%adaptive_steps = cfg%time%adaptive
         self%law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
         self%scheme = time_scheme(cfg%time%scheme)
         ! an adaptive mesh: the stiff limit of its finest possible elements, for the whole run
@@ -171,15 +162,11 @@ contains
     subroutine stepper_remesh(self, state)
         class(stepper_t), intent(inout) :: self
         type(state_t), intent(in) :: state
-        integer :: k
 
         call copy_mesh(state%mesh, self%mesh)
         self%s = self%mesh%s()
         call allocate_work(self)
-        do k = 1, N_SYSTEMS
-            self%systems(k)%dt_eff = 0.0_dp
-            self%systems(k)%last_used = 0
-        end do
+        call self%cache%invalidate()
     end subroutine stepper_remesh
 
     !> The paper's Section 7 blocks for step dt, factored.
@@ -203,32 +190,28 @@ contains
         end if
     end subroutine setup_paper
 
-    !> The factored system of (6.1) with step dt_eff: one kept from an earlier step, or the
-    !> oldest one replaced by a new assembly and factorisation.
+    !> The factored system of (6.1) with step dt_eff: one the cache holds for exactly this
+    !> dt_eff and mesh, or a new assembly and factorisation in the entry it frees.
     subroutine find_system(self, dt_eff, k, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
         integer, intent(out) :: k
         type(step_result_t), intent(inout) :: result
+        logical :: found
 
-        self%uses = self%uses + 1
-        do k = 1, N_SYSTEMS
-            if (equal(self%systems(k)%dt_eff, dt_eff)) then
-                self%systems(k)%last_used = self%uses
-                return
-            end if
-        end do
-        k = minloc(self%systems%last_used, dim=1)
-        call setup_monolithic(self, dt_eff, self%systems(k), result)
-        self%systems(k)%last_used = self%uses
+        call self%cache%lookup(dt_eff, k, found)
+        if (found) return
+        call setup_monolithic(self, dt_eff, self%cache%systems(k), result)
+        if (result%ok) call self%cache%stored(k, dt_eff)
     end subroutine find_system
 
     !> Assemble (6.1) with step dt_eff, factor it (dgbtrf and block LU) and compute the
     !> contact response z. A graded (adaptive) mesh, factored at every remesh, inverts the
     !> block LU's pivot blocks by the written-out kernel (LAPACK's call overhead on 5 x 5
     !> blocks was half of such a run), and once the block LU has passed blocks_agree on one
-    !> system of the run, factors later systems by it alone (docs/performance.md). A uniform
-    !> mesh keeps LAPACK and the check (and its results bit for bit).
+    !> system of the run, factors later systems by it alone (docs/performance.md). So do
+    !> adaptive steps, which factor a system at every new step size. Fixed steps on a uniform
+    !> mesh keep LAPACK and the check (and their results bit for bit).
     subroutine setup_monolithic(self, dt_eff, sys, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
@@ -237,9 +220,11 @@ contains
         type(band_t) :: unfactored
         integer :: info, stat
         character(len=256) :: message
+        logical :: fast
 
+        fast = self%adaptive_steps .or. .not. self%mesh%is_uniform()
         call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
-        call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=.not. self%mesh%is_uniform())
+        call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=fast)
         sys%use_blocks = info == 0
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
         if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
@@ -251,12 +236,11 @@ contains
             end if
             call contact_response(sys, .false.)
             if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
-            self%blocks_trusted = sys%use_blocks .and. .not. self%mesh%is_uniform()
+            self%blocks_trusted = sys%use_blocks .and. fast
         end if
         ! once trusted, z from the block LU for every system (a restart, which checks the
         ! block LU anew, then repeats the run bit for bit)
         if (self%blocks_trusted) call contact_response(sys, .true.)
-        sys%dt_eff = dt_eff
         if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
             call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
 
@@ -284,13 +268,8 @@ contains
     !> Does the monolithic method solve with the block-tridiagonal LU (else dgbtrf's factors)?
     logical function stepper_uses_block_solver(self)
         class(stepper_t), intent(in) :: self
-        integer :: k
 
-        stepper_uses_block_solver = self%method == METHOD_MONOLITHIC
-        do k = 1, N_SYSTEMS
-            if (self%systems(k)%dt_eff > 0.0_dp) &
-                stepper_uses_block_solver = stepper_uses_block_solver .and. self%systems(k)%use_blocks
-        end do
+        stepper_uses_block_solver = self%method == METHOD_MONOLITHIC .and. self%cache%all_use_blocks()
     end function stepper_uses_block_solver
 
     !> Unknowns per node of the system solved each step (fields left out: scheme_m's active_fields).
@@ -330,13 +309,13 @@ contains
                 self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
                 self%w_star = (plan%a * state%w - plan%b * state%w_prev) / plan%d
                 call start_rhs(self, self%step_model, plan%dt_eff, t_source, self%u_star, self%w_star)
-                call advance_monolithic(self, self%systems(k), state, .true., result)
+                call advance_monolithic(self, self%cache%systems(k), state, .true., result)
             else if (plan%midpoint) then
                 call start_rhs(self, self%step_model, plan%dt_eff, t_source, state%u, state%w)
-                call advance_midpoint(self, self%systems(k), state, result)
+                call advance_midpoint(self, self%cache%systems(k), state, result)
             else
                 call start_rhs(self, self%step_model, plan%dt_eff, t_source, state%u, state%w)
-                call advance_monolithic(self, self%systems(k), state, .false., result)
+                call advance_monolithic(self, self%cache%systems(k), state, .false., result)
             end if
         end select
         if (.not. result%ok) return

@@ -1,0 +1,114 @@
+!> The factored systems of (6.1) a run keeps, keyed by the effective step dt_eff of the
+!> step's plan (time_scheme_m) and the mesh they were assembled on.
+!>
+!> The matrix of (6.1) depends on nothing else: the coefficients are the run's step model
+!> (fixed at set-up), the contact term is not in it (stepper_m solves the contact node's
+!> force in closed form with z = A^{-1} e_s, which is kept with the factors), and the mesh
+!> changes only at a remesh, which bumps the mesh key and so invalidates every entry. An
+!> entry is used only for exactly (bit for bit) the dt_eff it was factored for, and the
+!> factors of a matrix are a function of the matrix alone, so a step gives the same bits
+!> whether its system was found here or factored anew: a restart, which starts with an empty
+!> cache, repeats the run bit for bit.
+!>
+!> Adaptive steps take sizes from a geometric ladder (step_control_m), so a few entries
+!> cover the sizes a run moves between; when the cache is full the least recently used
+!> entry is replaced.
+module system_cache_m
+    use kinds_m, only: dp
+    use reals_m, only: equal
+    use banded_m, only: band_t
+    use block_tridiagonal_m, only: block_tridiagonal_t
+    implicit none
+    private
+    public :: monolithic_system_t, system_cache_t, CACHE_SIZE
+
+    integer, parameter :: CACHE_SIZE = 8   !< factored systems kept (distinct dt_eff)
+
+    !> The monolithic matrix of (6.1) for one step size, factored, with its contact response.
+    type :: monolithic_system_t
+        real(dp) :: dt_eff = 0.0_dp    !< the step of (6.1) it was assembled with (0: unused)
+        integer :: mesh_key = 0        !< the mesh it was assembled on (system_cache_t's mesh_key)
+        integer :: last_used = 0       !< lookup counter of its last use (to replace the oldest)
+        type(band_t) :: a              !< factored with dgbtrf
+        type(block_tridiagonal_t) :: blocks   !< the same matrix, block LU (fast per-step solve)
+        logical :: use_blocks = .false.       !< block LU solves as well as dgbtrf (checked at set-up)
+        real(dp), allocatable :: z(:)  !< A^{-1} e_s, the response to a unit contact force
+        integer :: contact_dof = 0     !< row of the v equation at x = 1
+    end type monolithic_system_t
+
+    type :: system_cache_t
+        type(monolithic_system_t) :: systems(CACHE_SIZE)
+        integer :: mesh_key = 1        !< the current mesh (invalidate: a new one)
+        integer :: uses = 0            !< lookups so far
+        integer :: n_factored = 0      !< systems assembled and factored (misses)
+    contains
+        procedure :: lookup => cache_lookup
+        procedure :: stored => cache_stored
+        procedure :: invalidate => cache_invalidate
+        procedure :: all_use_blocks => cache_all_use_blocks
+    end type system_cache_t
+
+contains
+
+    !> The entry k of the system with step dt_eff on the current mesh (found), or the entry
+    !> to assemble and factor it in (not found: an unused or the least recently used one;
+    !> the caller factors into systems(k) and then calls stored(k, dt_eff)).
+    subroutine cache_lookup(self, dt_eff, k, found)
+        class(system_cache_t), intent(inout) :: self
+        real(dp), intent(in) :: dt_eff
+        integer, intent(out) :: k
+        logical, intent(out) :: found
+
+        self%uses = self%uses + 1
+        found = .false.
+        do k = 1, CACHE_SIZE
+            if (self%systems(k)%mesh_key /= self%mesh_key) cycle
+            if (equal(self%systems(k)%dt_eff, dt_eff)) then
+                found = .true.
+                self%systems(k)%last_used = self%uses
+                return
+            end if
+        end do
+        k = minloc(self%systems%last_used, dim=1)
+        self%systems(k)%dt_eff = 0.0_dp
+        self%systems(k)%mesh_key = 0
+    end subroutine cache_lookup
+
+    !> systems(k) now holds the factored system of dt_eff on the current mesh.
+    subroutine cache_stored(self, k, dt_eff)
+        class(system_cache_t), intent(inout) :: self
+        integer, intent(in) :: k
+        real(dp), intent(in) :: dt_eff
+
+        self%systems(k)%dt_eff = dt_eff
+        self%systems(k)%mesh_key = self%mesh_key
+        self%systems(k)%last_used = self%uses
+        self%n_factored = self%n_factored + 1
+    end subroutine cache_stored
+
+    !> The mesh changed (or anything else in the matrix): no entry is used again.
+    subroutine cache_invalidate(self)
+        class(system_cache_t), intent(inout) :: self
+        integer :: k
+
+        self%mesh_key = self%mesh_key + 1
+        do k = 1, CACHE_SIZE
+            self%systems(k)%dt_eff = 0.0_dp
+            self%systems(k)%mesh_key = 0
+            self%systems(k)%last_used = 0
+        end do
+    end subroutine cache_invalidate
+
+    !> Every system held solves with the block LU (none held: .true.).
+    pure logical function cache_all_use_blocks(self)
+        class(system_cache_t), intent(in) :: self
+        integer :: k
+
+        cache_all_use_blocks = .true.
+        do k = 1, CACHE_SIZE
+            if (self%systems(k)%mesh_key == self%mesh_key .and. self%systems(k)%dt_eff > 0.0_dp) &
+                cache_all_use_blocks = cache_all_use_blocks .and. self%systems(k)%use_blocks
+        end do
+    end function cache_all_use_blocks
+
+end module system_cache_m

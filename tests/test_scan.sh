@@ -34,7 +34,9 @@ export RODCONTACT=$prog
 
 # 3 x 2 points of experiment 2 at its own mesh and time step, t_end = 0.6 (contact at
 # t ~ 0.3 for amplitude 20): ~0.2-0.5 s per point.
-dir=myscan
+# names unique to this test process: the "no run left behind" checks look for runs by their
+# command line, which must not match the runs of another test_scan running at the same time
+dir=myscan_$$
 rm -rf "$dir" scan_*.log bad_*
 args=("$src/input/exp2.nml" --set model.varpi=0.1,0.5,1
       --set 'initial.theta0_step(1)+initial.p0_step(1)=5:20:2'
@@ -127,9 +129,9 @@ check "interrupted scan says how to resume" grep -q 'rerun the same command to r
 # checked at once: the scan stops its runs before it exits
 no_runs_left() {   # no rodcontact of this scan still running ([m]: pgrep must not match itself)
     local left
-    left=$(pgrep -a -f -- "[m]yscan/point_") || return 0
+    left=$(pgrep -a -f -- "[m]yscan_$$/point_") || return 0
     echo "  still running: $left"
-    ps -eo pid,ppid,pgid,stat,etime,args --forest | grep -B4 -A1 "[m]yscan/point"
+    ps -eo pid,ppid,pgid,stat,etime,args --forest | grep -B4 -A1 "[m]yscan_$$/point"
     ls -l --time-style=+%T.%N "$dir"
     return 1
 }
@@ -158,26 +160,27 @@ check "the points stopped by the interrupt kept their checkpoints, named by thei
 # started with &), in a scan of its own: a new session, signalled once its first runs go.
 # A job started with & here would ignore SIGINT, hence env --default-signal (coreutils >= 8.31).
 if command -v setsid > /dev/null && env --default-signal=INT true 2> /dev/null; then
-    rm -rf ctrlc
-    setsid env --default-signal=INT bash "$scan" "${args[@]}" --out ctrlc -j 2 2> scan_ctrlc.log &
+    cc=ctrlc_$$
+    rm -rf "$cc"
+    setsid env --default-signal=INT bash "$scan" "${args[@]}" --out "$cc" -j 2 2> scan_ctrlc.log &
     pid=$!
     for ((i = 0; i < 600; i++)); do
-        [[ -f ctrlc/point_0000.err ]] && break
+        [[ -f $cc/point_0000.err ]] && break
         sleep 0.02
     done
     sleep 0.05
     kill -INT -- "-$pid"
     wait "$pid"
     check "Ctrl-C (INT to the process group): exit 130" equals 130 "$?"
-    no_ctrlc_runs_left() { ! pgrep -f -- "[c]trlc/point_" > /dev/null; }
+    no_ctrlc_runs_left() { ! pgrep -f -- "[c]trlc_$$/point_" > /dev/null; }
     check "no run left behind after Ctrl-C" no_ctrlc_runs_left
     # a .part is left only by a run stopped cleanly (exit 5: checkpoint written), or killed by
     # the signal before its handlers were installed (exit > 128: resumed from t = 0)
     check "Ctrl-C: a .part only for a point recorded as stopped by the signal" bash -c '
-        for part in ctrlc/*.h5.part; do [[ -e $part ]] || continue; rc=$(head -n 1 "${part%.h5.part}.status"); ((rc == 5 || rc > 128)) || exit 1; done'
+        for part in "$1"/*.h5.part; do [[ -e $part ]] || continue; rc=$(head -n 1 "${part%.h5.part}.status"); ((rc == 5 || rc > 128)) || exit 1; done' _ "$cc"
     m=$(printf '%o' $((0666 & ~$(umask))))
     check "the scan's files have the mode of the umask ($(umask))" equals "$m $m $m" \
-        "$(stat -c %a ctrlc/input.nml ctrlc/points.txt "$dir/summary.csv" 2> /dev/null | tr '\n' ' ' | sed 's/ $//')"
+        "$(stat -c %a "$cc/input.nml" "$cc/points.txt" "$dir/summary.csv" 2> /dev/null | tr '\n' ' ' | sed 's/ $//')"
 fi
 n_done=$(ls "$dir"/point_*.h5 2> /dev/null | wc -l)
 
@@ -264,7 +267,7 @@ fi
 # --- a point whose run alone is stopped by a signal (killed by hand, not the scan): recorded
 # as interrupted with its checkpoint, and the scan exits 5 (a Slurm task so ends FAILED, not
 # COMPLETED); the rerun continues it
-kd=killed
+kd=killed_$$
 rm -rf "$kd"
 bash "$scan" "${rs_args[@]}" --out "$kd" -j 1 2> scan_killed.log &
 pid=$!
@@ -277,7 +280,7 @@ for ((i = 0; i < 1500; i++)); do
     fi
     sleep 0.01
 done
-run_pid=$(pgrep -f -- "[k]illed/point_0000 --set output.quiet")
+run_pid=$(pgrep -f -- "[k]illed_$$/point_0000 --set output.quiet")
 kill -TERM $run_pid
 wait "$pid"
 check "the run of a point killed by hand: the scan exits 5" equals 5 "$?"

@@ -107,9 +107,9 @@ contains
     !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) in one pass over the
     !> elements, which runs every time step: on element e the mass product of P1 functions
     !> a, b is h/6 (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1), written here as h/6 ((a0 + a1)(b0 + b1)
-    !> + a0 b0 + a1 b1) for every pair of fields; energy sums the weighted products of an
-    !> element first, the parts sum each product over the elements. On a uniform mesh the
-    !> sums are scaled by h = 1/s once, at the end.
+    !> + a0 b0 + a1 b1); each product is summed over the elements (weighted by h_e on a
+    !> graded mesh, scaled by h = 1/s once at the end on a uniform one) and E_lin is the
+    !> weighted sum of those sums.
     pure subroutine linear_energy_parts(model, u, w, mesh, energy, parts)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:)
@@ -118,7 +118,7 @@ contains
         real(dp), intent(out) :: energy
         real(dp), intent(out) :: parts(N_ENERGY_PARTS)
         real(dp) :: mass_terms, strain_terms, h_e, scale, kinetic_difference
-        real(dp) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta, density
+        real(dp) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
         real(dp) :: rho, c, r, d2, tau0, tau_hbar   ! the model's coefficients, in registers
         ! the parts' sums (scalars, so that the loop keeps them in registers)
         real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux
@@ -127,42 +127,36 @@ contains
 
         s = ubound(u, 1)
         uniform = mesh%is_uniform()
-        mass_terms = 0.0_dp; strain_terms = 0.0_dp
+        strain_terms = 0.0_dp
         kinetic = 0.0_dp; thermal = 0.0_dp; chemical = 0.0_dp; coupling = 0.0_dp
         heat_flux = 0.0_dp; mass_flux = 0.0_dp
-        h_e = 1.0_dp
         rho = model%rho; c = model%c; r = model%r; d2 = 2.0_dp * model%d
         tau0 = model%tau0; tau_hbar = model%tau * model%hbar
         if (uniform) then
-            ! summed into mass_terms term by term (as before the parts existed)
             do e = 1, s
                 call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-                mass_terms = mass_terms + rho * p_v + c * p_theta + r * p_p + d2 * p_coupling + tau0 * p_q + tau_hbar * p_eta
                 strain_terms = strain_terms + (u(e) - u(e - 1))**2
                 kinetic = kinetic + p_v; thermal = thermal + p_theta; chemical = chemical + p_p
                 coupling = coupling + p_coupling; heat_flux = heat_flux + p_q; mass_flux = mass_flux + p_eta
             end do
+            scale = 1.0_dp / real(s, dp)
         else
             do e = 1, s
                 h_e = mesh%h(e)
                 call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-                density = rho * p_v + c * p_theta + r * p_p + d2 * p_coupling + tau0 * p_q + tau_hbar * p_eta
-                mass_terms = mass_terms + h_e * density
                 strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
                 kinetic = kinetic + h_e * p_v; thermal = thermal + h_e * p_theta; chemical = chemical + h_e * p_p
                 coupling = coupling + h_e * p_coupling; heat_flux = heat_flux + h_e * p_q
                 mass_flux = mass_flux + h_e * p_eta
             end do
+            scale = 1.0_dp
         end if
+        ! E_lin from the sums over the elements: one accumulator per term keeps the loop short
+        ! (the compiler pairs them in vector registers); the sum of the parts below is E_lin
+        ! to round-off
+        mass_terms = rho * kinetic + c * thermal + r * chemical + d2 * coupling + tau0 * heat_flux + tau_hbar * mass_flux
         kinetic_difference = inertia_difference(model, w, mesh)
-        scale = 1.0_dp
-        if (uniform) then
-            energy = 0.5_dp * (mass_terms / (6.0_dp * real(s, dp)) + model%alpha * strain_terms * real(s, dp)) &
-                     + kinetic_difference
-            scale = 1.0_dp / real(s, dp)
-        else
-            energy = 0.5_dp * (mass_terms / 6.0_dp + model%alpha * strain_terms) + kinetic_difference
-        end if
+        energy = 0.5_dp * (mass_terms * scale / 6.0_dp + model%alpha * strain_terms / scale) + kinetic_difference
         ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
         parts(PART_KINETIC) = model%rho * kinetic * scale / 12.0_dp + kinetic_difference
         parts(PART_STRAIN) = 0.5_dp * model%alpha * strain_terms / scale

@@ -23,11 +23,14 @@ div_palette = "set palette defined (0 '#2140a0', 0.25 '#6f9bd9', 0.5 '#f7f7f7', 
 # panel (pr, pc) occupies the box [ox, ox + sx] x [oy, oy + sy] of the screen below the title
 top = 0.93
 sx = 1.0/pnc; sy = top/pnr
+# without SI units the figure's title says 'nondimensional' once: the axes and panels name
+# only the variable (the long '(nondimensional)' ran into the tick labels)
+nondim(unit) = (strstrt(unit, 'nondimensional') > 0) ? '' : unit
 do for [i=0:n_fields-1] {
     pr = int(i/3); pc = i - 3*pr
     fld = word(fields, i + 1)
     set origin pc*sx + 0.005, top - (pr + 1)*sy - 0.03*sy
-    set size sx*0.84, sy*1.1
+    set size sx*0.78, sy*1.1
     set lmargin 0; set rmargin 0; set tmargin 0; set bmargin 0
     set view 56, 38, 1.05, 1.0
     set xyplane 0
@@ -37,19 +40,20 @@ do for [i=0:n_fields-1] {
     set ytics auto offset 0.5, -0.2 nomirror
     unset ztics   # the colour bar beside the panel gives the values
     unset mxtics; unset mytics
-    set xlabel it('x').x_unit offset 0, -0.3
-    set ylabel it('t').t_unit offset 0, 0
+    set xlabel it('x').nondim(x_unit) offset 0, -0.3
+    set ylabel it('t').nondim(t_unit) offset 0, 0
     set zlabel ''
     set format z '%g'
     tmin = value('t_min_'.fld)
-    set title field_label(word(symbols, i + 1)).(exists('unit_'.fld) ? value('unit_'.fld) : '').(tmin > 0 ? sprintf('   ({/:Italic t} ≥ %g: {/:Italic t} = 0 off the scale)', tmin) : '') offset 0, -1
+    # tmin > 0: the field at t = 0 is off the colour scale, drawn from t = tmin
+    set title field_label(word(symbols, i + 1)).(exists('unit_'.fld) ? nondim(value('unit_'.fld)) : '').(tmin > 0 ? sprintf('   (from {/:Italic t} = %g)', tmin) : '') offset 0, -1
     set xrange [0:x_max]
     set yrange [0:t_max]
     lo = value('cb_lo_'.fld); hi = value('cb_hi_'.fld)
     set zrange [value('z_lo_'.fld):value('z_hi_'.fld)]
     set cbrange [lo:hi]
     if (value('signed_'.fld)) { eval div_palette } else { eval seq_palette }
-    set colorbox vertical user origin screen (pc + 0.85)*sx, screen top - (pr + 1)*sy + 0.22*sy size screen 0.012, screen 0.55*sy
+    set colorbox vertical user origin screen (pc + 0.78)*sx, screen top - (pr + 1)*sy + 0.22*sy size screen 0.012, screen 0.55*sy
     set cbtics auto
     set format cb '%g'
     set pm3d depthorder border lw 0.2 lc rgb '#90303030'

@@ -213,21 +213,26 @@ check "rerun: 6 already complete, 0 to run, exit 0" \
 # point run without interruption, bit for bit. The scan is stopped once the point's .part has
 # grown after its first flush: the run is then in its time loop, where a signal stops it
 # cleanly (before it, the signal would come before rodcontact's handlers).
+# wait_in_time_loop FILE: until the run's FILE (.h5.part) has grown after its first flush
+# (the run is then in its time loop, where a signal stops it cleanly), at most 15 s
+wait_in_time_loop() {
+    local size size0="" i
+    for ((i = 0; i < 1500; i++)); do
+        size=$(stat -c %s "$1" 2> /dev/null)
+        if [[ -n $size ]] && ((size > 1000)); then
+            [[ -z $size0 ]] && size0=$size
+            ((size > size0)) && return 0
+        fi
+        sleep 0.01
+    done
+}
 rs=resume
 rm -rf "$rs"
 rs_args=("$src/input/exp2.nml" --set time.t_end=3 --set output.snapshot_every=500 --set output.series_every=10
          --set model.varpi=0.1)
 bash "$scan" "${rs_args[@]}" --out "$rs" -j 1 2> scan_resume1.log &
 pid=$!
-size0=""
-for ((i = 0; i < 1500; i++)); do
-    size=$(stat -c %s "$rs/point_0000.h5.part" 2> /dev/null)
-    if [[ -n $size ]] && ((size > 1000)); then
-        [[ -z $size0 ]] && size0=$size
-        ((size > size0)) && break
-    fi
-    sleep 0.01
-done
+wait_in_time_loop "$rs/point_0000.h5.part"
 # a second scan into the same directory while this one runs: refused at once, naming it
 bash "$scan" "${rs_args[@]}" --out "$rs" -j 1 2> scan_locked.log
 status=$?
@@ -271,15 +276,7 @@ kd=killed_$$
 rm -rf "$kd"
 bash "$scan" "${rs_args[@]}" --out "$kd" -j 1 2> scan_killed.log &
 pid=$!
-size0=""
-for ((i = 0; i < 1500; i++)); do
-    size=$(stat -c %s "$kd/point_0000.h5.part" 2> /dev/null)
-    if [[ -n $size ]] && ((size > 1000)); then
-        [[ -z $size0 ]] && size0=$size
-        ((size > size0)) && break
-    fi
-    sleep 0.01
-done
+wait_in_time_loop "$kd/point_0000.h5.part"
 run_pid=$(pgrep -f -- "[k]illed_$$/point_0000 --set output.quiet")
 kill -TERM $run_pid
 wait "$pid"

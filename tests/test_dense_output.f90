@@ -106,7 +106,8 @@ contains
             e_mid = u(S) - mms%exact(U_FIELD, t_mid, 1.0_dp, 0)
             between = max(between, abs(e_mid))
             if (n > p) own = max(own, abs(e_mid - sum(lagrange_weights(t_level(1:p + 1), t_mid) * e_level(1:p + 1))))
-            call driver%dense_series(state, stepper%law, monitor%current_energy(), t_mid, u_end, energy, parts)
+            call driver%dense_series(state, stepper%law, monitor%current_energy(), monitor%parts(state), t_mid, &
+                                      u_end, energy, parts)
             series_gap = max(series_gap, abs(u_end - u(S)), abs(sum(parts) - energy) / max(abs(energy), 1.0_dp))
         end do
     end subroutine run

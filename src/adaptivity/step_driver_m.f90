@@ -19,7 +19,7 @@ module step_driver_m
     use state_m, only: state_t, advance_time, land_on, copy_state
     use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
-    use energy_m, only: energy_monitor_t, discrete_energy, energy_parts
+    use energy_m, only: energy_monitor_t, energy_and_parts
     use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
@@ -353,14 +353,14 @@ contains
 
     !> u(1,t), E(t) and E's parts (energy_m's energy_parts) at time t of the last accepted
     !> step for a series entry: the scheme's interpolant (dense_weights) of the levels' u(1),
-    !> E^k (Corollary 6.2; energy_now: E^n) and parts. The energies and parts of the levels
-    !> are computed once per step, from the state and the levels the estimator holds (so a
-    !> restart gives the same bits).
-    subroutine driver_dense_series(self, state, law, energy_now, t, u_end, energy, parts)
+    !> E^k (Corollary 6.2) and parts (energy_now, parts_now: those of the state, from the
+    !> energy monitor). The energies and parts of the earlier levels are computed once per
+    !> step, from the levels the estimator holds (so a restart gives the same bits).
+    subroutine driver_dense_series(self, state, law, energy_now, parts_now, t, u_end, energy, parts)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: energy_now, t
+        real(dp), intent(in) :: energy_now, parts_now(N_ENERGY_PARTS), t
         real(dp), intent(out) :: u_end, energy, parts(N_ENERGY_PARTS)
         real(dp) :: weight(MAX_LEVELS)
         integer :: j, n, slot
@@ -368,23 +368,22 @@ contains
         call dense_weights(self, state, t, n, weight)
         if (self%energies_step /= state%step) then
             self%energies_step = state%step
-            self%level_parts(:, 1) = energy_parts(self%model, law, state%u, state%w, state%mesh)
             if (n < 2) then
-                self%level_energy(2) = discrete_energy(self%model, law, self%saved%u, self%saved%w, self%saved%mesh)
-                self%level_parts(:, 2) = energy_parts(self%model, law, self%saved%u, self%saved%w, self%saved%mesh)
+                call energy_and_parts(self%model, law, self%saved%u, self%saved%w, self%saved%mesh, &
+                                      self%level_energy(2), self%level_parts(:, 2))
             else
                 do j = 2, n
                     slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
                     associate (u => self%estimator%levels(:, 0, slot), w => self%estimator%levels(:, 1:, slot))
-                        self%level_energy(j) = discrete_energy(self%model, law, u, w, state%mesh)
-                        self%level_parts(:, j) = energy_parts(self%model, law, u, w, state%mesh)
+                        call energy_and_parts(self%model, law, u, w, state%mesh, self%level_energy(j), &
+                                              self%level_parts(:, j))
                     end associate
                 end do
             end if
         end if
         u_end = weight(1) * state%u(state%s)
         energy = weight(1) * energy_now
-        parts = weight(1) * self%level_parts(:, 1)
+        parts = weight(1) * parts_now
         do j = 2, max(n, 2)
             if (n < 2) then
                 u_end = u_end + weight(2) * self%saved%u(self%saved%s)

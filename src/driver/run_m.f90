@@ -360,8 +360,8 @@ contains
             do
                 t = real(run%n_series_next, dp) * cfg%output%series_dt
                 if (t > run%state%t + slack .or. t <= t_before) exit
-                call run%driver%dense_series(run%state, run%stepper%law, run%monitor%current_energy(), t, &
-                                             u_end, energy, parts)
+                call run%driver%dense_series(run%state, run%stepper%law, run%monitor%current_energy(), &
+                                             run%monitor%parts(run%state), t, u_end, energy, parts)
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, &
                                   dense=[t, u_end, energy, parts])
                 run%n_series_next = run%n_series_next + 1

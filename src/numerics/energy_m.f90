@@ -14,7 +14,7 @@ module energy_m
     use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
     implicit none
     private
-    public :: discrete_energy, linear_energy, bdf2_energy, energy_parts, energy_monitor_t
+    public :: discrete_energy, linear_energy, bdf2_energy, energy_parts, energy_and_parts, energy_monitor_t
     public :: PART_KINETIC, PART_STRAIN, PART_THERMAL, PART_CHEMICAL, PART_COUPLING, PART_HEAT_FLUX, &
               PART_MASS_FLUX, PART_CONTACT
 
@@ -69,7 +69,9 @@ contains
         type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
 
-        energy = linear_energy(model, u, w, mesh) + law%energy(u(ubound(u, 1)))
+        real(dp) :: parts(N_ENERGY_PARTS)
+
+        call energy_and_parts(model, law, u, w, mesh, energy, parts)
     end function discrete_energy
 
     !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
@@ -98,11 +100,26 @@ contains
         real(dp), intent(in) :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: parts(N_ENERGY_PARTS)
-        real(dp) :: energy_lin
+        real(dp) :: energy
 
-        call linear_energy_parts(model, u, w, mesh, energy_lin, parts)
-        parts(PART_CONTACT) = law%energy(u(ubound(u, 1)))
+        call energy_and_parts(model, law, u, w, mesh, energy, parts)
     end function energy_parts
+
+    !> E^n (discrete_energy) and its terms (energy_parts) of the level (u, w) on mesh, from
+    !> one pass over the elements.
+    pure subroutine energy_and_parts(model, law, u, w, mesh, energy, parts)
+        type(model_t), intent(in) :: model
+        type(contact_law_t), intent(in) :: law
+        real(dp), intent(in) :: u(0:)
+        real(dp), intent(in) :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(out) :: energy
+        real(dp), intent(out) :: parts(N_ENERGY_PARTS)
+
+        call linear_energy_parts(model, u, w, mesh, energy, parts)
+        parts(PART_CONTACT) = law%energy(u(ubound(u, 1)))
+        energy = energy + parts(PART_CONTACT)
+    end subroutine energy_and_parts
 
     !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) in one pass over the
     !> elements, which runs every time step: on element e the mass product of P1 functions

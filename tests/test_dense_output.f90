@@ -17,7 +17,7 @@ program test_dense_output
     use energy_m, only: energy_monitor_t
     use step_driver_m, only: step_driver_t
     use mms_m, only: mms_t, mms_linear_in_x, U_FIELD
-    use convergence_m, only: mms_initial_state
+    use convergence_m, only: mms_config, mms_initial_state
     use fields_m, only: N_FIELDS, N_ENERGY_PARTS
     use testing_m, only: check_true, test_summary
     use dense_output_m, only: lagrange_weights
@@ -77,13 +77,7 @@ contains
         character(len=200) :: failure
         integer :: n
 
-        cfg%model = mms%model
-        cfg%contact%eps = mms%eps
-        cfg%contact%g = mms%g
-        cfg%mesh%n_elements = S
-        cfg%time%dt = dt
-        cfg%time%t_end = 1.0_dp
-        cfg%time%scheme = scheme
+        cfg = mms_config(mms, S, dt, 1.0_dp, scheme)
         cfg%output%series_dt = dt      ! dense output: fixed steps keep their levels (step_driver_m)
         call mms_initial_state(mms, S, state)
         call stepper%init(cfg, result, mms)

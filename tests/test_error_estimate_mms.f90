@@ -43,10 +43,9 @@ contains
         type(stepper_t) :: stepper, fine_stepper
         type(step_result_t) :: result
         type(error_companions_t) :: companions
-        real(dp) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS), ratio
+        real(dp) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
         real(dp) :: truth(N_OUTPUT_FIELDS), truth_time(N_OUTPUT_FIELDS)
         integer :: n, f, j
-        character(len=160) :: label
 
         cfg%model = mms%model
         cfg%mesh%n_elements = S
@@ -74,21 +73,28 @@ contains
             truth = true_errors(mms, state)
             truth_time = time_errors(state, fine)
             do f = 1, N_OUTPUT_FIELDS
-                ratio = values(f, PART_TOTAL) / truth(f)
-                write (label, '(a,a,a,a,f5.3,a,es9.2,a,es9.2,a,f6.2)') scheme, ': ', &
-                    trim(FIELDS(OUTPUT_ORDER(f))%name), ' at t = ', state%t, ': estimate ', values(f, PART_TOTAL), &
-                    ', true ', truth(f), ', ratio ', ratio
-                write (*, '(a)') trim(label)
-                call check_true(trim(label)//' within [1/3, 3]', ratio >= 1.0_dp / RATIO_MAX .and. ratio <= RATIO_MAX)
-                ratio = values(f, PART_TIME) / truth_time(f)
-                write (label, '(a,a,a,a,f5.3,a,es9.2,a,es9.2,a,f6.2)') scheme, ': ', &
-                    trim(FIELDS(OUTPUT_ORDER(f))%name), ' at t = ', state%t, ': time part ', values(f, PART_TIME), &
-                    ', true ', truth_time(f), ', ratio ', ratio
-                write (*, '(a)') trim(label)
-                call check_true(trim(label)//' within [1/3, 3]', ratio >= 1.0_dp / RATIO_MAX .and. ratio <= RATIO_MAX)
+                call check_ratio(scheme, f, state%t, ': estimate ', values(f, PART_TOTAL), truth(f))
+                call check_ratio(scheme, f, state%t, ': time part ', values(f, PART_TIME), truth_time(f))
             end do
         end do
+
     end subroutine check_scheme
+
+    !> An estimate of field f at time t (what: ': estimate ' or ': time part ') within
+    !> [1/RATIO_MAX, RATIO_MAX] of the truth.
+    subroutine check_ratio(scheme, f, t, what, estimate, truth)
+        character(len=*), intent(in) :: scheme, what
+        integer, intent(in) :: f
+        real(dp), intent(in) :: t, estimate, truth
+        real(dp) :: ratio
+        character(len=160) :: label
+
+        ratio = estimate / truth
+        write (label, '(a,a,a,a,f5.3,a,es9.2,a,es9.2,a,f6.2)') scheme, ': ', trim(FIELDS(OUTPUT_ORDER(f))%name), &
+            ' at t = ', t, what, estimate, ', true ', truth, ', ratio ', ratio
+        write (*, '(a)') trim(label)
+        call check_true(trim(label)//' within [1/3, 3]', ratio >= 1.0_dp / RATIO_MAX .and. ratio <= RATIO_MAX)
+    end subroutine check_ratio
 
     !> The relative L2 difference of each field's nodal values (OUTPUT_ORDER) from fine's.
     function time_errors(state, fine) result(e)

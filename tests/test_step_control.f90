@@ -30,7 +30,7 @@ program test_step_control
     use fields_m, only: N_FIELDS
     use energy_m, only: linear_energy
     use mms_m, only: mms_t, mms_no_contact
-    use convergence_m, only: mms_initial_state
+    use convergence_m, only: mms_config, mms_initial_state
     use testing_m, only: check => check_true, test_summary
     implicit none
 
@@ -233,7 +233,7 @@ contains
         end do
         call fine_solution(T_STEP_END, dt / FINE, fine_end)
         ! the step of the scheme from the last past level (and the one before, BDF2)
-        cfg = mms_config(scheme, dt)
+        cfg = mms_config(mms, S, dt, 1.0_dp, scheme)
         call stepper%init(cfg, result, mms)
         coarse = levels(3)
         coarse%step = 10                    ! past the midpoint rule's damped start
@@ -268,7 +268,7 @@ contains
 
         n_steps = max(1, ceiling(t_want / delta))
         dt = t_want / n_steps
-        cfg = mms_config('midpoint', dt)
+        cfg = mms_config(mms, S, dt, 1.0_dp, 'midpoint')
         call mms_initial_state(mms, S, state)
         call stepper%init(cfg, result, mms)
         do n = 1, n_steps
@@ -276,19 +276,5 @@ contains
             if (.not. result%ok) error stop 'test_step_control: fine step failed'
         end do
     end subroutine fine_solution
-
-    function mms_config(scheme, dt) result(cfg)
-        character(len=*), intent(in) :: scheme
-        real(dp), intent(in) :: dt
-        type(config_t) :: cfg
-
-        cfg%model = mms%model
-        cfg%contact%eps = mms%eps
-        cfg%contact%g = mms%g
-        cfg%mesh%n_elements = S
-        cfg%time%dt = dt
-        cfg%time%t_end = 1.0_dp
-        cfg%time%scheme = scheme
-    end function mms_config
 
 end program test_step_control

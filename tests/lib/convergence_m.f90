@@ -10,7 +10,7 @@ module convergence_m
     use mms_m, only: mms_t, U_FIELD, N_EXACT
     implicit none
     private
-    public :: mms_errors, mms_initial_state, level_errors, observed_orders, ERROR_NAMES
+    public :: mms_errors, mms_config, mms_initial_state, level_errors, observed_orders, ERROR_NAMES
 
     character(len=*), parameter :: ERROR_NAMES(N_EXACT) = [character(len=8) :: &
         'L2 q', 'L2 theta', 'L2 v', 'L2 P', 'L2 eta', 'H1 u']
@@ -34,12 +34,7 @@ contains
         type(step_result_t) :: result
         integer :: n
 
-        cfg%model = mms%model
-        cfg%contact%eps = mms%eps
-        cfg%contact%g = mms%g
-        cfg%mesh%n_elements = s
-        cfg%time%dt = dt
-        cfg%time%t_end = t_end
+        cfg = mms_config(mms, s, dt, t_end)
         cfg%solver%method = method
         cfg%solver%tol = 1.0e-12_dp
         cfg%solver%max_iter = 200
@@ -58,6 +53,24 @@ contains
             errors = max(errors, level_errors(mms, state))
         end do
     end subroutine mms_errors
+
+    !> The input of a run of `mms` (its model and contact law) on s elements with step dt up
+    !> to t_end; scheme: the time scheme (absent: the default).
+    function mms_config(mms, s, dt, t_end, scheme) result(cfg)
+        type(mms_t), intent(in) :: mms
+        integer, intent(in) :: s
+        real(dp), intent(in) :: dt, t_end
+        character(len=*), intent(in), optional :: scheme
+        type(config_t) :: cfg
+
+        cfg%model = mms%model
+        cfg%contact%eps = mms%eps
+        cfg%contact%g = mms%g
+        cfg%mesh%n_elements = s
+        cfg%time%dt = dt
+        cfg%time%t_end = t_end
+        if (present(scheme)) cfg%time%scheme = scheme
+    end function mms_config
 
     !> The state at t = 0 on s elements: nodal values of the exact solution, with the
     !> boundary values of the spaces imposed; nodes(0:s): a graded mesh (absent: uniform).

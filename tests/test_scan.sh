@@ -30,7 +30,7 @@ mkdir -p "$scratch" && cd "$scratch" || exit 1
 scan="$src/scripts/scan.sh"
 export RODCONTACT=$prog
 
-. "$src/tests/lib/checks.sh"   # check, equals, n_checks, n_failed
+. "$src/tests/lib/checks.sh"   # check, equals, n_checks, n_failed, wait_in_time_loop
 
 # 3 x 2 points of experiment 2 at its own mesh and time step, t_end = 0.6 (contact at
 # t ~ 0.3 for amplitude 20): ~0.2-0.5 s per point.
@@ -213,19 +213,6 @@ check "rerun: 6 already complete, 0 to run, exit 0" \
 # point run without interruption, bit for bit. The scan is stopped once the point's .part has
 # grown after its first flush: the run is then in its time loop, where a signal stops it
 # cleanly (before it, the signal would come before rodcontact's handlers).
-# wait_in_time_loop FILE: until the run's FILE (.h5.part) has grown after its first flush
-# (the run is then in its time loop, where a signal stops it cleanly), at most 15 s
-wait_in_time_loop() {
-    local size size0="" i
-    for ((i = 0; i < 1500; i++)); do
-        size=$(stat -c %s "$1" 2> /dev/null)
-        if [[ -n $size ]] && ((size > 1000)); then
-            [[ -z $size0 ]] && size0=$size
-            ((size > size0)) && return 0
-        fi
-        sleep 0.01
-    done
-}
 rs=resume
 rm -rf "$rs"
 rs_args=("$src/input/exp2.nml" --set time.t_end=3 --set output.snapshot_every=500 --set output.series_every=10

@@ -66,6 +66,10 @@ contains
         character(len=:), allocatable :: interrupted
 
         call system_clock(run%clock_start, run%clock_rate)
+        ! before anything is written: a stop signal from here on (also one that arrived while
+        ! the process was starting, pending and blocked) stops the run with a checkpoint,
+        ! at the latest before its first step
+        call install_stop_handlers()
         call set_up(run, cfg)
         call open_output(run, cfg)
         failure = ''
@@ -142,7 +146,8 @@ contains
 
     !> The time loop: accepted steps (the step driver) with their output, remeshes and
     !> checkpoints, until the end, a numerical failure or a stop signal (interrupted: its
-    !> name; the run stops after the step in progress).
+    !> name; the run stops after the step in progress, or before the first step when the
+    !> signal came during the set-up).
     subroutine time_loop(run, cfg, failure, interrupted)
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
@@ -152,8 +157,7 @@ contains
         logical :: at_snapshot, last, remeshed, dense_at_end
         real(dp) :: t_before
 
-        interrupted = ''
-        call install_stop_handlers()
+        interrupted = stop_signal_name()
         call progress%start(merge(PROGRESS_UNITS, run%n_steps, cfg%time%adaptive), cfg%output%quiet)
         do
             if (failure /= '' .or. interrupted /= '') exit

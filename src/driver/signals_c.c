@@ -13,11 +13,15 @@ static void record_signal(int sig)
     received = sig;
 }
 
-/* Install the handler for SIGTERM, SIGINT and SIGUSR1; 0 on success, -1 on failure. */
+/* Install the handler for SIGTERM, SIGINT and SIGUSR1 and unblock them; 0 on success, -1
+ * on failure. A process may inherit them blocked (the signal mask survives exec): then a
+ * scheduler's signal would stay pending and the run never stop; one that is already
+ * pending is delivered here, once the handler records it. */
 int rc_install_stop_handlers(void)
 {
     static const int signals[] = {SIGTERM, SIGINT, SIGUSR1};
     struct sigaction action;
+    sigset_t stop_set;
     size_t k;
 
     memset(&action, 0, sizeof action);
@@ -27,7 +31,10 @@ int rc_install_stop_handlers(void)
     for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
         if (sigaction(signals[k], &action, NULL) != 0)
             return -1;
-    return 0;
+    sigemptyset(&stop_set);
+    for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
+        sigaddset(&stop_set, signals[k]);
+    return sigprocmask(SIG_UNBLOCK, &stop_set, NULL) == 0 ? 0 : -1;
 }
 
 /* The number of the signal received since the handlers were installed, 0 if none. */

@@ -36,7 +36,7 @@ contains
     !> From now on SIGTERM, SIGINT and SIGUSR1 only set the flag that stop_signal_name reads.
     subroutine install_stop_handlers()
         if (c_install() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot install the handlers of SIGTERM, ' // &
-                                         'SIGINT and SIGUSR1 (sigaction failed)')
+                                         'SIGINT and SIGUSR1 (sigaction or sigprocmask failed)')
     end subroutine install_stop_handlers
 
     !> A write past the file size limit (ulimit -f) fails with EFBIG instead of killing the

@@ -620,15 +620,20 @@ def main():
 
 def kept_impact_section(doc):
     """The section that bench/impact.sh writes between its markers, kept from the page as it is
-    (that script, not this one, rewrites it)."""
+    (that script, not this one, rewrites it), with the part after it up to the markers of
+    bench/impact_pairs.sh's table where that follows."""
     if not os.path.exists(doc):
         return []
     text = open(doc).read()
     a, b = text.find("<!-- impact-bench:begin -->"), text.find("<!-- impact-bench:end -->")
     if a < 0 or b < 0:
         return []
+    end = b + len("<!-- impact-bench:end -->")
+    pairs_end = text.find("<!-- impact-pairs:end -->", b)
+    if pairs_end >= 0:
+        end = pairs_end + len("<!-- impact-pairs:end -->")
     head = text.rfind("\n## ", 0, a)
-    return [""] + text[head + 1:b + len("<!-- impact-bench:end -->")].split("\n")
+    return [""] + text[head + 1:end].split("\n")
 
 
 if __name__ == "__main__":

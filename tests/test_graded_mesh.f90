@@ -6,15 +6,17 @@
 !>       in the norms of Corollary 6.4: order 2 in L2 and 1 in H1 of u in h_max (within 0.15).
 !>   transfer: random levels moved between random graded meshes (transfer_m): the energy
 !>       of Corollary 6.2 (with d /= 0, the coupled theta-P term) never rises, is kept when
-!>       the new mesh only adds nodes, u keeps its values at common nodes and at x = 1.
+!>       the new mesh only adds nodes, u keeps its values at common nodes and at x = 1; the
+!>       same with the redistributed velocity mass (&contact mass = 'redistributed': the
+!>       kinetic energy v^T M_v v, x = 1 massless), where v(1) is kept too.
 !>   buffer: a kink of u at x = 1/2 on 20 coarse elements (one level, buffer 3) makes its two
 !>       elements refine and the 3 on either side with them: fine on exactly [0.3, 0.7].
 program test_graded_mesh
     use kinds_m, only: dp
     use reals_m, only: equal
     use iso_fortran_env, only: int64
-    use config_m, only: model_t
-    use fields_m, only: N_FIELDS, is_dirichlet
+    use config_m, only: model_t, with_contact_mass
+    use fields_m, only: N_FIELDS, F_V, is_dirichlet
     use energy_m, only: linear_energy
     use transfer_m, only: transfer_level
     use adaptive_mesh_m, only: adaptive_mesh_t, nodes_of_keys
@@ -30,7 +32,8 @@ program test_graded_mesh
     unit_model = model_t(rho=1.0_dp, alpha=1.0_dp, varpi=0.1_dp, gamma1=0.5_dp, gamma2=0.5_dp, c=1.0_dp, &
                          d=0.2_dp, r=1.0_dp, hbar=1.0_dp, tau0=0.5_dp, tau=0.5_dp)
     call graded_mms_study(mms_linear_in_t(unit_model, 0.01_dp, 0.1_dp, .false.))
-    call transfer_study()
+    call transfer_study(unit_model, '')
+    call transfer_study(with_contact_mass(unit_model, 'redistributed'), ' (redistributed mass)')
     call buffer_study()
     call test_summary('test_graded_mesh')
 
@@ -146,19 +149,24 @@ contains
         end do
     end function bisect_all
 
-    subroutine transfer_study()
+    !> model: whose energy (and velocity mass) the transfer keeps; tag: for the check names.
+    subroutine transfer_study(model, tag)
+        type(model_t), intent(in) :: model
+        character(len=*), intent(in) :: tag
         integer, parameter :: N_TRIALS = 200
         integer(int64), allocatable :: k_old(:), k_new(:), k_fine(:)
         integer(int64) :: n_fine
         real(dp), allocatable :: old(:, :), new(:, :), back(:, :)
         real(dp) :: e_old, e_new, worst_rise, worst_kept
         integer :: trial, f, i, n_lowered
-        logical :: u_kept
+        logical :: u_kept, v_kept
 
         n_fine = int(N_COARSE, int64) * 2_int64**(MAX_LEVEL + 1)
+        allocate (k_old(1), k_new(1), k_fine(1))   ! (reallocated on assignment below)
         worst_rise = -huge(1.0_dp)
         worst_kept = 0.0_dp
         u_kept = .true.
+        v_kept = .true.
         n_lowered = 0
         do trial = 1, N_TRIALS
             k_old = random_graded_keys(1000 + trial)
@@ -179,35 +187,48 @@ contains
                 end do
             end do
             old(0, 0) = 0.0_dp
-            call transfer_level(k_old, k_new, n_fine, old, new)
-            e_old = energy(k_old, old)
-            e_new = energy(k_new, new)
+            call transfer_level(k_old, k_new, n_fine, old, new, model)
+            e_old = energy(model, k_old, old)
+            e_new = energy(model, k_new, new)
             worst_rise = max(worst_rise, (e_new - e_old) / e_old)
             if ((e_new - e_old) / e_old < -1.0e-6_dp) n_lowered = n_lowered + 1
             u_kept = u_kept .and. equal(new(ubound(new, 1), 0), old(ubound(old, 1), 0))
+            v_kept = v_kept .and. equal(new(ubound(new, 1), F_V), old(ubound(old, 1), F_V))
             ! refinement only: the union of both meshes holds the old function exactly
             k_fine = union(k_old, k_new)
             allocate (back(0:size(k_fine) - 1, 0:N_FIELDS))
-            call transfer_level(k_old, k_fine, n_fine, old, back)
-            worst_kept = max(worst_kept, abs(energy(k_fine, back) - e_old) / e_old)
+            call transfer_level(k_old, k_fine, n_fine, old, back, model)
+            if (model%mass_end_moved) then
+                ! the lumped part of M_v falls where elements split, and x = 1's v carries none
+                worst_kept = max(worst_kept, (energy(model, k_fine, back) - e_old) / e_old)
+            else
+                worst_kept = max(worst_kept, abs(energy(model, k_fine, back) - e_old) / e_old)
+            end if
             deallocate (old, new, back)
         end do
-        call check_true('transfer: the energy never rises across a remesh (200 random pairs of meshes)', &
+        call check_true('transfer: the energy never rises across a remesh (200 random pairs of meshes)' // tag, &
                         worst_rise <= 1.0e-13_dp, real_detail('largest relative rise', worst_rise))
-        call check_true('transfer: the trials coarsen (some lower the energy by > 1e-6)', n_lowered > 0)
-        call check_true('transfer: refinement keeps the energy', worst_kept <= 1.0e-13_dp, &
-                        real_detail('largest relative change', worst_kept))
-        call check_true('transfer: u(1) (the contact term) is kept', u_kept)
+        call check_true('transfer: the trials coarsen (some lower the energy by > 1e-6)' // tag, n_lowered > 0)
+        if (model%mass_end_moved) then
+            call check_true('transfer: refinement does not raise the energy' // tag, worst_kept <= 1.0e-13_dp, &
+                            real_detail('largest relative rise', worst_kept))
+        else
+            call check_true('transfer: refinement keeps the energy' // tag, worst_kept <= 1.0e-13_dp, &
+                            real_detail('largest relative change', worst_kept))
+        end if
+        call check_true('transfer: u(1) (the contact term) is kept' // tag, u_kept)
+        if (model%mass_end_moved) call check_true('transfer: v(1) (massless) is kept' // tag, v_kept)
     end subroutine transfer_study
 
-    !> E_lin of a packed level on keys k.
-    real(dp) function energy(k, level)
+    !> E_lin of a packed level on keys k with the model's coefficients and velocity mass.
+    real(dp) function energy(model, k, level)
+        type(model_t), intent(in) :: model
         integer(int64), intent(in) :: k(0:)
         real(dp), intent(in) :: level(0:, 0:)
         real(dp) :: x(0:size(k) - 1)
 
         x = nodes_of_keys(k, int(N_COARSE, int64) * 2_int64**(MAX_LEVEL + 1))
-        energy = linear_energy(unit_model, level(:, 0), level(:, 1:), graded_mesh(x))
+        energy = linear_energy(model, level(:, 0), level(:, 1:), graded_mesh(x))
     end function energy
 
     !> The sorted union of two increasing key lists.

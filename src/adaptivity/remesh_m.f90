@@ -86,7 +86,8 @@ contains
         call check_allocation(stat, message, 'the remesh')
         call estimator%resize(s)
         do j = 1, MAX_LEVELS
-            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j))
+            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j), &
+                                stepper%model)
         end do
         call stepper%remesh(state)
         call monitor%remeshed(state, rise)
@@ -101,7 +102,7 @@ contains
 
             old(:, 0) = u
             old(:, 1:) = w
-            call transfer_level(k_old, mesh%k, mesh%n_fine, old, new)
+            call transfer_level(k_old, mesh%k, mesh%n_fine, old, new, stepper%model)
             deallocate (u, w)
             allocate (u(0:s), w(0:s, N_FIELDS), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the remeshed state')

@@ -11,14 +11,23 @@
 !>       c theta^2 + 2 d P theta + r P^2.
 !>   Where the new mesh only adds nodes (refinement), the old function lies in the new
 !>       space and both are exact: the values are interpolated, and the energy is unchanged.
+!>   v with the redistributed mass (&contact mass = 'redistributed'; velocity_projection):
+!>       the kinetic energy is rho v^T M_v v with fe_m's inertia_element, a blend of the
+!>       consistent and the lumped mass and the contact node x = 1 massless, which is no L2
+!>       norm of the function v: the consistent projection can raise it at a remesh (by the
+!>       massless node's velocity entering the new last elements, and by the lumped part,
+!>       h_e (v_a - v_b)^2 / 6 per element, which merging elements can raise). So v is moved
+!>       in M_v's own terms (velocity_projection), and x = 1 keeps its v (no energy), as it
+!>       keeps u.
 !>
 !> Both meshes are given by the integer keys of adaptive_mesh_m (node i at k_i / n_fine).
 !> A level is packed as (0:s, 0:N_FIELDS): column 0 u, columns F_* the fields.
 module transfer_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
-    use fields_m, only: N_FIELDS, is_dirichlet
-    use fe_m, only: evaluate_p1
+    use fields_m, only: N_FIELDS, F_V, is_dirichlet
+    use fe_m, only: evaluate_p1, apply_mass_graded, add_inertia_difference, inertia_element
+    use config_m, only: model_t
     use adaptive_mesh_m, only: nodes_of_keys
     implicit none
     private
@@ -26,21 +35,30 @@ module transfer_m
 
 contains
 
-    !> level_new = the level level_old (on keys k_old) moved to keys k_new (module header).
-    subroutine transfer_level(k_old, k_new, n_fine, level_old, level_new)
+    !> level_new = the level level_old (on keys k_old) moved to keys k_new (module header);
+    !> model: the run's model, whose velocity mass (mass_lumped, mass_end_moved) v is moved in.
+    subroutine transfer_level(k_old, k_new, n_fine, level_old, level_new, model)
         integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
         real(dp), intent(in) :: level_old(0:, 0:)
         real(dp), intent(out) :: level_new(0:, 0:)
+        type(model_t), intent(in), optional :: model
         real(dp) :: x_old(0:ubound(k_old, 1)), x_new(0:ubound(k_new, 1))
-        integer :: f
-        logical :: refinement_only
+        integer :: f, s_old, s_new
+        logical :: refinement_only, massless_end
 
         x_old = nodes_of_keys(k_old, n_fine)
         x_new = nodes_of_keys(k_new, n_fine)
+        s_old = ubound(k_old, 1)
+        s_new = ubound(k_new, 1)
         refinement_only = all_found(k_old, k_new)
+        massless_end = .false.
+        if (present(model)) massless_end = model%mass_end_moved .and. min(s_old, s_new) > 1
         level_new(:, 0) = evaluate_p1(x_old, level_old(:, 0), x_new)
         do f = 1, N_FIELDS
-            if (refinement_only) then
+            if (massless_end .and. f == F_V) then
+                call velocity_projection(k_old, k_new, n_fine, model%mass_lumped, level_old(:, f), level_new(:, f))
+                level_new(s_new, f) = level_old(s_old, f)
+            else if (refinement_only) then
                 level_new(:, f) = evaluate_p1(x_old, level_old(:, f), x_new)
             else
                 call l2_projection(k_old, k_new, n_fine, level_old(:, f), f, level_new(:, f))
@@ -119,6 +137,99 @@ contains
             g(s) = 0.0_dp
         end if
     end subroutine l2_projection
+
+    !> g = the velocity f (keys k_old) moved to keys k_new so that the kinetic energy
+    !> v^T M_v v of the redistributed mass (fe_m's inertia_element: the blend with the lumped
+    !> fraction `lumped`, x = 1 massless) cannot rise. The last element's energy is h v_{s-1}^2,
+    !> that of the function constant v_{s-1} on it, so f is taken so (f_s = f_{s-1}) and g is
+    !> sought among the functions constant on their last element (g_s = g_{s-1}; the caller
+    !> puts back x = 1's own v). On the union U of both meshes, M_v^U is no larger than M_v of
+    !> either mesh for their functions (the consistent part is the same L2 integral; the lumped
+    !> part h_e (v_a - v_b)^2 / 6 of an element split into a and 1 - a of it scales by
+    !> a^3 + (1-a)^3 < 1; a function constant on the last element keeps h v^2 there). g is the
+    !> projection M_v^new g = I_new^T M_v^U I_old f (I: the interpolation onto U), so
+    !>   g^T M_v^new g <= g^T M_v^U g ... = |P f|_U^2 <= f^T M_v^U f <= f^T M_v^old f,
+    !> P the M_v^U-orthogonal projection onto the new space. Where the new mesh only adds
+    !> nodes, U is the new mesh and g = I_new f (interpolation), as for the other fields.
+    subroutine velocity_projection(k_old, k_new, n_fine, lumped, f, g)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        real(dp), intent(in) :: lumped
+        real(dp), intent(in) :: f(0:)
+        real(dp), intent(out) :: g(0:)
+        integer(int64) :: k_union(0:ubound(k_old, 1) + ubound(k_new, 1))
+        real(dp) :: f_tied(0:ubound(k_old, 1)), b(0:ubound(k_new, 1)), diag(0:ubound(k_new, 1)), off(ubound(k_new, 1))
+        real(dp) :: m(2, 2), w
+        integer :: s, n, j, e
+
+        s = ubound(k_new, 1)
+        f_tied = f
+        f_tied(ubound(f, 1)) = f(ubound(f, 1) - 1)
+        call merge_keys(k_old, k_new, k_union, n)
+        block
+            real(dp) :: x_union(0:n), f_union(0:n), y(0:n)
+
+            x_union = nodes_of_keys(k_union(0:n), n_fine)
+            f_union = evaluate_p1(nodes_of_keys(k_old, n_fine), f_tied, x_union)
+            call apply_mass_graded(x_union(1:n) - x_union(0:n - 1), f_union, y)
+            call add_inertia_difference(x_union(1:n) - x_union(0:n - 1), lumped, .true., f_union, y)
+            ! b = I_new^T y: each node of U to the two nodes of its new element, by their hats
+            b = 0.0_dp
+            e = 1
+            do j = 0, n
+                do while (e < s .and. k_union(j) > k_new(e))
+                    e = e + 1
+                end do
+                w = real(k_union(j) - k_new(e - 1), dp) / real(k_new(e) - k_new(e - 1), dp)
+                b(e - 1) = b(e - 1) + (1.0_dp - w) * y(j)
+                b(e) = b(e) + w * y(j)
+            end do
+        end block
+        ! M_v on the new mesh; the unknown g_{s-1} = g_s (row and column s added to s - 1); g_0 = 0
+        diag = 0.0_dp
+        do e = 1, s
+            m = inertia_element(real(k_new(e) - k_new(e - 1), dp) / real(n_fine, dp), lumped, .true., e == s)
+            diag(e - 1) = diag(e - 1) + m(1, 1)
+            diag(e) = diag(e) + m(2, 2)
+            off(e) = m(1, 2)
+        end do
+        diag(s - 1) = diag(s - 1) + diag(s) + 2.0_dp * off(s)
+        b(s - 1) = b(s - 1) + b(s)
+        call solve_tridiagonal(diag(1:s - 1), off(2:s - 1), b(1:s - 1), g(1:s - 1))
+        g(0) = 0.0_dp
+        g(s) = g(s - 1)
+    end subroutine velocity_projection
+
+    !> k(0:n) = the increasing union of the increasing keys a and b (each key once).
+    pure subroutine merge_keys(a, b, k, n)
+        integer(int64), intent(in) :: a(0:), b(0:)
+        integer(int64), intent(out) :: k(0:)
+        integer, intent(out) :: n
+        integer :: i, j
+
+        i = 0
+        j = 0
+        n = -1
+        do while (i <= ubound(a, 1) .or. j <= ubound(b, 1))
+            n = n + 1
+            if (j > ubound(b, 1)) then
+                k(n) = a(i)
+                i = i + 1
+            else if (i > ubound(a, 1)) then
+                k(n) = b(j)
+                j = j + 1
+            else if (a(i) < b(j)) then
+                k(n) = a(i)
+                i = i + 1
+            else if (b(j) < a(i)) then
+                k(n) = b(j)
+                j = j + 1
+            else
+                k(n) = a(i)
+                i = i + 1
+                j = j + 1
+            end if
+        end do
+    end subroutine merge_keys
 
     !> x = A^{-1} b for the symmetric tridiagonal A with diagonal d(1:n), off-diagonal o(1:n-1)
     !> (positive definite: elimination without pivoting is stable).

@@ -5,7 +5,7 @@ module events_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS
+    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION
 
     integer, parameter :: EVENT_ONSET = 1, EVENT_RELEASE = -1
     !> An event this close to a step's start or end (a fraction of the step) is taken as there:
@@ -13,7 +13,7 @@ module events_m
     real(dp), parameter :: LANDING_FRACTION = 1.0e-9_dp
     !> Cuts of one step at a located event, at most (then the step that changes the contact
     !> state is accepted as it is)
-    integer, parameter :: MAX_LANDINGS = 4
+    integer, parameter :: MAX_LANDINGS = 6
 
     !> The events of a run, in order.
     type :: event_log_t

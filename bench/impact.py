@@ -2,7 +2,8 @@
 """Benchmark of the impact case against its exact solution (tests/tools/exact_impact.py): every
 time scheme x contact law x velocity mass (&contact mass) on input/impact.nml and two other
 (g, A) pairs, at S = 1000 (dt = 2.5e-4), with S = 500 and 2000 (dt = S^-1/4) on impact.nml's
-pair for the order; adaptive midpoint/Signorini runs. Writes the section between
+pair for the order; adaptive midpoint/Signorini runs on every pair, and on impact.nml the time error
+of fixed and adaptive steps against a fixed-step reference (time accuracy at equal work). Writes the section between
 <!-- impact-bench:begin --> and <!-- impact-bench:end --> of docs/performance.md, the raw
 measures (OUT/impact.json) and figures/impact_sigma.png (sigma(1,t) of each scheme against the
 exact one). Called by bench/impact.sh (which builds first).

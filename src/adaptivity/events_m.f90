@@ -5,7 +5,7 @@ module events_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION
+    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
 
     integer, parameter :: EVENT_ONSET = 1, EVENT_RELEASE = -1
     !> An event this close to a step's start or end (a fraction of the step) is taken as there:
@@ -14,6 +14,10 @@ module events_m
     !> Cuts of one step at a located event, at most (then the step that changes the contact
     !> state is accepted as it is)
     integer, parameter :: MAX_LANDINGS = 6
+    !> An event located by the straight line between the gaps only (no interpolant) is not cut to
+    !> closer than this fraction of the step to the step's start: a slow, tangential crossing (a
+    !> penalty release) is then met short step after step, each linear location falling short
+    real(dp), parameter :: LINEAR_CUT_MIN = 1.0e-2_dp
 
     !> The events of a run, in order.
     type :: event_log_t

@@ -24,7 +24,8 @@ module step_driver_m
     use energy_m, only: energy_monitor_t, energy_and_parts
     use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
-    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION
+    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, &
+                        LINEAR_CUT_MIN
     use step_control_m, only: error_estimator_t, step_controller_t, energy_norm, MAX_LEVELS
     use dense_output_m, only: lagrange_weights, interpolant_root
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
@@ -370,7 +371,9 @@ contains
     !> A tried adaptive step from t_before of size dt that changed the contact state (flipped),
     !> or a step cut to end at an event that did not (the event is later): locate the event
     !> (a Signorini release: release_time; otherwise event_time's interpolated gap) and say
-    !> whether the step is retried to end there (cut, of size dt_land; events_m's event_landing).
+    !> whether the step is retried to end there (cut, of size dt_land; events_m's event_landing;
+    !> an event located by the straight line only is not cut closer than LINEAR_CUT_MIN of the
+    !> step to its start).
     !> t_bound: the end of the last step that changed the contact state (set on a flipped
     !> step), beyond which the event is not sought.
     subroutine driver_landing(self, state, result, law, t_before, dt, gap_start, gap_end, flipped, t_bound, cut, &
@@ -401,6 +404,10 @@ contains
         end if
         if (flipped) then
             call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)
+            ! located by the straight line only (no interpolant: Euler, or right after an event): no
+            ! cut of less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
+            ! repeat step after step
+            if (.not. found) cut = cut .and. dt_land >= LINEAR_CUT_MIN * dt
         else
             ! the cut step ended short of the event: cut again at the event located with its end
             call event_landing(t_before, t_bound - t_before, t_event, self%dt_min, cut, dt_land)

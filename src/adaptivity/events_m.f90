@@ -5,9 +5,19 @@ module events_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
+    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
 
     integer, parameter :: EVENT_ONSET = 1, EVENT_RELEASE = -1
+    !> An event this close to a step's start or end (a fraction of the step) is taken as there:
+    !> the step is accepted, not cut (event_landing)
+    real(dp), parameter :: LANDING_FRACTION = 1.0e-9_dp
+    !> Cuts of one step at a located event, at most (then the step that changes the contact
+    !> state is accepted as it is)
+    integer, parameter :: MAX_LANDINGS = 6
+    !> An event located by the straight line between the gaps only (no interpolant) is not cut to
+    !> closer than this fraction of the step to the step's start: a slow, tangential crossing (a
+    !> penalty release) is then met short step after step, each linear location falling short
+    real(dp), parameter :: LINEAR_CUT_MIN = 1.0e-2_dp
 
     !> The events of a run, in order.
     type :: event_log_t
@@ -102,5 +112,21 @@ contains
         if ((gap_start < 0.0_dp .and. gap_end > 0.0_dp) .or. (gap_start > 0.0_dp .and. gap_end < 0.0_dp)) &
             t = t_start + dt * gap_start / (gap_start - gap_end)
     end function crossing_time
+
+    !> Whether a step from t_start of size dt that changed the contact state, with its event
+    !> located at t_event, is cut to end there (adaptive steps): cut (dt_land = t_event - t_start)
+    !> when the event is inside the step, more than LANDING_FRACTION dt and more than dt_min
+    !> from either end; no when it is at the step's start (the step before ended on it: the
+    !> contact state changes at the start, and the step is right as it is) or at its end.
+    pure subroutine event_landing(t_start, dt, t_event, dt_min, cut, dt_land)
+        real(dp), intent(in) :: t_start, dt, t_event, dt_min
+        logical, intent(out) :: cut
+        real(dp), intent(out) :: dt_land
+        real(dp) :: close
+
+        dt_land = t_event - t_start
+        close = max(LANDING_FRACTION * dt, dt_min)
+        cut = dt_land > close .and. dt - dt_land > close
+    end subroutine event_landing
 
 end module events_m

@@ -3,10 +3,12 @@
 !>
 !> The step is &time dt (fixed) or the size step_control_m's controller proposes
 !> (adaptive). Adaptive steps are tried: a step whose local error estimate exceeds the
-!> tolerance is rejected (the state restored) and retried smaller, and so is a step that
-!> changes the contact state while longer than the event tolerance (max(error_tol, dt_min)),
-!> retried to end just before the crossing, so that the step across a contact event is at
-!> most that long. Steps are shortened to land on the snapshot times (&output snapshot_dt)
+!> tolerance is rejected (the state restored) and retried smaller. A contact event is
+!> located and stepped over (events_m's event_landing): a step that changes the contact
+!> state in its interior is taken back and retried to end at the located event, and the
+!> step after it, which starts there, changes the contact state at its start and is
+!> accepted; the controller's proposal is kept across the event (no shrinking of dt
+!> towards the event). Steps are shortened to land on the snapshot times (&output snapshot_dt)
 !> and on the end of the run. An accepted step adds its contact event to the event log,
 !> (adaptive steps) its level to the error estimator and its estimate to the controller's
 !> error sum, and its energy to the energy monitor. Fixed steps compute no estimate.
@@ -22,7 +24,8 @@ module step_driver_m
     use energy_m, only: energy_monitor_t, energy_and_parts
     use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
-    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time
+    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, &
+                        LINEAR_CUT_MIN
     use step_control_m, only: error_estimator_t, step_controller_t, energy_norm, MAX_LEVELS
     use dense_output_m, only: lagrange_weights, interpolant_root
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
@@ -39,7 +42,6 @@ module step_driver_m
         !> levels in the estimator too (dense_level, dense_series)
         logical :: dense = .false.
         real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
-        real(dp) :: event_tol = 0.0_dp         !< longest step across a contact event (adaptive)
         real(dp) :: v_front = 0.0_dp           !< adaptive_mesh_m's front_speed
         type(model_t) :: model                 !< for the error estimate's energy norm
         type(error_estimator_t) :: estimator
@@ -63,6 +65,8 @@ module step_driver_m
         procedure :: dense_level => driver_dense_level
         procedure :: dense_series => driver_dense_series
         procedure, private :: event_time => driver_event_time
+        procedure, private :: release_time => driver_release_time
+        procedure, private :: landing => driver_landing
         procedure, private :: choose_step => driver_choose_step
         procedure, private :: undo_step => driver_undo_step
     end type step_driver_t
@@ -90,7 +94,6 @@ contains
         call self%estimator%init(stepper%scheme, state%s)
         call self%control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, stepper%scheme, &
                                cfg%time%dt, scale=energy_norm(monitor%current_energy()))
-        self%event_tol = max(cfg%time%error_tol, cfg%time%dt_min)
         call self%estimator%push(state%u, state%w, 0.0_dp)
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
     end subroutine driver_init
@@ -156,12 +159,21 @@ contains
         logical, intent(out) :: at_snapshot
         character(len=*), intent(out) :: failure
         real(dp), intent(in), optional :: t_snapshot   !< the next snapshot time (absent: none)
-        real(dp) :: dt_try, target, t_before, gap_start, gap_end, est, err, saved_dt_last
-        logical :: lands, contact_now, flipped
+        real(dp) :: dt_try, target, t_before, gap_start, gap_end, est, err, saved_dt_last, dt_land, t_event, t_bound
+        logical :: lands, contact_now, flipped, landed, cut
+        integer :: landings
 
         failure = ''
+        landings = 0
+        landed = .false.
         do
             call self%choose_step(state, t_stop, dt_try, target, lands, at_snapshot, t_snapshot)
+            if (landings > 0) then
+                ! the retry of a step that changed the contact state: end at the located event
+                dt_try = dt_land
+                lands = .false.
+                at_snapshot = .false.
+            end if
             t_before = state%t
             saved_dt_last = state%dt_last
             gap_start = state%u(state%s) - stepper%law%g
@@ -181,15 +193,20 @@ contains
                 est = self%estimator%estimate(self%model, state%u, state%w, dt_try, state%mesh)
                 err = self%control%ratio(est)
             end if
-            if (flipped .and. dt_try > self%event_tol) then
-                ! retry to end just before the crossing (or, close to it, across it within event_tol)
-                call self%undo_step(stepper, result, state)
-                call self%control%retry(retry_before_event(dt_try, gap_start, gap_end, self%event_tol))
-                cycle
+            if ((flipped .or. landings > 0) .and. landings < MAX_LANDINGS) then
+                ! locate the event; in the step's interior, or beyond a cut step's end: retry to end there
+                call self%landing(state, result, stepper%law, t_before, dt_try, gap_start, gap_end, flipped, t_bound, &
+                                  cut, dt_land)
+                if (cut) then
+                    call self%undo_step(stepper, result, state)
+                    landings = landings + 1
+                    cycle
+                end if
             end if
             if (err > 1.0_dp .and. dt_try > self%dt_min) then
                 call self%undo_step(stepper, result, state)
                 call self%control%reject(dt_try, err)
+                landings = 0
                 cycle
             end if
             if (err > 1.0_dp) then
@@ -200,11 +217,16 @@ contains
             exit
         end do
         ! the step is accepted
+        landed = landings > 0
         if (lands .and. self%adaptive) call land_on(state, target)
         if (flipped) then
-            call self%events%add(self%event_time(t_before, dt_try, gap_start, gap_end, result%trial_gap, contact_now, &
-                                                 stepper%law%g), &
-                                 merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
+            if (self%adaptive .and. self%in_contact .and. stepper%law%is_signorini()) then
+                call self%release_time(state, t_before, dt_try, .false., t_before, t_before + dt_try, t_event, cut)
+            else
+                t_event = self%event_time(t_before, dt_try, gap_start, gap_end, result%trial_gap, contact_now, &
+                                          stepper%law%g)
+            end if
+            call self%events%add(t_event, merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
             if (self%adaptive) call self%estimator%reset()
         end if
         self%in_contact = contact_now
@@ -212,7 +234,8 @@ contains
         if (self%adaptive) then
             call self%estimator%push(state%u, state%w, dt_try)
             if (err >= 0.0_dp) call self%control%add_estimate(est)
-            call self%control%accept(dt_try, err, shortened=lands)
+            ! a step cut to end at an event, and the event's step, keep the proposal made before it
+            call self%control%accept(dt_try, err, shortened=lands .or. landed .or. flipped)
         end if
         call monitor%observe(state, step_changed=.not. equal(dt_try, saved_dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
@@ -275,24 +298,122 @@ contains
     !> it within the step), for a release u^n(1) - g (gap_end). Otherwise (and if that has no
     !> root in the step) the straight line's (events_m's crossing_time). Fixed steps keep the
     !> straight line (and their results).
-    real(dp) function driver_event_time(self, t_before, dt, gap_start, gap_end, trial_gap, onset, g) result(t_event)
+    !> With t_lo, t_hi: the interpolant's root in [t_lo, t_hi] instead (found: there is one).
+    real(dp) function driver_event_time(self, t_before, dt, gap_start, gap_end, trial_gap, onset, g, t_lo, t_hi, &
+                                        found) result(t_event)
         class(step_driver_t), intent(in) :: self
         real(dp), intent(in) :: t_before, dt, gap_start, gap_end, trial_gap, g
         logical, intent(in) :: onset
-        real(dp) :: times(3), gaps(3)
+        real(dp), intent(in), optional :: t_lo, t_hi
+        logical, intent(out), optional :: found
+        real(dp) :: times(3), gaps(3), lo, hi
         integer :: slot
-        logical :: found
+        logical :: has_root
 
         t_event = crossing_time(t_before, dt, gap_start, gap_end)
+        lo = t_before
+        hi = t_before + dt
+        if (present(t_lo)) lo = t_lo
+        if (present(t_hi)) hi = t_hi
+        if (present(found)) found = .false.
         if (.not. self%adaptive .or. self%estimator%order < 2 .or. self%estimator%n_levels < 2) return
         associate (e => self%estimator)
             slot = modulo(e%head - 2, MAX_LEVELS) + 1     ! the level before t_before
             times = [t_before + dt, t_before, t_before - e%steps(e%head)]
             gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, slot) - g]
         end associate
-        call interpolant_root(times, gaps, t_before, t_before + dt, t_event, found)
-        if (.not. found) t_event = crossing_time(t_before, dt, gap_start, gap_end)
+        call interpolant_root(times, gaps, lo, hi, t_event, has_root)
+        if (.not. has_root) t_event = crossing_time(t_before, dt, gap_start, gap_end)
+        if (present(found)) found = has_root
     end function driver_event_time
+
+    !> The time of a Signorini release (adaptive steps): the contact force lambda = -sigma at the
+    !> contact node from the node's equilibrium with its neighbour, alpha (u_{s-1} - u_s) / h_s
+    !> (exact for the massless contact node of &contact mass = 'redistributed', the last
+    !> element's stress otherwise), at the levels since the last event (t_before the latest)
+    !> and, with_end, at the state's level at t_before + dt too; the root in [t_lo, t_hi] of the
+    !> polynomial through them (dense_output_m), at most p+1 of them (p the scheme's order).
+    !> found = .false. (t_event = t_hi): no root there, or fewer than two levels.
+    subroutine driver_release_time(self, state, t_before, dt, with_end, t_lo, t_hi, t_event, found)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: t_before, dt, t_lo, t_hi
+        logical, intent(in) :: with_end
+        real(dp), intent(out) :: t_event
+        logical, intent(out) :: found
+        real(dp) :: times(MAX_LEVELS + 1), force(MAX_LEVELS + 1), to_node
+        integer :: j, k, n, slot, s
+
+        t_event = t_hi
+        found = .false.
+        s = state%s
+        to_node = self%model%alpha / state%mesh%h(s)
+        k = 0
+        if (with_end) then
+            k = 1
+            times(1) = t_before + dt
+            force(1) = to_node * (state%u(s - 1) - state%u(s))
+        end if
+        associate (e => self%estimator)
+            n = min(e%n_levels, e%order + 1 - k)
+            if (k + n < 2) return
+            do j = 1, n
+                slot = modulo(e%head - j, MAX_LEVELS) + 1
+                times(k + j) = t_before
+                if (j > 1) times(k + j) = times(k + j - 1) - e%steps(modulo(e%head - j + 1, MAX_LEVELS) + 1)
+                force(k + j) = to_node * (e%levels(s - 1, 0, slot) - e%levels(s, 0, slot))
+            end do
+        end associate
+        call interpolant_root(times(1:k + n), force(1:k + n), t_lo, t_hi, t_event, found)
+        if (.not. found) t_event = t_hi
+    end subroutine driver_release_time
+
+    !> A tried adaptive step from t_before of size dt that changed the contact state (flipped),
+    !> or a step cut to end at an event that did not (the event is later): locate the event
+    !> (a Signorini release: release_time; otherwise event_time's interpolated gap) and say
+    !> whether the step is retried to end there (cut, of size dt_land; events_m's event_landing;
+    !> an event located by the straight line only is not cut closer than LINEAR_CUT_MIN of the
+    !> step to its start).
+    !> t_bound: the end of the last step that changed the contact state (set on a flipped
+    !> step), beyond which the event is not sought.
+    subroutine driver_landing(self, state, result, law, t_before, dt, gap_start, gap_end, flipped, t_bound, cut, &
+                              dt_land)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        type(step_result_t), intent(in) :: result
+        type(contact_law_t), intent(in) :: law
+        real(dp), intent(in) :: t_before, dt, gap_start, gap_end
+        logical, intent(in) :: flipped
+        real(dp), intent(inout) :: t_bound
+        logical, intent(out) :: cut
+        real(dp), intent(out) :: dt_land
+        real(dp) :: t_lo, t_event
+        logical :: found
+
+        if (flipped) then
+            t_bound = t_before + dt
+            t_lo = t_before
+        else
+            t_lo = t_before + dt
+        end if
+        if (self%in_contact .and. law%is_signorini()) then
+            call self%release_time(state, t_before, dt, .not. flipped, t_lo, t_bound, t_event, found)
+        else
+            t_event = self%event_time(t_before, dt, gap_start, gap_end, result%trial_gap, .not. self%in_contact, &
+                                      law%g, t_lo, t_bound, found)
+        end if
+        if (flipped) then
+            call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)
+            ! located by the straight line only (no interpolant: Euler, or right after an event): no
+            ! cut of less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
+            ! repeat step after step
+            if (.not. found) cut = cut .and. dt_land >= LINEAR_CUT_MIN * dt
+        else
+            ! the cut step ended short of the event: cut again at the event located with its end
+            call event_landing(t_before, t_bound - t_before, t_event, self%dt_min, cut, dt_land)
+            cut = cut .and. found .and. t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
+        end if
+    end subroutine driver_landing
 
     !> The interpolant at time t of the last accepted step [t_{n-1}, t_n] (state holds X^n;
     !> dense_output_m): the polynomial through the levels since the last contact event, p+1
@@ -439,21 +560,6 @@ contains
             in_contact = gap > 0.0_dp
         end if
     end subroutine contact_state
-
-    !> The retry of a step of size dt that changed the contact state: the trial gap went
-    !> from gap_start to gap_end; end event_tol/2 before the interpolated crossing, or take
-    !> a step of event_tol across it when the crossing is that close (events_m's crossing_time;
-    !> a release from a zero gap (Signorini) halves the step).
-    pure real(dp) function retry_before_event(dt, gap_start, gap_end, event_tol) result(dt_new)
-        real(dp), intent(in) :: dt, gap_start, gap_end, event_tol
-        real(dp) :: to_crossing
-
-        to_crossing = crossing_time(0.0_dp, dt, gap_start, gap_end)
-        if (to_crossing >= dt) to_crossing = 0.5_dp * dt
-        dt_new = to_crossing - 0.5_dp * event_tol
-        if (to_crossing <= event_tol) dt_new = event_tol
-        dt_new = min(dt_new, dt - 0.5_dp * event_tol)
-    end function retry_before_event
 
     !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
     subroutine warn_forced(t, dt_min)

@@ -26,10 +26,10 @@
 !> snapshot the L queued steps go into one step over the last k and, before it, the r = L - k
 !> others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). With the run's steps
 !> of any count between snapshots (odd, adaptive landing steps) every companion's last step
-!> is over the run's last k, and each of its steps over k/2 to k of the run's (a shorter one
-!> only where the run has fewer than k/2 steps left): the midpoint rule's algebraic fields
-!> (v, whose value is that of the last half step: an error dt_last/2 v_t) and BDF2's step
-!> ratios (within [1/2, 2]) scale as Richardson assumes.
+!> is over the run's last k, and each of its steps over k/2 to k of the run's (fewer only
+!> where the run takes fewer than 2k steps between two snapshots): the midpoint rule's
+!> algebraic fields (v, whose value is that of the last half step: an error dt_last/2 v_t)
+!> and BDF2's step ratios (within [1/2, 2]) scale as Richardson assumes.
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
 !> has the measurement); the companions' steps skip the stepper's per-step finiteness test
 !> (a non-finite value stays non-finite: the estimate tests the companions' levels).
@@ -357,7 +357,8 @@ contains
                 c%queue_t = scalars(SCALARS_HEAD + QUEUE_MAX + 1:)
             end associate
         end do
-        if (ckpt%companion_scalars(N_COMPANION_SCALARS) > 0.0_dp) call stop_companions(self, 'failed before the checkpoint')
+        if (ckpt%companion_scalars(N_COMPANION_SCALARS) > 0.0_dp) &
+            call stop_companions(self, 'failed before the checkpoint')
     end subroutine companions_restore_checkpoint
 
 end module error_companion_m

@@ -21,15 +21,21 @@
 !> The relative errors are L2 norms over the rod (trapezoidal rule on the companion's
 !> nodes) over the field's L2 norm on the same nodes.
 !> Steps: a companion of k (2, 4, 8) takes each step over k consecutive steps of the run
-!> (their sum), and lands on every snapshot with a step over the run's last k steps: the
+!> (their sum), and reaches every snapshot with a step over the run's last k steps: the
 !> run's steps wait in a queue, and when 3k are queued the first k go into one step; at a
 !> snapshot the L queued steps go into one step over the last k and, before it, the r = L - k
-!> others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). With the run's steps
-!> of any count between snapshots (odd, adaptive landing steps) every companion's last step
-!> is over the run's last k, and each of its steps over k/2 to k of the run's (fewer only
-!> where the run takes fewer than 2k steps between two snapshots): the midpoint rule's
-!> algebraic fields (v, whose value is that of the last half step: an error dt_last/2 v_t)
-!> and BDF2's step ratios (within [1/2, 2]) scale as Richardson assumes.
+!> others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). When the run has taken
+!> LAND_SPAN k steps or more since the last snapshot the companion itself so lands (its queue
+!> empties); with closer snapshots a copy of it lands (the r steps in one step: two steps
+!> per snapshot) and the companion goes on with its queue, so that its own steps stay over
+!> k of the run's (landing itself at every snapshot
+!> of 10 steps, C and D took steps over 3, 3, 4 and 2, 8 of the run's, no longer 2x and 4x
+!> A's, and fixed BDF2 steps were estimated 4.4x on experiment 1). Either way, with the
+!> run's steps of any count between snapshots (odd, adaptive landing steps) the last step
+!> to the snapshot is over the run's last k, as Richardson assumes for the midpoint rule's
+!> algebraic fields (v, whose value is that of the last half step: an error dt_last/2 v_t),
+!> and BDF2's step ratios stay within [1/2, 2] (fewer steps between snapshots than 2k: one
+!> shorter step before the last).
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
 !> has the measurement); the companions' steps skip the stepper's per-step finiteness test
 !> (a non-finite value stays non-finite: the estimate tests the companions' levels).
@@ -39,7 +45,7 @@ module error_companion_m
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use config_m, only: config_t
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
-    use state_m, only: state_t, initial_state, field_values, land_on
+    use state_m, only: state_t, initial_state, field_values, land_on, copy_state
     use stepper_m, only: stepper_t, step_result_t
     use sources_m, only: source_t
     use checkpoint_m, only: checkpoint_t
@@ -60,6 +66,9 @@ module error_companion_m
     !> the estimate's parts: total, time, space
     character(len=*), parameter :: NAMES = 'ACD'
     integer, parameter :: PART_TOTAL = 1, PART_TIME = 2, PART_SPACE = 3, N_ESTIMATE_PARTS = 3
+    !> a companion lands itself on a snapshot LAND_SPAN k or more of the run's steps after the
+    !> one before (closer snapshots: a copy lands; the module's header)
+    integer, parameter :: LAND_SPAN = 8
     !> the run's steps a companion holds at most (3 k: the module's header)
     integer, parameter :: QUEUE_MAX = 3 * maxval(STEPS_PER_STEP)
     !> a companion's scalars in a checkpoint: step, t, dt_last, t_anchor, step_anchor,
@@ -67,12 +76,16 @@ module error_companion_m
     !> and end times
     integer, parameter :: SCALARS_HEAD = 8
     integer, parameter :: SCALARS_PER_COMPANION = SCALARS_HEAD + 2 * QUEUE_MAX
-    integer, parameter :: N_COMPANION_SCALARS = N_COMPANIONS * SCALARS_PER_COMPANION + 1
+    !> ... then whether they failed, and the run's steps since the last snapshot
+    integer, parameter :: N_COMPANION_SCALARS = N_COMPANIONS * SCALARS_PER_COMPANION + 2
 
     !> One companion solution on its own mesh, with its own steps.
     type :: companion_t
         integer :: steps_per_step = 2      !< k: steps of the run per step of the companion
         type(state_t) :: state
+        !> a copy landed on the snapshot (snapshots closer than 2 k of the run's steps)
+        type(state_t) :: ahead
+        logical :: on_copy = .false.       !< the last snapshot's level is in ahead
         type(stepper_t) :: stepper
         type(step_result_t) :: result
         !> the run's steps since the companion's last step: their sizes and end times
@@ -89,6 +102,7 @@ module error_companion_m
         !> a companion has stopped (failure says why): the estimates are NaN from then on
         logical :: failed = .false.
         character(len=320) :: failure = ''
+        integer :: n_since = 0             !< the run's steps since the last snapshot
         !> the last estimate (values(k, part): field OUTPUT_ORDER(k))
         real(dp) :: last(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS) = 0.0_dp
     contains
@@ -141,62 +155,102 @@ contains
         type(state_t), intent(in) :: state
         integer :: j
 
+        self%n_since = self%n_since + 1
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 c%n_queued = c%n_queued + 1
                 c%queue_dt(c%n_queued) = state%dt_last
                 c%queue_t(c%n_queued) = state%t
-                if (c%n_queued == 3 * c%steps_per_step) call step_over(self, j, c%steps_per_step)
+                if (c%n_queued == 3 * c%steps_per_step) then
+                    call step_over(self, j, c%state, 1, c%steps_per_step)
+                    call drop(c, c%steps_per_step)
+                end if
             end associate
         end do
     end subroutine companions_follow
 
     !> The run is at a snapshot (its last step queued): every companion lands on it, with one
     !> step over the run's last k steps, and the r steps queued before them in one step (r <= k)
-    !> or two of r/2 (k < r < 2k).
+    !> or two (k < r < 2k: r/2 and the rest). A companion lands itself (its queue empties) when
+    !> the run has taken LAND_SPAN k steps or more since the last snapshot; otherwise a copy
+    !> lands (ahead; the r steps in one step) and the companion goes on with its queue (the
+    !> module's header).
     subroutine companions_land(self)
         type(error_companions_t), intent(inout) :: self
-        integer :: j, r
+        integer :: j, k, r
 
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
-                r = c%n_queued - c%steps_per_step
-                if (r > c%steps_per_step) call step_over(self, j, r / 2)
-                if (c%n_queued > c%steps_per_step) call step_over(self, j, c%n_queued - c%steps_per_step)
-                if (c%n_queued > 0) call step_over(self, j, c%n_queued)
+                k = c%steps_per_step
+                c%on_copy = .not. (c%n_queued >= 2 * k .and. self%n_since >= LAND_SPAN * k)
+                if (c%on_copy) then
+                    call copy_state(c%state, c%ahead)
+                    call land_level(c%ahead)
+                else
+                    call land_level(c%state)
+                    call drop(c, c%n_queued)
+                end if
             end associate
         end do
+        self%n_since = 0
+
+    contains
+
+        !> Companion j's level (its state or the copy) over its whole queue.
+        subroutine land_level(level)
+            type(state_t), intent(inout) :: level
+
+            integer :: first
+
+            associate (c => self%pair(j))
+                r = c%n_queued - k
+                first = 1
+                if (r > k .and. .not. c%on_copy) then
+                    call step_over(self, j, level, 1, r / 2)
+                    first = r / 2 + 1
+                end if
+                if (r > 0) call step_over(self, j, level, first, r)
+                if (c%n_queued > 0) call step_over(self, j, level, max(r, 0) + 1, c%n_queued)
+            end associate
+        end subroutine land_level
     end subroutine companions_land
 
-    !> Companion j takes one step over the first m steps of its queue (to the end time of the
-    !> m-th), and drops them from the queue.
-    subroutine step_over(self, j, m)
+    !> One step of companion j's stepper on level (its state or a copy) over the steps first
+    !> to last of its queue (to the end time of the last).
+    subroutine step_over(self, j, level, first, last)
         type(error_companions_t), intent(inout) :: self
-        integer, intent(in) :: j, m
+        integer, intent(in) :: j, first, last
+        type(state_t), intent(inout) :: level
         real(dp) :: dt
-        integer :: n
 
+        if (self%failed) return
         associate (c => self%pair(j))
-            if (.not. self%failed) then
-                ! fixed steps: exactly m dt, so that every step of m reuses one factored system
-                if (self%dt_fixed > 0.0_dp) then
-                    dt = real(m, dp) * self%dt_fixed
-                else
-                    dt = sum(c%queue_dt(1:m))
-                end if
-                call c%stepper%advance(c%state, c%result, dt)
-                if (c%result%ok) then
-                    call land_on(c%state, c%queue_t(m))
-                else
-                    call stop_companions(self, 'companion '//NAMES(j:j)//': '//trim(c%result%message))
-                end if
+            ! fixed steps: exactly m dt, so that every step over m reuses one factored system
+            if (self%dt_fixed > 0.0_dp) then
+                dt = real(last - first + 1, dp) * self%dt_fixed
+            else
+                dt = sum(c%queue_dt(first:last))
             end if
-            n = c%n_queued - m
-            c%queue_dt(1:n) = c%queue_dt(m + 1:c%n_queued)
-            c%queue_t(1:n) = c%queue_t(m + 1:c%n_queued)
-            c%n_queued = n
+            call c%stepper%advance(level, c%result, dt)
+            if (c%result%ok) then
+                call land_on(level, c%queue_t(last))
+            else
+                call stop_companions(self, 'companion '//NAMES(j:j)//': '//trim(c%result%message))
+            end if
         end associate
     end subroutine step_over
+
+    !> The first m steps of companion c's queue are done: out of the queue.
+    pure subroutine drop(c, m)
+        type(companion_t), intent(inout) :: c
+        integer, intent(in) :: m
+        integer :: n
+
+        n = c%n_queued - m
+        c%queue_dt(1:n) = c%queue_dt(m + 1:c%n_queued)
+        c%queue_t(1:n) = c%queue_t(m + 1:c%n_queued)
+        c%n_queued = n
+    end subroutine drop
 
     !> A companion failed (message: why): the estimates are NaN from here on.
     subroutine stop_companions(self, message)
@@ -222,10 +276,8 @@ contains
 
         call companions_land(self)
         do k = 1, N_COMPANIONS
-            associate (st => self%pair(k)%state)
-                if (.not. (all(ieee_is_finite(st%u)) .and. all(ieee_is_finite(st%w)))) &
-                    call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
-            end associate
+            if (.not. finite_level(self%pair(k))) &
+                call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
         end do
         if (self%failed) then
             values = ieee_value(1.0_dp, ieee_quiet_nan)
@@ -234,9 +286,9 @@ contains
         end if
         do k = 1, N_OUTPUT_FIELDS
             x = field_values(state, OUTPUT_ORDER(k))
-            a = field_values(self%pair(COMP_A)%state, OUTPUT_ORDER(k))
-            c = field_values(self%pair(COMP_C)%state, OUTPUT_ORDER(k))
-            d = field_values(self%pair(COMP_D)%state, OUTPUT_ORDER(k))
+            a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
+            c = landed_values(self%pair(COMP_C), OUTPUT_ORDER(k))
+            d = landed_values(self%pair(COMP_D), OUTPUT_ORDER(k))
             d1 = l2_norm(a(0::2) - x(0::4))
             d2 = l2_norm(c - a(0::2))
             r = observed_order(d1, d2)
@@ -252,6 +304,31 @@ contains
         end do
         self%last = values
     end subroutine companions_estimate
+
+    !> The nodal values of field f of companion c's level at the last snapshot (the companion's
+    !> or its copy's).
+    function landed_values(c, f) result(values)
+        type(companion_t), intent(in) :: c
+        integer, intent(in) :: f
+        real(dp) :: values(0:c%state%s)
+
+        if (c%on_copy) then
+            values = field_values(c%ahead, f)
+        else
+            values = field_values(c%state, f)
+        end if
+    end function landed_values
+
+    !> Companion c's level at the last snapshot holds finite values only.
+    logical function finite_level(c)
+        type(companion_t), intent(in) :: c
+
+        if (c%on_copy) then
+            finite_level = all(ieee_is_finite(c%ahead%u)) .and. all(ieee_is_finite(c%ahead%w))
+        else
+            finite_level = all(ieee_is_finite(c%state%u)) .and. all(ieee_is_finite(c%state%w))
+        end if
+    end function finite_level
 
     !> log2(coarse / fine) of two successive differences of a ladder refined by 2, clamped to
     !> [ORDER_MIN, ORDER_MAX] (ORDER_MIN: also when they vanish).
@@ -315,7 +392,8 @@ contains
                      merge(1.0_dp, 0.0_dp, allocated(st%u_prev)), c%queue_dt, c%queue_t]
             end associate
         end do
-        ckpt%companion_scalars(N_COMPANION_SCALARS) = merge(1.0_dp, 0.0_dp, self%failed)
+        ckpt%companion_scalars(N_COMPANION_SCALARS - 1) = merge(1.0_dp, 0.0_dp, self%failed)
+        ckpt%companion_scalars(N_COMPANION_SCALARS) = real(self%n_since, dp)
     end subroutine companions_save_checkpoint
 
     !> The inverse of save_checkpoint (on companions initialised for this run).
@@ -357,7 +435,8 @@ contains
                 c%queue_t = scalars(SCALARS_HEAD + QUEUE_MAX + 1:)
             end associate
         end do
-        if (ckpt%companion_scalars(N_COMPANION_SCALARS) > 0.0_dp) &
+        self%n_since = nint(ckpt%companion_scalars(N_COMPANION_SCALARS))
+        if (ckpt%companion_scalars(N_COMPANION_SCALARS - 1) > 0.0_dp) &
             call stop_companions(self, 'failed before the checkpoint')
     end subroutine companions_restore_checkpoint
 

@@ -6,9 +6,13 @@
 !> the nodal values (trapezoidal rule on the run's nodes), and its time part against the
 !> run's difference from the same mesh with steps dt/16. Target: every field's ratio
 !> estimate / true error within [1/3, 3] (measured: total 0.82-1.61, time part 0.82-2.85).
-!> Checked that it can fail: the Richardson factor 2^(r+1) - 1 instead of 2^r - 1 fails 5
-!> checks (Euler, ratios down to 0.30); the scheme's order p - 1 instead of p in the time part
-!> fails 36 (every scheme).
+!> The same with varying steps (as adaptive steps vary: sizes dt 2^(-k/3), k = 0, 1, 2 in
+!> turn, five steps each; the estimate after 63 steps, an odd number: the companions step on
+!> the run's queued steps and land on the estimate's time. After 31 steps, when companion D
+!> has taken 4 steps, Euler's time part of eta is 3.5x the truth).
+!> Checked that it can fail: the Richardson factor 2^(r+1) - 1 instead of 2^r - 1 fails
+!> 5 checks with fixed steps and 3 with varying ones; the scheme's order p - 1 instead of p
+!> in the time part fails 36 and 18.
 program test_error_estimate_mms
     use kinds_m, only: dp
     use config_m, only: config_t, model_t
@@ -29,15 +33,19 @@ program test_error_estimate_mms
     unit_model = model_t(rho=1.0_dp, alpha=1.0_dp, varpi=0.1_dp, gamma1=0.5_dp, gamma2=0.5_dp, c=1.0_dp, &
                          d=0.2_dp, r=1.0_dp, hbar=1.0_dp, tau0=0.5_dp, tau=0.5_dp)
     do k = 1, size(SCHEMES)
-        call check_scheme(trim(SCHEMES(k)), mms_no_contact(unit_model))
+        call check_scheme(trim(SCHEMES(k)), mms_no_contact(unit_model), .false.)
+        call check_scheme(trim(SCHEMES(k)), mms_no_contact(unit_model), .true.)
     end do
     call test_summary('test_error_estimate_mms')
 
 contains
 
-    subroutine check_scheme(scheme, mms)
+    !> One scheme with fixed steps (varying = .false.: N_STEPS of DT, estimates after
+    !> N_STEPS/2 and N_STEPS) or varying ones (the program's header).
+    subroutine check_scheme(scheme, mms, varying)
         character(len=*), intent(in) :: scheme
         type(mms_t), intent(in) :: mms
+        logical, intent(in) :: varying
         type(config_t) :: cfg
         type(state_t) :: state, fine
         type(stepper_t) :: stepper, fine_stepper
@@ -45,14 +53,23 @@ contains
         type(error_companions_t) :: companions
         real(dp) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
         real(dp) :: truth(N_OUTPUT_FIELDS), truth_time(N_OUTPUT_FIELDS)
-        integer :: n, f, j
+        integer :: n, f, j, n_run
+        real(dp) :: dt_n
+        character(len=:), allocatable :: name
 
         cfg%model = mms%model
         cfg%mesh%n_elements = S
         cfg%time%dt = DT
         cfg%time%t_end = N_STEPS * DT
         cfg%time%scheme = scheme
+        cfg%time%adaptive = varying
         cfg%output%error_estimate = .true.
+        name = scheme
+        n_run = N_STEPS
+        if (varying) then
+            name = scheme//' (varying steps)'
+            n_run = N_STEPS - 1
+        end if
         call mms_initial_state(mms, S, state)
         call stepper%init(cfg, result, mms)
         call companions%init(cfg, state, mms)
@@ -60,21 +77,24 @@ contains
         call mms_initial_state(mms, S, fine)
         cfg%time%dt = DT / FINE_STEPS
         call fine_stepper%init(cfg, result, mms)
-        call check_true(scheme//': set up', result%ok .and. companions%failure == '')
-        do n = 1, N_STEPS
-            call stepper%advance(state, result)
+        call check_true(name//': set up', result%ok .and. companions%failure == '')
+        do n = 1, n_run
+            dt_n = DT
+            if (varying) dt_n = DT * 2.0_dp**(-real(mod((n - 1) / 5, 3), dp) / 3.0_dp)
+            call stepper%advance(state, result, dt_n)
             if (.not. result%ok) error stop 'test_error_estimate_mms: a step failed'
             call companions%follow(state)
             do j = 1, FINE_STEPS
-                call fine_stepper%advance(fine, result)
+                call fine_stepper%advance(fine, result, dt_n / FINE_STEPS)
             end do
-            if (mod(n, N_STEPS / 2) /= 0) cycle
+            if (varying .and. n < n_run) cycle
+            if (mod(n, N_STEPS / 2) /= 0 .and. n < n_run) cycle
             call companions%estimate(state, values)
             truth = true_errors(mms, state)
             truth_time = time_errors(state, fine)
             do f = 1, N_OUTPUT_FIELDS
-                call check_ratio(scheme, f, state%t, ': estimate ', values(f, PART_TOTAL), truth(f))
-                call check_ratio(scheme, f, state%t, ': time part ', values(f, PART_TIME), truth_time(f))
+                call check_ratio(name, f, state%t, ': estimate ', values(f, PART_TOTAL), truth(f))
+                call check_ratio(name, f, state%t, ': time part ', values(f, PART_TIME), truth_time(f))
             end do
         end do
 

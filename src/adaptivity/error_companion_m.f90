@@ -19,21 +19,37 @@
 !> is (D - C) / (4^p_t (2^p_t - 1)) on C's nodes. Space part: what the total leaves beyond
 !> the time part, sqrt(total^2 - time^2) (0 when the time part is larger).
 !> The relative errors are L2 norms over the rod (trapezoidal rule on the companion's
-!> nodes) over the field's L2 norm on the same nodes. The companions step when the run
-!> has taken their number of steps; at a snapshot between two of their steps a copy of the
-!> companion catches up (one shorter step), the companion itself goes on unchanged.
+!> nodes) over the field's L2 norm on the same nodes.
+!> Steps: a companion of k (2, 4, 8) takes each step over k consecutive steps of the run
+!> (their sum), and reaches every snapshot with a step over the run's last k steps: the
+!> run's steps wait in a queue, and when 3k are queued the first k go into one step; at a
+!> snapshot the L queued steps go into one step over the last k and, before it, the r = L - k
+!> others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). When the run has taken
+!> LAND_SPAN k steps or more since the last snapshot the companion itself so lands (its queue
+!> empties); with closer snapshots a copy of it lands (the r steps in one step: two steps
+!> per snapshot) and the companion goes on with its queue, so that its own steps stay over
+!> k of the run's (landing itself at every snapshot
+!> of 10 steps, C and D took steps over 3, 3, 4 and 2, 8 of the run's, no longer 2x and 4x
+!> A's, and fixed BDF2 steps were estimated 4.4x on experiment 1). Either way, with the
+!> run's steps of any count between snapshots (odd, adaptive landing steps) the last step
+!> to the snapshot is over the run's last k, as Richardson assumes for the midpoint rule's
+!> algebraic fields (v, whose value is that of the last half step: an error dt_last/2 v_t),
+!> and BDF2's step ratios stay within [1/2, 2] (fewer steps between snapshots than 2k: one
+!> shorter step before the last).
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
-!> has the measurement). Uniform meshes of a multiple of 4 elements only (validate_m).
+!> has the measurement); the companions' steps skip the stepper's per-step finiteness test
+!> (a non-finite value stays non-finite: the estimate tests the companions' levels).
+!> Uniform meshes of a multiple of 4 elements only (validate_m).
 module error_companion_m
     use kinds_m, only: dp
-    use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+    use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use config_m, only: config_t
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
     use state_m, only: state_t, initial_state, field_values, land_on, copy_state
     use stepper_m, only: stepper_t, step_result_t
     use sources_m, only: source_t
     use checkpoint_m, only: checkpoint_t
-    use errors_m, only: check_allocation
+    use errors_m, only: check_allocation, fatal, EXIT_INPUT
     implicit none
     private
     public :: error_companions_t, N_ESTIMATE_PARTS, PART_TOTAL, PART_TIME, PART_SPACE, &
@@ -46,24 +62,35 @@ module error_companion_m
     !> elements of the run per element of companion A, C, D
     integer, parameter :: ELEMENTS_PER_ELEMENT(N_COMPANIONS) = [2, 4, 4]
     !> observed orders are clamped to this range (below: not converging; above: cancellation)
-    real(dp), parameter :: ORDER_MIN = 0.5_dp, ORDER_MAX = 3.0_dp
+    real(dp), parameter :: ORDER_MIN = 0.5_dp, ORDER_MAX = 2.0_dp
     !> the estimate's parts: total, time, space
     character(len=*), parameter :: NAMES = 'ACD'
     integer, parameter :: PART_TOTAL = 1, PART_TIME = 2, PART_SPACE = 3, N_ESTIMATE_PARTS = 3
+    !> a companion lands itself on a snapshot LAND_SPAN k or more of the run's steps after the
+    !> one before (closer snapshots: a copy lands; the module's header)
+    integer, parameter :: LAND_SPAN = 8
+    !> the run's steps a companion holds at most (3 k: the module's header)
+    integer, parameter :: QUEUE_MAX = 3 * maxval(STEPS_PER_STEP)
     !> a companion's scalars in a checkpoint: step, t, dt_last, t_anchor, step_anchor,
-    !> n_pending, dt_pending, n_solves, whether it holds a previous level
-    integer, parameter :: SCALARS_PER_COMPANION = 9
-    integer, parameter :: N_COMPANION_SCALARS = N_COMPANIONS * SCALARS_PER_COMPANION + 1
+    !> n_queued, n_solves, whether it holds a previous level, then the queue's step sizes
+    !> and end times
+    integer, parameter :: SCALARS_HEAD = 8
+    integer, parameter :: SCALARS_PER_COMPANION = SCALARS_HEAD + 2 * QUEUE_MAX
+    !> ... then whether they failed, and the run's steps since the last snapshot
+    integer, parameter :: N_COMPANION_SCALARS = N_COMPANIONS * SCALARS_PER_COMPANION + 2
 
     !> One companion solution on its own mesh, with its own steps.
     type :: companion_t
-        integer :: steps_per_step = 2      !< steps of the run per step of the companion
+        integer :: steps_per_step = 2      !< k: steps of the run per step of the companion
         type(state_t) :: state
-        type(state_t) :: ahead             !< the state caught up with the run at a snapshot
+        !> a copy landed on the snapshot (snapshots closer than 2 k of the run's steps)
+        type(state_t) :: ahead
+        logical :: on_copy = .false.       !< the last snapshot's level is in ahead
         type(stepper_t) :: stepper
         type(step_result_t) :: result
-        integer :: n_pending = 0           !< steps of the run since the companion's last step
-        real(dp) :: dt_pending = 0.0_dp    !< their sum (adaptive steps)
+        !> the run's steps since the companion's last step: their sizes and end times
+        integer :: n_queued = 0
+        real(dp) :: queue_dt(QUEUE_MAX) = 0.0_dp, queue_t(QUEUE_MAX) = 0.0_dp
     end type companion_t
 
     !> The companions of a run and its last estimate.
@@ -72,8 +99,10 @@ module error_companion_m
         integer :: p = 1                   !< the scheme's order
         real(dp) :: dt_fixed = 0.0_dp      !< &time dt of fixed steps (0: adaptive steps)
         type(companion_t) :: pair(N_COMPANIONS)
-        !> why a companion stopped ('' while both step): the estimates are NaN from then on
+        !> a companion has stopped (failure says why): the estimates are NaN from then on
+        logical :: failed = .false.
         character(len=320) :: failure = ''
+        integer :: n_since = 0             !< the run's steps since the last snapshot
         !> the last estimate (values(k, part): field OUTPUT_ORDER(k))
         real(dp) :: last(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS) = 0.0_dp
     contains
@@ -110,60 +139,128 @@ contains
                 c%state%u = initial%u(0::k)
                 c%state%w = initial%w(0::k, :)
                 call c%stepper%init(coarse, c%result, source)
-                if (.not. c%result%ok) self%failure = 'setting up companion '//NAMES(j:j)// &
-                                                      ': '//trim(c%result%message)
+                ! a non-finite level stays so: companions_estimate tests it once per snapshot
+                c%stepper%check_finite = .false.
+                if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
+                                                            ': '//trim(c%result%message))
             end associate
         end do
         self%p = self%pair(COMP_A)%stepper%scheme%order()
     end subroutine companions_init
 
-    !> The run has accepted a step (state: its new level): each companion takes its step
-    !> when the run has taken its number of steps.
+    !> The run has accepted a step (state: its new level): into each companion's queue; a
+    !> companion with 3 k queued steps takes one step over the first k.
     subroutine companions_follow(self, state)
         class(error_companions_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         integer :: j
 
+        self%n_since = self%n_since + 1
         do j = 1, N_COMPANIONS
-            self%pair(j)%n_pending = self%pair(j)%n_pending + 1
-            self%pair(j)%dt_pending = self%pair(j)%dt_pending + state%dt_last
-            if (self%pair(j)%n_pending == self%pair(j)%steps_per_step) call companion_step(self, j, state%t)
+            associate (c => self%pair(j))
+                c%n_queued = c%n_queued + 1
+                c%queue_dt(c%n_queued) = state%dt_last
+                c%queue_t(c%n_queued) = state%t
+                if (c%n_queued == 3 * c%steps_per_step) then
+                    call step_over(self, j, c%state, 1, c%steps_per_step)
+                    call drop(c, c%steps_per_step)
+                end if
+            end associate
         end do
     end subroutine companions_follow
 
-    !> Companion j takes one step over the run's steps since its last one, to t_run.
-    subroutine companion_step(self, j, t_run)
+    !> The run is at a snapshot (its last step queued): every companion lands on it, with one
+    !> step over the run's last k steps, and the r steps queued before them in one step (r <= k)
+    !> or two (k < r < 2k: r/2 and the rest). A companion lands itself (its queue empties) when
+    !> the run has taken LAND_SPAN k steps or more since the last snapshot; otherwise a copy
+    !> lands (ahead; the r steps in one step) and the companion goes on with its queue (the
+    !> module's header).
+    subroutine companions_land(self)
         type(error_companions_t), intent(inout) :: self
-        integer, intent(in) :: j
-        real(dp), intent(in) :: t_run
+        integer :: j, k, r
 
-        call step_to(self, j, self%pair(j)%state, t_run)
-        self%pair(j)%n_pending = 0
-        self%pair(j)%dt_pending = 0.0_dp
-    end subroutine companion_step
+        do j = 1, N_COMPANIONS
+            associate (c => self%pair(j))
+                k = c%steps_per_step
+                c%on_copy = .not. (c%n_queued >= 2 * k .and. self%n_since >= LAND_SPAN * k)
+                if (c%on_copy) then
+                    call copy_state(c%state, c%ahead)
+                    call land_level(c%ahead)
+                else
+                    call land_level(c%state)
+                    call drop(c, c%n_queued)
+                end if
+            end associate
+        end do
+        self%n_since = 0
 
-    !> One step of companion j's stepper on level (its state, or a copy of it), over the
-    !> run's steps since the companion's last step, to t_run.
-    subroutine step_to(self, j, level, t_run)
+    contains
+
+        !> Companion j's level (its state or the copy) over its whole queue.
+        subroutine land_level(level)
+            type(state_t), intent(inout) :: level
+
+            integer :: first
+
+            associate (c => self%pair(j))
+                r = c%n_queued - k
+                first = 1
+                if (r > k .and. .not. c%on_copy) then
+                    call step_over(self, j, level, 1, r / 2)
+                    first = r / 2 + 1
+                end if
+                if (r > 0) call step_over(self, j, level, first, r)
+                if (c%n_queued > 0) call step_over(self, j, level, max(r, 0) + 1, c%n_queued)
+            end associate
+        end subroutine land_level
+    end subroutine companions_land
+
+    !> One step of companion j's stepper on level (its state or a copy) over the steps first
+    !> to last of its queue (to the end time of the last).
+    subroutine step_over(self, j, level, first, last)
         type(error_companions_t), intent(inout) :: self
-        integer, intent(in) :: j
+        integer, intent(in) :: j, first, last
         type(state_t), intent(inout) :: level
-        real(dp), intent(in) :: t_run
         real(dp) :: dt
 
-        if (self%failure /= '') return
+        if (self%failed) return
         associate (c => self%pair(j))
-            ! fixed steps: exactly k dt, so that every full step reuses one factored system
-            dt = c%dt_pending
-            if (self%dt_fixed > 0.0_dp) dt = real(c%n_pending, dp) * self%dt_fixed
-            call c%stepper%advance(level, c%result, dt)
-            if (.not. c%result%ok) then
-                self%failure = 'companion '//NAMES(j:j)//': '//trim(c%result%message)
-                return
+            ! fixed steps: exactly m dt, so that every step over m reuses one factored system
+            if (self%dt_fixed > 0.0_dp) then
+                dt = real(last - first + 1, dp) * self%dt_fixed
+            else
+                dt = sum(c%queue_dt(first:last))
             end if
-            call land_on(level, t_run)
+            call c%stepper%advance(level, c%result, dt)
+            if (c%result%ok) then
+                call land_on(level, c%queue_t(last))
+            else
+                call stop_companions(self, 'companion '//NAMES(j:j)//': '//trim(c%result%message))
+            end if
         end associate
-    end subroutine step_to
+    end subroutine step_over
+
+    !> The first m steps of companion c's queue are done: out of the queue.
+    pure subroutine drop(c, m)
+        type(companion_t), intent(inout) :: c
+        integer, intent(in) :: m
+        integer :: n
+
+        n = c%n_queued - m
+        c%queue_dt(1:n) = c%queue_dt(m + 1:c%n_queued)
+        c%queue_t(1:n) = c%queue_t(m + 1:c%n_queued)
+        c%n_queued = n
+    end subroutine drop
+
+    !> A companion failed (message: why): the estimates are NaN from here on.
+    subroutine stop_companions(self, message)
+        type(error_companions_t), intent(inout) :: self
+        character(len=*), intent(in) :: message
+
+        if (self%failed) return
+        self%failed = .true.
+        self%failure = message
+    end subroutine stop_companions
 
     !> The estimate for the run's level in state (a snapshot): values(k, part), the relative
     !> L2 error of field OUTPUT_ORDER(k), total, time and space part (the module's header);
@@ -177,23 +274,21 @@ contains
         real(dp) :: r, p_t, d1, d2
         integer :: k
 
-        ! between two of its steps a companion catches up with one shorter step, on a copy:
-        ! its own steps stay those of the run's step count (the same with or without this
-        ! snapshot, so that a restart continues them exactly)
+        call companions_land(self)
         do k = 1, N_COMPANIONS
-            call copy_state(self%pair(k)%state, self%pair(k)%ahead)
-            if (self%pair(k)%n_pending > 0) call step_to(self, k, self%pair(k)%ahead, state%t)
+            if (.not. finite_level(self%pair(k))) &
+                call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
         end do
-        if (self%failure /= '') then
+        if (self%failed) then
             values = ieee_value(1.0_dp, ieee_quiet_nan)
             self%last = values
             return
         end if
         do k = 1, N_OUTPUT_FIELDS
             x = field_values(state, OUTPUT_ORDER(k))
-            a = field_values(self%pair(COMP_A)%ahead, OUTPUT_ORDER(k))
-            c = field_values(self%pair(COMP_C)%ahead, OUTPUT_ORDER(k))
-            d = field_values(self%pair(COMP_D)%ahead, OUTPUT_ORDER(k))
+            a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
+            c = landed_values(self%pair(COMP_C), OUTPUT_ORDER(k))
+            d = landed_values(self%pair(COMP_D), OUTPUT_ORDER(k))
             d1 = l2_norm(a(0::2) - x(0::4))
             d2 = l2_norm(c - a(0::2))
             r = observed_order(d1, d2)
@@ -209,6 +304,31 @@ contains
         end do
         self%last = values
     end subroutine companions_estimate
+
+    !> The nodal values of field f of companion c's level at the last snapshot (the companion's
+    !> or its copy's).
+    function landed_values(c, f) result(values)
+        type(companion_t), intent(in) :: c
+        integer, intent(in) :: f
+        real(dp) :: values(0:c%state%s)
+
+        if (c%on_copy) then
+            values = field_values(c%ahead, f)
+        else
+            values = field_values(c%state, f)
+        end if
+    end function landed_values
+
+    !> Companion c's level at the last snapshot holds finite values only.
+    logical function finite_level(c)
+        type(companion_t), intent(in) :: c
+
+        if (c%on_copy) then
+            finite_level = all(ieee_is_finite(c%ahead%u)) .and. all(ieee_is_finite(c%ahead%w))
+        else
+            finite_level = all(ieee_is_finite(c%state%u)) .and. all(ieee_is_finite(c%state%w))
+        end if
+    end function finite_level
 
     !> log2(coarse / fine) of two successive differences of a ladder refined by 2, clamped to
     !> [ORDER_MIN, ORDER_MAX] (ORDER_MIN: also when they vanish).
@@ -268,11 +388,12 @@ contains
                 end if
                 ckpt%companion_scalars((j - 1) * SCALARS_PER_COMPANION + 1:j * SCALARS_PER_COMPANION) = &
                     [real(st%step, dp), st%t, st%dt_last, st%t_anchor, real(st%step_anchor, dp), &
-                     real(c%n_pending, dp), c%dt_pending, real(c%stepper%n_solves, dp), &
-                     merge(1.0_dp, 0.0_dp, allocated(st%u_prev))]
+                     real(c%n_queued, dp), real(c%stepper%n_solves, dp), &
+                     merge(1.0_dp, 0.0_dp, allocated(st%u_prev)), c%queue_dt, c%queue_t]
             end associate
         end do
-        ckpt%companion_scalars(N_COMPANION_SCALARS) = merge(1.0_dp, 0.0_dp, self%failure /= '')
+        ckpt%companion_scalars(N_COMPANION_SCALARS - 1) = merge(1.0_dp, 0.0_dp, self%failed)
+        ckpt%companion_scalars(N_COMPANION_SCALARS) = real(self%n_since, dp)
     end subroutine companions_save_checkpoint
 
     !> The inverse of save_checkpoint (on companions initialised for this run).
@@ -283,6 +404,10 @@ contains
         character(len=256) :: message
         real(dp) :: scalars(SCALARS_PER_COMPANION)
 
+        if (size(ckpt%companion_scalars) /= N_COMPANION_SCALARS) &
+            call fatal(EXIT_INPUT, 'restart', 'the checkpoint''s error-estimate companions are of another '// &
+                       'version of rodcontact (companion_scalars has the wrong length): restart without '// &
+                       'output.error_estimate, or from a checkpoint of this version')
         width = 1 + N_FIELDS
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j), st => self%pair(j)%state)
@@ -291,7 +416,7 @@ contains
                 n = st%s + 1
                 st%u = ckpt%companion_levels(1:n, col + 1)
                 st%w = ckpt%companion_levels(1:n, col + 2:col + width)
-                if (scalars(9) > 0.0_dp) then
+                if (scalars(8) > 0.0_dp) then
                     if (.not. allocated(st%u_prev)) then
                         allocate (st%u_prev(0:n - 1), st%w_prev(0:n - 1, N_FIELDS), stat=stat, errmsg=message)
                         call check_allocation(stat, message, 'the error estimate''s previous level')
@@ -304,12 +429,15 @@ contains
                 st%dt_last = scalars(3)
                 st%t_anchor = scalars(4)
                 st%step_anchor = nint(scalars(5))
-                c%n_pending = nint(scalars(6))
-                c%dt_pending = scalars(7)
-                c%stepper%n_solves = nint(scalars(8), kind(c%stepper%n_solves))
+                c%n_queued = nint(scalars(6))
+                c%stepper%n_solves = nint(scalars(7), kind(c%stepper%n_solves))
+                c%queue_dt = scalars(SCALARS_HEAD + 1:SCALARS_HEAD + QUEUE_MAX)
+                c%queue_t = scalars(SCALARS_HEAD + QUEUE_MAX + 1:)
             end associate
         end do
-        if (ckpt%companion_scalars(N_COMPANION_SCALARS) > 0.0_dp) self%failure = 'failed before the checkpoint'
+        self%n_since = nint(ckpt%companion_scalars(N_COMPANION_SCALARS))
+        if (ckpt%companion_scalars(N_COMPANION_SCALARS - 1) > 0.0_dp) &
+            call stop_companions(self, 'failed before the checkpoint')
     end subroutine companions_restore_checkpoint
 
 end module error_companion_m

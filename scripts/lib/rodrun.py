@@ -63,8 +63,11 @@ def open_h5(path):
     writer (HDF5's SWMR mode, docs/output.md), which only a SWMR reader accepts: opened so."""
     try:
         return h5py.File(path, "r")
-    except OSError:
-        return h5py.File(path, "r", swmr=True)
+    except OSError as plain:
+        try:
+            return h5py.File(path, "r", swmr=True)
+        except OSError:
+            raise plain from None
 
 
 def open_run(path, checked=True):

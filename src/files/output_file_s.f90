@@ -28,7 +28,7 @@ contains
     module subroutine writer_open_file(w, create)
         class(h5_writer_t), intent(inout) :: w
         logical, intent(in) :: create
-        integer(hid_t) :: fapl_id, fcpl_id
+        integer(hid_t) :: fapl_id
         integer :: hdferr
 
         ! strong close: h5fclose_f also closes any object still open, so abandon() after a
@@ -44,18 +44,13 @@ contains
         ! would save nothing.
         call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
         call w%check(hdferr, 'h5pset_cache_f')
-        ! the 1.10 format (superblock 3, extensible-array chunk indexes): SWMR writing needs it
+        ! the 1.10 format (superblock 3; the chunk index of an extendible dataset is an
+        ! extensible array, HDF5's default B-tree parameters no longer apply): SWMR writing needs it
         call h5pset_libver_bounds_f(fapl_id, H5F_LIBVER_V110_F, H5F_LIBVER_V110_F, hdferr)
         call w%check(hdferr, 'h5pset_libver_bounds_f')
         if (create) then
-            call h5pcreate_f(H5P_FILE_CREATE_F, fcpl_id, hdferr)
-            call w%check(hdferr, 'h5pcreate_f (file creation)')
-            call h5pset_istore_k_f(fcpl_id, ISTORE_K, hdferr)
-            call w%check(hdferr, 'h5pset_istore_k_f')
-            call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, creation_prp=fcpl_id, access_prp=fapl_id)
+            call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, access_prp=fapl_id)
             call w%check(hdferr, 'h5fcreate_f')
-            call h5pclose_f(fcpl_id, hdferr)
-            call w%check(hdferr, 'h5pclose_f (file creation)')
         else
             call h5fopen_f(w%part_path, H5F_ACC_RDWR_F, w%file_id, hdferr, access_prp=fapl_id)
             call w%check(hdferr, 'h5fopen_f (reopening after SWMR writing)')

@@ -28,7 +28,7 @@ module output_m
                     h5pset_cache_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
                     h5pset_chunk_f, h5pset_deflate_f, h5pset_shuffle_f, h5pset_fclose_degree_f, &
-                    H5P_FILE_ACCESS_F, H5P_FILE_CREATE_F, h5pset_istore_k_f, &
+                    H5P_FILE_ACCESS_F, &
                     H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
                     h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
                     H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
@@ -47,10 +47,6 @@ module output_m
     !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
     !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
     integer, parameter :: SERIES_CHUNK = 256
-    !> Half the number of entries of a node of a chunk index (a B-tree; HDF5's default 32
-    !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
-    !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
-    integer, parameter :: ISTORE_K = 4
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
 

@@ -10,7 +10,9 @@
 !> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
 !> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
 !> no run leaves a truncated file under the final name (docs/output.md). Until finish()
-!> writes the real status, the root attribute `status` reads 'incomplete'.
+!> writes the real status, the root attribute `status` reads 'incomplete'. Between
+!> structural changes the file is in HDF5's SWMR write mode, so that a run killed at any
+!> moment leaves its last flush readable (output_file_s; docs/output.md, "A killed run").
 !>
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
@@ -127,7 +129,8 @@ module output_m
     end type h5_writer_t
 
     interface   ! creating the file (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
-                ! dataset descriptions (src/files/output_describe_s.f90), the contact events (src/files/output_events_s.f90)
+                ! dataset descriptions (src/files/output_describe_s.f90), the contact events (src/files/output_events_s.f90),
+                ! opening, SWMR writing and closing (src/files/output_file_s.f90)
         module subroutine writer_create(w, prefix, x, compression)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix

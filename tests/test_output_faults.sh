@@ -39,7 +39,7 @@ for level in 0 4; do
     check "compression $level: the .h5.part is left" test -f full$level.h5.part
     step=$("$py" -c "
 import h5py
-f = h5py.File('full$level.h5.part', 'r')
+f = h5py.File('full$level.h5.part', 'r', swmr=True)   # left open by its SWMR writer
 print(int(f['checkpoint/slot%d/counters' % int(f['checkpoint/current'][0])][0]))" 2>&1)
     check "compression $level: the .h5.part opens, its last checkpoint is at step 250" equals 250 "$step"
     run --set output.prefix=cont$level --set time.restart_from=full$level.h5.part --set output.compression=$level
@@ -54,7 +54,7 @@ check "disk full before any checkpoint: exit 4" equals 4 "$?"
 check "the message says the file holds no checkpoint" grep -q "cannot write 'early.h5.part': .*holds no checkpoint" early.err
 got=$("$py" -c "
 import h5py
-f = h5py.File('early.h5.part', 'r')
+f = h5py.File('early.h5.part', 'r', swmr=True)   # left open by its SWMR writer
 print(f.attrs['status'], f.attrs['model.varpi'], f['snapshots/t'][0])" 2>&1)
 check "the .h5.part of a run stopped before its first checkpoint is readable (status, inputs, t = 0)" \
     equals "incomplete 0.1 0.0" "$got"

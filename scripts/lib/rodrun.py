@@ -58,6 +58,18 @@ def check(f, path):
         raise RunFileError(f"{path} is not a rodcontact output file: no 'model.alpha'/'status' attributes on /")
 
 
+def open_h5(path):
+    """h5py.File(path, "r"); the .h5.part of a killed run is still marked as open by its
+    writer (HDF5's SWMR mode, docs/output.md), which only a SWMR reader accepts: opened so."""
+    try:
+        return h5py.File(path, "r")
+    except OSError as plain:
+        try:
+            return h5py.File(path, "r", swmr=True)
+        except OSError:
+            raise plain from None
+
+
 def open_run(path, checked=True):
     """The HDF5 file at path, open for reading (use it in a `with`); RunFileError when it is
     missing, a directory, not HDF5, or (checked) not written by rodcontact."""
@@ -66,7 +78,7 @@ def open_run(path, checked=True):
     if os.path.isdir(path):
         raise RunFileError(f"{path} is a directory, not a rodcontact output file")
     try:
-        f = h5py.File(path, "r")
+        f = open_h5(path)
     except OSError as exc:
         raise RunFileError(f"cannot open {path} as HDF5: {exc}") from exc
     if checked:

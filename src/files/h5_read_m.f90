@@ -13,6 +13,7 @@ module h5_read_m
     use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists
     use strings_m, only: from_c_chars
+    use h5_swmr_m, only: open_swmr_read
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
                     h5sclose_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
@@ -348,6 +349,12 @@ contains
         call h5_library_init()
         if (.not. file_exists(file)) call fail(file, what, 'no such file')
         call h5fopen_f(trim(file), H5F_ACC_RDONLY_F, file_id, hdferr)
+        ! the .h5.part of a killed run is still marked as open by its (SWMR) writer: a SWMR
+        ! reader opens it without changing it (h5_swmr_m)
+        if (hdferr < 0) then
+            file_id = open_swmr_read(file)
+            hdferr = merge(0, -1, file_id >= 0)
+        end if
         if (hdferr < 0) call fail(file, what, 'not an HDF5 file or not readable (h5fopen_f failed)')
     end function open_file
 

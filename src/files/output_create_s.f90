@@ -19,7 +19,6 @@ contains
 
         character(len=:), allocatable :: dir, message
         logical :: ok
-        integer(hid_t) :: fapl_id, fcpl_id
         integer :: hdferr
 
         if (w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: create() on a writer that is &
@@ -42,6 +41,11 @@ contains
         w%n_buf = 0
         w%logical_names = ''
         w%checkpoint_note = ''
+        w%swmr = .false.
+        w%closing = .false.
+        w%native_created = .false.
+        w%n_checkpoints = 0
+        w%n_slot_events = 0
 
         dir = parent_dir(prefix)
         if (len(dir) > 0) then
@@ -60,29 +64,7 @@ contains
 
         ! from here on abandon() has something to close
         w%opened = .true.
-        ! strong close: h5fclose_f also closes any object still open, so abandon() after a
-        ! failure half-way through cannot leave the file held open
-        call h5pcreate_f(H5P_FILE_ACCESS_F, fapl_id, hdferr)
-        call w%check(hdferr, 'h5pcreate_f (file access)')
-        call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
-        call w%check(hdferr, 'h5pset_fclose_degree_f')
-        ! no chunk cache: every chunk is written, and its space allocated, by the h5dwrite_f
-        ! that fills it, so that a full disk fails there, between flushes, and a flush
-        ! (flush()) writes metadata only, into space reserved for it first. Appends write
-        ! whole chunks (a snapshot row, 256 series entries) except at a flush, so the cache
-        ! would save nothing.
-        call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
-        call w%check(hdferr, 'h5pset_cache_f')
-        call h5pcreate_f(H5P_FILE_CREATE_F, fcpl_id, hdferr)
-        call w%check(hdferr, 'h5pcreate_f (file creation)')
-        call h5pset_istore_k_f(fcpl_id, ISTORE_K, hdferr)
-        call w%check(hdferr, 'h5pset_istore_k_f')
-        call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, creation_prp=fcpl_id, access_prp=fapl_id)
-        call w%check(hdferr, 'h5fcreate_f')
-        call h5pclose_f(fcpl_id, hdferr)
-        call w%check(hdferr, 'h5pclose_f (file creation)')
-        call h5pclose_f(fapl_id, hdferr)
-        call w%check(hdferr, 'h5pclose_f (file access)')
+        call writer_open_file(w, create=.true.)
 
         call create_datasets(w, x)
         allocate (w%buf(SERIES_BUFFER_SIZE, N_SERIES), stat=hdferr)

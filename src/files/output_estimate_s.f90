@@ -93,6 +93,7 @@ contains
         integer :: hdferr, k, part
         character(len=:), allocatable :: group
 
+        call w%leave_swmr()   ! new groups: not in SWMR writing (output_file_s)
         dims = 0
         do part = 1, size(GROUPS)
             group = trim(GROUPS(part))

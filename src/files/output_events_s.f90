@@ -16,6 +16,7 @@ contains
         integer :: hdferr
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_events() on a closed writer')
+        call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call h5gcreate_f(w%file_id, 'events', group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f /events')
         dims = int(size(t), hsize_t)

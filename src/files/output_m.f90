@@ -10,7 +10,9 @@
 !> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
 !> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
 !> no run leaves a truncated file under the final name (docs/output.md). Until finish()
-!> writes the real status, the root attribute `status` reads 'incomplete'.
+!> writes the real status, the root attribute `status` reads 'incomplete'. Between
+!> structural changes the file is in HDF5's SWMR write mode, so that a run killed at any
+!> moment leaves its last flush readable (output_file_s; docs/output.md, "A killed run").
 !>
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
@@ -28,7 +30,7 @@ module output_m
                     h5pset_cache_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
                     h5pset_chunk_f, h5pset_deflate_f, h5pset_shuffle_f, h5pset_fclose_degree_f, &
-                    H5P_FILE_ACCESS_F, H5P_FILE_CREATE_F, h5pset_istore_k_f, &
+                    H5P_FILE_ACCESS_F, &
                     H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
                     h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
                     H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
@@ -47,10 +49,6 @@ module output_m
     !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
     !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
     integer, parameter :: SERIES_CHUNK = 256
-    !> Half the number of entries of a node of a chunk index (a B-tree; HDF5's default 32
-    !> makes every node 2.3 KiB, 30 of the 44 KiB of metadata of a short run's 13 datasets).
-    !> With 4 a long run's index is a deeper tree of small nodes: one level more per factor 8.
-    integer, parameter :: ISTORE_K = 4
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
 
@@ -90,6 +88,11 @@ module output_m
         integer(hsize_t) :: n_estimate_snap = 0    !< snapshots in /snapshots/error_estimate* (output_estimate_s)
         integer(hid_t) :: estimate_ids(N_OUTPUT_FIELDS, 3) = -1   !< its datasets, open until finish()
         integer :: n_estimate_buf = 0              !< estimates waiting in estimate_buf
+        logical :: swmr = .false.                  !< the file is in SWMR write mode (output_file_s)
+        logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
+        logical :: native_created = .false.        !< /snapshots/native exists (output_native_s)
+        integer :: n_checkpoints = 0               !< checkpoints written
+        integer :: n_slot_events(0:1) = 0          !< rows of each slot's last /events
         real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
     contains
         procedure :: create => writer_create
@@ -122,16 +125,45 @@ module output_m
         procedure, private :: describe_si_of => writer_describe_si_of
         procedure, private :: make_scale => writer_make_scale
         procedure, private :: attach_scale => writer_attach_scale
+        procedure, private :: leave_swmr => writer_leave_swmr
     end type h5_writer_t
 
     interface   ! creating the file (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
-                ! dataset descriptions (src/files/output_describe_s.f90), the contact events (src/files/output_events_s.f90)
+                ! dataset descriptions (src/files/output_describe_s.f90), the contact events (src/files/output_events_s.f90),
+                ! opening, SWMR writing and closing (src/files/output_file_s.f90)
         module subroutine writer_create(w, prefix, x, compression)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix
             real(dp), intent(in) :: x(0:)
             integer, intent(in), optional :: compression
         end subroutine writer_create
+
+        module subroutine writer_open_file(w, create)
+            class(h5_writer_t), intent(inout) :: w
+            logical, intent(in) :: create
+        end subroutine writer_open_file
+
+        module subroutine writer_start_swmr(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_start_swmr
+
+        module subroutine writer_leave_swmr(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_leave_swmr
+
+        module subroutine writer_finish(w, status, keep_part)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: status
+            logical, intent(in), optional :: keep_part
+        end subroutine writer_finish
+
+        module subroutine writer_abandon(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_abandon
+
+        module subroutine writer_create_native(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_create_native
 
         module subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id, &
                                                    compress)
@@ -190,11 +222,12 @@ module output_m
             character(len=*), intent(in) :: name
         end subroutine writer_drop
 
-        module subroutine writer_put_real(w, name, values, shape2)
+        module subroutine writer_put_real(w, name, values, shape2, create_only)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: name
             real(dp), intent(in) :: values(*)
             integer, intent(in) :: shape2(2)
+            logical, intent(in), optional :: create_only
         end subroutine writer_put_real
 
         module subroutine writer_describe(w, dset_id, what, long_name, units)
@@ -353,12 +386,18 @@ contains
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
                                        "' written on a closed writer")
+        if (w%swmr) then
+            ! held dataset identifiers change when SWMR writing ends: none may be the target
+            if (present(on)) call w%fail("internal error: attribute '"//name//"' of a dataset in SWMR mode")
+            call w%leave_swmr()
+        end if
         obj_id = w%file_id
         if (present(on)) obj_id = on
     end function writer_attr_target
 
     !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
-    !> crash leaves everything appended so far readable in the .part file.
+    !> crash leaves everything appended so far readable in the .part file; then (re)start
+    !> SWMR writing, which makes the next flushes crash-safe (output_file_s).
     subroutine writer_flush(w)
         class(h5_writer_t), intent(inout) :: w
 
@@ -370,6 +409,8 @@ contains
         call w%reserve()
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
+        ! from here on until the next structural change, flushes are crash-safe (output_file_s)
+        if (.not. w%swmr .and. .not. w%closing) call writer_start_swmr(w)
     end subroutine writer_flush
 
     !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
@@ -390,82 +431,6 @@ contains
         call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
         if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
     end subroutine writer_reserve
-
-    !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
-    !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
-    !> `<prefix>.h5`, replacing an older file of that name.
-    subroutine writer_finish(w, status, keep_part)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: status
-        !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
-        !> continued by restart_from), not renamed
-        logical, intent(in), optional :: keep_part
-
-        integer :: hdferr, k
-        logical :: ok
-        character(len=:), allocatable :: message
-
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: finish() on a closed writer')
-        call w%flush_series()
-        call w%attr_str('status', status)
-        call w%attr_str('logical_attributes', w%logical_names)
-        call w%flush()   ! with its space reserved; closing then writes nothing new
-
-        call h5dclose_f(w%mesh_x_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /mesh/x')
-        w%mesh_x_id = -1
-
-        do k = 1, N_SERIES
-            call h5dclose_f(w%series_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES(k)%name))
-            w%series_ids(k) = -1
-        end do
-        call h5dclose_f(w%snap_t_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /snapshots/t')
-        w%snap_t_id = -1
-        do k = 1, N_SNAPSHOT_FIELDS
-            call h5dclose_f(w%snap_field_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(SNAPSHOTS(k)%name))
-            w%snap_field_ids(k) = -1
-        end do
-        call writer_close_estimate(w)
-        call h5fclose_f(w%file_id, hdferr)
-        call w%check(hdferr, 'h5fclose_f')
-        w%file_id = -1
-        w%opened = .false.
-        deallocate (w%buf)
-
-        if (present(keep_part)) then
-            if (keep_part) return
-        end if
-        call rename_file(w%part_path, w%final_path, ok, message)
-        ! the .part file is complete and valid here: keep it rather than lose the run
-        if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
-                                 //w%part_path//"')")
-    end subroutine writer_finish
-
-    !> Close whatever is open, ignoring errors, and delete the .part file. For output
-    !> failures, where no valid file can be promised. A writer that is not open is left alone.
-    subroutine writer_abandon(w)
-        class(h5_writer_t), intent(inout) :: w
-
-        integer :: hdferr
-
-        if (.not. w%opened) return
-        w%opened = .false.
-        ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
-        if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
-        w%file_id = -1
-        w%series_ids = -1
-        w%mesh_x_id = -1
-        w%snap_t_id = -1
-        w%snap_field_ids = -1
-        w%estimate_ids = -1
-        w%n_estimate_buf = 0
-        w%n_buf = 0
-        if (allocated(w%buf)) deallocate (w%buf)
-        call remove_file(w%part_path)
-    end subroutine writer_abandon
 
     ! ---------------------------------------------------------------- private helpers
 

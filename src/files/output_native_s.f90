@@ -6,8 +6,8 @@
 !>
 !> Snapshot j holds the nodes x[offset[j] : offset[j] + count[j]] and the exact nodal
 !> values of every field there (the P1 solution the run computed); /snapshots/<field>
-!> hold the same P1 functions evaluated on the fixed grid /mesh/x. Created by the first
-!> append; every append opens, extends, writes and closes the datasets.
+!> hold the same P1 functions evaluated on the fixed grid /mesh/x. Every append opens,
+!> extends, writes and closes the datasets.
 submodule (output_m) output_native_s
     use hdf5, only: h5dopen_f, H5T_STD_I64LE
     implicit none
@@ -29,7 +29,7 @@ contains
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_native() on a closed writer')
         if (size(values, 1) /= size(x) .or. size(values, 2) /= N_SNAPSHOT_FIELDS) &
             call w%fail('internal error: append_native() given fields that do not match the nodes')
-        if (w%n_native_snap == 0) call create_native(w)
+        if (.not. w%native_created) call writer_create_native(w)
         n = int(size(x), hsize_t)
         call append_real(w, 'x', x, n)
         do k = 1, N_SNAPSHOT_FIELDS
@@ -43,15 +43,19 @@ contains
 
     !> The group and its empty datasets. Dimension scales (docs/output.md, "netCDF"): native/x
     !> is the coordinate of the fields (dimension x of this group: every snapshot's nodes one
-    !> after the other), /snapshots/t that of offset and count.
-    subroutine create_native(w)
+    !> after the other), /snapshots/t that of offset and count. Created by the first append,
+    !> or by the first checkpoint of an adaptive mesh (write_checkpoint), so that SWMR
+    !> writing need not end for it later (output_file_s).
+    module subroutine writer_create_native(w)
         class(h5_writer_t), intent(inout) :: w
         integer(hid_t) :: group_id, dset_id, x_id
         integer(hsize_t) :: dims(1)
         integer :: hdferr, k
 
+        call w%leave_swmr()
         call h5gcreate_f(w%file_id, GROUP, group_id, hdferr)
         call w%check(hdferr, 'h5gcreate_f '//GROUP)
+        w%native_created = .true.
         dims = 0
         call w%create_extendible(group_id, GROUP//'/', 'x', H5T_IEEE_F64LE, dims, [int(VALUES_CHUNK, hsize_t)], x_id)
         call w%describe(x_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', '1')
@@ -83,7 +87,7 @@ contains
         call close_dataset(w, dset_id, 'count')
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f '//GROUP)
-    end subroutine create_native
+    end subroutine writer_create_native
 
     subroutine close_dataset(w, dset_id, name)
         class(h5_writer_t), intent(inout) :: w

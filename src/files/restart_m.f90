@@ -103,6 +103,9 @@ contains
         call require_history_datasets(file)
         s = cfg%mesh%n_elements
         call read_real_1d(file, '/checkpoint/current', values)
+        ! -1: the run was killed while writing its first checkpoint (output_m)
+        if (nint(values(1)) < 0) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+            "' holds no complete checkpoint; the run must have reached a checkpoint")
         slot = '/checkpoint/slot0'
         if (nint(values(1)) == 1) slot = '/checkpoint/slot1'
         if (cfg%mesh%adaptive) then

@@ -1,0 +1,236 @@
+!> The writer's file itself (output_m): opening it with HDF5's 1.10 format, its
+!> single-writer/multiple-reader (SWMR) write mode, and closing it (finish, abandon). A
+!> submodule of output_m, so that it reaches the writer's private state.
+!>
+!> Crash safety (docs/output.md, "A killed run"). Between structural changes the file is in
+!> SWMR write mode (h5_swmr_m), in which a flush writes metadata children before their
+!> parents, so a run killed at any moment leaves its last flush, with its checkpoint, readable
+!> by a SWMR reader. SWMR mode forbids new objects, attributes and deletions (HDF5 1.10 then
+!> corrupts its metadata cache), so whatever needs one ends it first (leave_swmr: the file is
+!> closed, clean, and reopened), and the next flush() starts it again. A run does so at most
+!> twice: at its first checkpoint, which creates the checkpoint slots (and /snapshots/native
+!> of an adaptive mesh) with room to be rewritten in SWMR mode, and at the end for its results
+!> and final attributes, which therefore are not crash-safe.
+submodule (output_m) output_file_s
+    use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, h5iget_name_f, &
+                    h5dopen_f
+    use h5ds, only: h5dsdetach_scale_f
+    use h5_swmr_m, only: start_swmr_write
+    implicit none
+
+    !> At most this many datasets are held open by the writer (mesh, series, snapshots, estimates)
+    integer, parameter :: MAX_OPEN = 1 + N_SERIES + 1 + N_SNAPSHOT_FIELDS + 3 * N_OUTPUT_FIELDS
+
+contains
+
+    !> Create (create = .true.: truncating) or reopen the .part file for writing, in HDF5's
+    !> 1.10 format (which SWMR needs), with strong close degree and no chunk cache.
+    module subroutine writer_open_file(w, create)
+        class(h5_writer_t), intent(inout) :: w
+        logical, intent(in) :: create
+        integer(hid_t) :: fapl_id
+        integer :: hdferr
+
+        ! strong close: h5fclose_f also closes any object still open, so abandon() after a
+        ! failure half-way through cannot leave the file held open
+        call h5pcreate_f(H5P_FILE_ACCESS_F, fapl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (file access)')
+        call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
+        call w%check(hdferr, 'h5pset_fclose_degree_f')
+        ! no chunk cache: every chunk is written, and its space allocated, by the h5dwrite_f
+        ! that fills it, so that a full disk fails there, between flushes, and a flush
+        ! (flush()) writes metadata only, into space reserved for it first. Appends write
+        ! whole chunks (a snapshot row, 256 series entries) except at a flush, so the cache
+        ! would save nothing.
+        call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
+        call w%check(hdferr, 'h5pset_cache_f')
+        ! the 1.10 format (superblock 3; the chunk index of an extendible dataset is an
+        ! extensible array, HDF5's default B-tree parameters no longer apply): SWMR writing needs it
+        call h5pset_libver_bounds_f(fapl_id, H5F_LIBVER_V110_F, H5F_LIBVER_V110_F, hdferr)
+        call w%check(hdferr, 'h5pset_libver_bounds_f')
+        if (create) then
+            call h5fcreate_f(w%part_path, H5F_ACC_TRUNC_F, w%file_id, hdferr, access_prp=fapl_id)
+            call w%check(hdferr, 'h5fcreate_f')
+        else
+            call h5fopen_f(w%part_path, H5F_ACC_RDWR_F, w%file_id, hdferr, access_prp=fapl_id)
+            call w%check(hdferr, 'h5fopen_f (reopening after SWMR writing)')
+        end if
+        call h5pclose_f(fapl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (file access)')
+    end subroutine writer_open_file
+
+    !> Switch the file to SWMR writing (flush(), once the file holds everything the run will
+    !> write into until its end, and after each leave_swmr).
+    module subroutine writer_start_swmr(w)
+        class(h5_writer_t), intent(inout) :: w
+        integer :: hdferr
+
+        call start_swmr_write(w%file_id, hdferr)
+        call w%check(hdferr, 'H5Fstart_swmr_write')
+        w%swmr = .true.
+    end subroutine writer_start_swmr
+
+    !> Leave SWMR writing before a structural change (a new object or attribute, a deletion):
+    !> close the file, which a SWMR close leaves clean and complete, and reopen it with every
+    !> dataset the writer holds open. Nothing to do outside SWMR mode.
+    module subroutine writer_leave_swmr(w)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=512) :: names(MAX_OPEN)
+        integer(hid_t) :: ids(MAX_OPEN)
+        integer(size_t) :: length
+        integer :: hdferr, k
+
+        if (.not. w%swmr) return
+        call w%flush_series()
+        call writer_flush_estimate(w)
+        ids = held_ids(w)
+        do k = 1, MAX_OPEN
+            if (ids(k) < 0) cycle
+            call h5iget_name_f(ids(k), names(k), int(len(names(k)), size_t), length, hdferr)
+            call w%check(hdferr, 'h5iget_name_f')
+            if (length >= len(names(k))) call w%fail('internal error: a dataset name longer than 511 characters')
+            call h5dclose_f(ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f '//trim(names(k)))
+        end do
+        call w%reserve()
+        call h5fclose_f(w%file_id, hdferr)
+        call w%check(hdferr, 'h5fclose_f (leaving SWMR writing)')
+        w%swmr = .false.
+        call writer_open_file(w, create=.false.)
+        do k = 1, MAX_OPEN
+            if (ids(k) < 0) cycle
+            call h5dopen_f(w%file_id, trim(names(k)), ids(k), hdferr)
+            call w%check(hdferr, 'h5dopen_f '//trim(names(k)))
+        end do
+        w%mesh_x_id = ids(1)
+        w%series_ids = ids(2:1 + N_SERIES)
+        w%snap_t_id = ids(2 + N_SERIES)
+        w%snap_field_ids = ids(3 + N_SERIES:2 + N_SERIES + N_SNAPSHOT_FIELDS)
+        w%estimate_ids = reshape(ids(3 + N_SERIES + N_SNAPSHOT_FIELDS:), shape(w%estimate_ids))
+    end subroutine writer_leave_swmr
+
+    !> Every dataset identifier the writer holds, in the order leave_swmr stores them back
+    !> (negative: not open).
+    pure function held_ids(w) result(ids)
+        class(h5_writer_t), intent(in) :: w
+        integer(hid_t) :: ids(MAX_OPEN)
+
+        ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
+    end function held_ids
+
+    !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
+    !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
+    !> `<prefix>.h5`, replacing an older file of that name.
+    module subroutine writer_finish(w, status, keep_part)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: status
+        !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
+        !> continued by restart_from), not renamed
+        logical, intent(in), optional :: keep_part
+
+        integer :: hdferr, k
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: finish() on a closed writer')
+        call w%leave_swmr()
+        w%closing = .true.
+        call tidy(w)
+        call w%flush_series()
+        call w%attr_str('status', status)
+        call w%attr_str('logical_attributes', w%logical_names)
+        call w%flush()   ! with its space reserved; closing then writes nothing new
+
+        call h5dclose_f(w%mesh_x_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /mesh/x')
+        w%mesh_x_id = -1
+
+        do k = 1, N_SERIES
+            call h5dclose_f(w%series_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES(k)%name))
+            w%series_ids(k) = -1
+        end do
+        call h5dclose_f(w%snap_t_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f /snapshots/t')
+        w%snap_t_id = -1
+        do k = 1, N_SNAPSHOT_FIELDS
+            call h5dclose_f(w%snap_field_ids(k), hdferr)
+            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(SNAPSHOTS(k)%name))
+            w%snap_field_ids(k) = -1
+        end do
+        call writer_close_estimate(w)
+        call h5fclose_f(w%file_id, hdferr)
+        call w%check(hdferr, 'h5fclose_f')
+        w%file_id = -1
+        w%opened = .false.
+        w%swmr = .false.
+        deallocate (w%buf)
+
+        if (present(keep_part)) then
+            if (keep_part) return
+        end if
+        call rename_file(w%part_path, w%final_path, ok, message)
+        ! the .part file is complete and valid here: keep it rather than lose the run
+        if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
+                                 //w%part_path//"')")
+    end subroutine writer_finish
+
+    !> Close whatever is open, ignoring errors, and delete the .part file. For output
+    !> failures, where no valid file can be promised. A writer that is not open is left alone.
+    module subroutine writer_abandon(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer :: hdferr
+
+        if (.not. w%opened) return
+        w%opened = .false.
+        w%swmr = .false.
+        ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
+        if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
+        w%file_id = -1
+        w%series_ids = -1
+        w%mesh_x_id = -1
+        w%snap_t_id = -1
+        w%snap_field_ids = -1
+        w%estimate_ids = -1
+        w%n_estimate_buf = 0
+        w%n_buf = 0
+        if (allocated(w%buf)) deallocate (w%buf)
+        call remove_file(w%part_path)
+    end subroutine writer_abandon
+
+    !> Remove what SWMR writing made the run create in advance and it never used, so that
+    !> the finished file holds what it held before SWMR: the second checkpoint slot of a run
+    !> with one checkpoint, a slot's empty /events, /snapshots/native of an adaptive mesh that
+    !> never left the output grid (with its offset and count detached from /snapshots/t).
+    subroutine tidy(w)
+        class(h5_writer_t), intent(inout) :: w
+        integer :: slot
+
+        if (w%n_checkpoints == 1) call w%drop('/checkpoint/slot1')
+        do slot = 0, min(w%n_checkpoints, 2) - 1
+            if (w%n_slot_events(slot) == 0) call w%drop('/checkpoint/slot'//int_str(slot)//'/events')
+        end do
+        if (w%native_created .and. w%n_native_snap == 0) then
+            call detach(w, '/snapshots/native/offset')
+            call detach(w, '/snapshots/native/count')
+            call w%drop('/snapshots/native')
+        end if
+    end subroutine tidy
+
+    !> Detach dataset `name` from its dimension scale /snapshots/t (before deleting it).
+    subroutine detach(w, name)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer(hid_t) :: dset_id
+        integer :: hdferr
+
+        call h5dopen_f(w%file_id, name, dset_id, hdferr)
+        call w%check(hdferr, 'h5dopen_f '//name)
+        call h5dsdetach_scale_f(dset_id, w%snap_t_id, 1, hdferr)
+        call w%check(hdferr, 'h5dsdetach_scale_f '//name)
+        call h5dclose_f(dset_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f '//name)
+    end subroutine detach
+
+end submodule output_file_s

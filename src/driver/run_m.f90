@@ -115,7 +115,8 @@ contains
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
         if (cfg%output%series_dt > 0.0_dp) &
             run%n_series_next = floor(run%state%t / cfg%output%series_dt * (1.0_dp + 1.0e-12_dp)) + 1
-        run%n_elements_max = run%state%s
+        ! after a restart, also the elements held before the checkpoint (0 without a restart)
+        run%n_elements_max = max(run%state%s, ckpt%n_elements_max)
     end subroutine set_up
 
     !> Create <prefix>.h5.part with the inputs, the provenance and the initial state (or the
@@ -330,7 +331,10 @@ contains
         call run%stepper%save_checkpoint(ckpt)
         call run%monitor%save_checkpoint(ckpt)
         call run%driver%save_checkpoint(ckpt)
-        if (cfg%mesh%adaptive) call run%mesh%save_checkpoint(ckpt)
+        if (cfg%mesh%adaptive) then
+            call run%mesh%save_checkpoint(ckpt)
+            ckpt%n_elements_max = run%n_elements_max
+        end if
         if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
         call write_checkpoint(run%writer, ckpt, step_failure(run%state%step, run%state%t, ''))
     end subroutine checkpoint

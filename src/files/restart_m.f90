@@ -7,8 +7,9 @@
 !> scalars the run needs to continue exactly (checkpoint_m's COUNTER_*); `control`, the
 !> step control's scalars followed by the contact state and the energy monitor's rise at
 !> step changes; `history`, the error estimator's levels; `events`; `mesh` (&mesh
-!> adaptive), the mesh's field scales, the energy monitor's remesh counters (2), then the
-!> node keys. checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
+!> adaptive), the mesh's field scales, the energy monitor's remesh counters (2), the node
+!> keys, then the most elements the run has held (not in files of earlier versions, whose
+!> restarts count it from the checkpoint's mesh). checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
 !> read_checkpoint convert between the two. A restart
 !> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
 !> copies the series and snapshots up to it into the new file and continues the time loop
@@ -72,12 +73,14 @@ contains
         values = [ckpt%control, merge(1.0_dp, 0.0_dp, ckpt%in_contact), ckpt%max_rise_step_change]
     end function control_values
 
-    !> /checkpoint/slotN/mesh: the field scales, the remesh counters, the node keys.
+    !> /checkpoint/slotN/mesh: the field scales, the remesh counters, the node keys, the most
+    !> elements held.
     pure function mesh_values(ckpt) result(values)
         type(checkpoint_t), intent(in) :: ckpt
-        real(dp) :: values(MESH_HEADER + size(ckpt%mesh_keys))
+        real(dp) :: values(MESH_HEADER + size(ckpt%mesh_keys) + 1)
 
-        values = [ckpt%mesh_scale, ckpt%max_rise_remesh, real(ckpt%n_remeshes, dp), real(ckpt%mesh_keys, dp)]
+        values = [ckpt%mesh_scale, ckpt%max_rise_remesh, real(ckpt%n_remeshes, dp), real(ckpt%mesh_keys, dp), &
+                  real(ckpt%n_elements_max, dp)]
     end function mesh_values
 
     !> Read the checkpoint of `file` into ckpt, after checking that this run may continue
@@ -108,20 +111,17 @@ contains
             "' holds no complete checkpoint; the run must have reached a checkpoint")
         slot = '/checkpoint/slot0'
         if (nint(values(1)) == 1) slot = '/checkpoint/slot1'
+        call read_real_2d(file, slot//'/state', ckpt%state)
         if (cfg%mesh%adaptive) then
-            ! the mesh of the checkpoint: s + 1 node keys after MESH_HEADER values
+            ! the mesh of the checkpoint, whose s + 1 nodes the state's rows give
             if (.not. dataset_exists(file, slot//'/mesh')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
                 "': its checkpoint has no adaptive mesh")
             call read_real_1d(file, slot//'/mesh', mesh)
-            s = size(mesh) - MESH_HEADER - 1
-            n = 1 + N_FIELDS
-            ckpt%has_mesh = .true.
-            ckpt%mesh_scale = mesh(1:n)
-            ckpt%max_rise_remesh = mesh(n + 1)
-            ckpt%n_remeshes = nint(mesh(n + 2))
-            ckpt%mesh_keys = nint(mesh(MESH_HEADER + 1:), int64)
+            s = size(ckpt%state, 1) - 1
+            call read_mesh(mesh, s, ckpt)
+            if (.not. ckpt%has_mesh) &
+                call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/mesh does not fit its state's "//int_str(s + 1)//' nodes')
         end if
-        call read_real_2d(file, slot//'/state', ckpt%state)
         if (any(shape(ckpt%state) /= [s + 1, 1 + N_FIELDS])) &
             call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/state has the wrong shape")
         if (dataset_exists(file, slot//'/previous')) call read_real_2d(file, slot//'/previous', ckpt%previous)
@@ -157,6 +157,26 @@ contains
                        int_str(nint(ckpt%counters(COUNTER_STEP)))//'): a restart continues a run up to t_end, '// &
                        'so t_end must be >= '//format_real(ckpt%counters(COUNTER_T)))
     end subroutine read_checkpoint
+
+    !> The adaptive mesh part of a checkpoint from /checkpoint/slotN/mesh (mesh_values) on s
+    !> elements: MESH_HEADER values, s + 1 node keys, the most elements held (absent in
+    !> files of earlier versions: then s). ckpt%has_mesh stays .false. when the sizes do not fit.
+    subroutine read_mesh(mesh, s, ckpt)
+        real(dp), intent(in) :: mesh(:)
+        integer, intent(in) :: s
+        type(checkpoint_t), intent(inout) :: ckpt
+        integer :: n
+
+        if (size(mesh) /= MESH_HEADER + s + 1 .and. size(mesh) /= MESH_HEADER + s + 2) return
+        n = 1 + N_FIELDS
+        ckpt%has_mesh = .true.
+        ckpt%mesh_scale = mesh(1:n)
+        ckpt%max_rise_remesh = mesh(n + 1)
+        ckpt%n_remeshes = nint(mesh(n + 2))
+        ckpt%mesh_keys = nint(mesh(MESH_HEADER + 1:MESH_HEADER + s + 1), int64)
+        ckpt%n_elements_max = s
+        if (size(mesh) == MESH_HEADER + s + 2) ckpt%n_elements_max = max(s, nint(mesh(size(mesh))))
+    end subroutine read_mesh
 
     !> Does the run cfg end before the checkpoint's level (time t, step n)? Fixed steps: its
     !> last step comes before the checkpoint's; adaptive steps: t_end < t.

@@ -13,6 +13,7 @@
 !>   adaptive_mesh_t (adaptive_mesh_m)   mesh_scale, mesh_keys (has_mesh)
 !>   error_companions_t (error_companion_m)   companion_levels, companion_scalars
 !>                                   (&output error_estimate only)
+!>   run_t (run_m)                   n_elements_max (&mesh adaptive only)
 !> How the record is laid out in the file's /checkpoint group is restart_m's business.
 module checkpoint_m
     use kinds_m, only: dp
@@ -44,6 +45,7 @@ module checkpoint_m
         real(dp) :: max_rise_remesh = 0.0_dp
         integer :: n_remeshes = 0
         integer(int64), allocatable :: mesh_keys(:)   !< (0:s)
+        integer :: n_elements_max = 0             !< the most elements the run has held (0: not saved)
         real(dp), allocatable :: companion_levels(:, :)   !< the error estimate's companions (unallocated: none)
         real(dp), allocatable :: companion_scalars(:)
     end type checkpoint_t

@@ -200,8 +200,9 @@ contains
         real(dp), intent(in) :: dt
         integer, intent(in) :: slots(N_FIELDS)
         type(band_t), intent(inout) :: a
-        integer :: nf, kw, s, e, row, col, ia, ib
-        real(dp) :: m(2, 2), h_e, h_blocks, blocks(2, 2, N_FIELDS, N_FIELDS)
+        integer :: nf, kw, s, e, row, col
+        real(dp) :: h_e, h_blocks, blocks(2, 2, N_FIELDS, N_FIELDS)
+        logical :: nonzero(N_FIELDS, N_FIELDS)   !< blocks(:, :, row, col) has a nonzero entry
 
         s = mesh%s()
         nf = count(slots > 0)
@@ -215,6 +216,7 @@ contains
                 do row = 1, N_FIELDS
                     do col = 1, N_FIELDS
                         blocks(:, :, row, col) = element_block(model, h_e, dt, row, col, last=e == s)
+                        nonzero(row, col) = .not. all(is_zero(blocks(:, :, row, col)))
                     end do
                 end do
                 h_blocks = h_e
@@ -222,14 +224,8 @@ contains
             do row = 1, N_FIELDS
                 if (slots(row) == 0) cycle
                 do col = 1, N_FIELDS
-                    if (slots(col) == 0) cycle
-                    m = blocks(:, :, row, col)
-                    if (all(is_zero(m))) cycle
-                    do ia = 1, 2
-                        do ib = 1, 2
-                            call a%add(nf * (e - 2 + ia) + slots(row), nf * (e - 2 + ib) + slots(col), m(ia, ib))
-                        end do
-                    end do
+                    if (slots(col) == 0 .or. .not. nonzero(row, col)) cycle
+                    call a%add_block2(nf * (e - 1) + slots(row), nf * (e - 1) + slots(col), nf, blocks(:, :, row, col))
                 end do
             end do
         end do

@@ -32,6 +32,7 @@ module banded_m
         procedure :: zero => band_zero
         procedure :: add => band_add
         procedure :: add_block2 => band_add_block2
+        procedure :: release => band_release
         procedure :: get => band_get
         procedure :: set_identity_row => band_set_identity_row
         procedure :: matvec => band_matvec
@@ -57,6 +58,16 @@ contains
         call check_allocation(stat, message, 'a band matrix')
         call self%zero()
     end subroutine band_init
+
+    !> Free the storage of a matrix no longer used (e.g. one whose block LU solves instead):
+    !> n, kl and ku are kept; init allocates it again.
+    subroutine band_release(self)
+        class(band_t), intent(inout) :: self
+
+        if (allocated(self%ab)) deallocate (self%ab)
+        if (allocated(self%ipiv)) deallocate (self%ipiv)
+        self%factored = .false.
+    end subroutine band_release
 
     subroutine band_zero(self)
         class(band_t), intent(inout) :: self

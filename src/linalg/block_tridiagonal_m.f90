@@ -120,15 +120,17 @@ contains
         type(band_t), intent(in) :: a
         integer, intent(in) :: nb, row_node, col_node
         real(dp), intent(out) :: blk(nb, nb)
-        integer :: p, q, r, c
+        integer :: q, c, r0, p_first, p_last
 
+        r0 = nb * row_node
         do q = 1, nb
             c = nb * col_node + q
-            do p = 1, nb
-                r = nb * row_node + p
-                blk(p, q) = 0.0_dp
-                if (c - r <= a%ku .and. r - c <= a%kl) blk(p, q) = a%ab(a%kl + a%ku + 1 + r - c, c)
-            end do
+            ! rows r = r0 + p in the band: c - ku <= r <= c + kl (a column of a%ab, contiguous)
+            p_first = max(1, c - a%ku - r0)
+            p_last = min(nb, c + a%kl - r0)
+            blk(:, q) = 0.0_dp
+            if (p_first <= p_last) blk(p_first:p_last, q) = &
+                a%ab(a%kl + a%ku + 1 + r0 + p_first - c:a%kl + a%ku + 1 + r0 + p_last - c, c)
         end do
     end subroutine get_block
     !> a = a^{-1} for an n x n block by Gauss-Jordan elimination with partial pivoting, in

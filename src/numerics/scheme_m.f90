@@ -322,11 +322,22 @@ contains
     !> Interleave field-major w(0:s, f) into the system vector x (fields with slots > 0).
     pure subroutine scatter_fields(slots, w, x)
         integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(in) :: w(0:, :)
-        real(dp), intent(out) :: x(:)
+        real(dp), intent(in), contiguous :: w(0:, :)
+        real(dp), intent(out), contiguous :: x(:)
         integer :: f, nf, i
 
         nf = count(slots > 0)
+        if (nf == N_FIELDS) then
+            ! every field: node by node, the five slots of a node stored together
+            do i = 0, ubound(w, 1)
+                x(N_FIELDS * i + slots(1)) = w(i, 1)
+                x(N_FIELDS * i + slots(2)) = w(i, 2)
+                x(N_FIELDS * i + slots(3)) = w(i, 3)
+                x(N_FIELDS * i + slots(4)) = w(i, 4)
+                x(N_FIELDS * i + slots(5)) = w(i, 5)
+            end do
+            return
+        end if
         do f = 1, N_FIELDS
             if (slots(f) == 0) cycle
             do i = 0, ubound(w, 1)
@@ -338,11 +349,21 @@ contains
     !> Inverse of scatter_fields: copy the system vector x into the fields it holds.
     pure subroutine gather_fields(slots, x, w)
         integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(in) :: x(:)
-        real(dp), intent(inout) :: w(0:, :)
+        real(dp), intent(in), contiguous :: x(:)
+        real(dp), intent(inout), contiguous :: w(0:, :)
         integer :: f, nf, i
 
         nf = count(slots > 0)
+        if (nf == N_FIELDS) then
+            do i = 0, ubound(w, 1)
+                w(i, 1) = x(N_FIELDS * i + slots(1))
+                w(i, 2) = x(N_FIELDS * i + slots(2))
+                w(i, 3) = x(N_FIELDS * i + slots(3))
+                w(i, 4) = x(N_FIELDS * i + slots(4))
+                w(i, 5) = x(N_FIELDS * i + slots(5))
+            end do
+            return
+        end if
         do f = 1, N_FIELDS
             if (slots(f) == 0) cycle
             do i = 0, ubound(w, 1)

@@ -147,8 +147,8 @@ contains
     !> (weighted by h_e on a graded mesh, scaled by h = 1/s once at the end on a uniform one).
     !> sums: SUM_* (SUM_SCALE: that scale).
     pure subroutine element_sums(u, w, mesh, sums)
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(out) :: sums(N_SUMS)
         real(dp) :: strain_terms, h_e
@@ -449,7 +449,7 @@ contains
     !> The mass products (element_mass_product) of element e of the level w: v v, theta
     !> theta, P P, P theta, q q, eta eta.
     pure subroutine element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: w(0:, :)
         integer, intent(in) :: e
         real(dp), intent(out) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
 

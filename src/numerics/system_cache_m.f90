@@ -40,9 +40,7 @@ module system_cache_m
     end type monolithic_system_t
 
     type :: system_cache_t
-        !> allocated at the first lookup (CACHE_SIZE entries; on the heap: a run_t that held
-        !> them in place would exceed the stack variable size limit)
-        type(monolithic_system_t), allocatable :: systems(:)
+        type(monolithic_system_t) :: systems(CACHE_SIZE)
         integer :: mesh_key = 1        !< the current mesh (invalidate: a new one)
         integer :: uses = 0            !< lookups so far
         integer :: n_factored = 0      !< systems assembled and factored (misses)
@@ -64,7 +62,6 @@ contains
         integer, intent(out) :: k
         logical, intent(out) :: found
 
-        if (.not. allocated(self%systems)) allocate (self%systems(CACHE_SIZE))
         self%uses = self%uses + 1
         found = .false.
         do k = 1, CACHE_SIZE
@@ -98,7 +95,6 @@ contains
         integer :: k
 
         self%mesh_key = self%mesh_key + 1
-        if (.not. allocated(self%systems)) return
         do k = 1, CACHE_SIZE
             self%systems(k)%dt_eff = 0.0_dp
             self%systems(k)%mesh_key = 0
@@ -112,7 +108,6 @@ contains
         integer :: k
 
         cache_all_use_blocks = .true.
-        if (.not. allocated(self%systems)) return
         do k = 1, CACHE_SIZE
             if (self%systems(k)%mesh_key == self%mesh_key .and. self%systems(k)%dt_eff > 0.0_dp) &
                 cache_all_use_blocks = cache_all_use_blocks .and. self%systems(k)%use_blocks

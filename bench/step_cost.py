@@ -58,7 +58,7 @@ def main():
              "costs at most %.1fx a fixed step of the same scheme. Only adaptive steps compute the local"
              % TARGET_RATIO,
              "error estimate (X^n - P^n, about 22k instructions at s = 500, and its energy norm, about",
-             "25k, step_control_m: most of the difference at tight tolerances) and save the state before",
+             "21k, step_control_m: most of the difference at tight tolerances) and save the state before",
              "a step is tried (about 3k). The interval lies in",
              "exp1's contact phase (onset 0.19, release 1.45), where the steps of error_tol = 1e-5 still",
              "grow: each step onto a new rung of the step-size ladder factors a new system. The row over",

@@ -16,7 +16,7 @@
 #              $WP_OUT/adaptive/, not in git), checked against dt = 5e-5 (and 1e-4: the order)
 #   fixed      Euler dt = 4e-4, 2e-4, 1e-4 (the baseline of the targets), 5e-5;
 #              BDF2 dt = 4e-4, 2e-4, 1e-4 (and the 5e-5 check)
-#   adaptive   euler, bdf2, midpoint at error_tol = 1e-4, 1e-5, 1e-6, 1e-7
+#   adaptive   euler, bdf2, midpoint at error_tol = 1e-4, 1e-5, 1e-6, 1e-7 (midpoint also 1.2e-5)
 # and to t = 10: fixed Euler dt = 1e-4 and the adaptive runs again (target (b)).
 # Wall time: the root attribute wall_seconds; runs under 2 s and the fixed Euler run to t = 10
 # are repeated (3 runs, round robin over all of them) and the median is taken. Every run writes no snapshots but the first and last
@@ -52,11 +52,15 @@ if ((quick)); then
     euler_dts=(4e-4 1e-4); bdf2_dts=(4e-4)
     schemes=(euler bdf2 midpoint); tols=(1e-4 1e-5); short_tols=(1e-5)
     repeats=1
+    midpoint_extra_tols=()
 else
     t_long=60; t_short=10
     ref_dt=2.5e-5; check_dt=5e-5
     euler_dts=(4e-4 2e-4 1e-4 5e-5); bdf2_dts=(4e-4 2e-4 1e-4)
     schemes=(euler bdf2 midpoint); tols=(1e-4 1e-5 1e-6 1e-7); short_tols=(1e-4 1e-5 1e-6 1e-7)
+    # midpoint also at the loosest tolerance found to meet the dense-grid target's accuracy
+    # (issue 24: 1.4e-5 misses the release by 1.6e-5, 1.6e-5 the dense grid by 4 %)
+    midpoint_extra_tols=(1.2e-5)
     repeats=3
 fi
 repeat_below=2      # seconds: shorter runs are repeated $repeats times, the median taken
@@ -133,7 +137,9 @@ for dt in "${bdf2_dts[@]}"; do
     point "bdf2_dt$dt" bdf2 fixed "$dt" "$t_long" --set time.dt="$dt"
 done
 for scheme in "${schemes[@]}"; do
-    for tol in "${tols[@]}"; do
+    scheme_tols=("${tols[@]}")
+    [[ "$scheme" == midpoint ]] && scheme_tols=("${tols[0]}" "${midpoint_extra_tols[@]}" "${tols[@]:1}")
+    for tol in "${scheme_tols[@]}"; do
         point "adaptive_${scheme}_tol$tol" "$scheme" adaptive "$tol" "$t_long" \
             --set time.adaptive=.true. --set time.error_tol="$tol"
     done

@@ -7,7 +7,7 @@ module run_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64, error_unit
     use config_m, only: config_t, number_of_steps
-    use errors_m, only: fatal, EXIT_NUMERIC, EXIT_INTERRUPTED
+    use errors_m, only: fatal, check_allocation, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
     use state_m, only: state_t, initial_state, set_mesh, copy_state
     use adaptive_mesh_m, only: adaptive_mesh_t
@@ -61,10 +61,14 @@ contains
     !> signal writes a checkpoint, leaves <prefix>.h5.part and stops with EXIT_INTERRUPTED.
     subroutine run_simulation(cfg)
         type(config_t), intent(in) :: cfg
-        type(run_t) :: run
+        type(run_t), allocatable :: run   ! on the heap: larger than the stack variable limit
         character(len=320) :: failure
         character(len=:), allocatable :: interrupted
+        integer :: stat
+        character(len=256) :: message
 
+        allocate (run, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the run')
         call system_clock(run%clock_start, run%clock_rate)
         ! before anything is written: a stop signal from here on (also one that arrived while
         ! the process was starting, pending and blocked) stops the run with a checkpoint,

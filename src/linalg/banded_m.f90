@@ -31,6 +31,8 @@ module banded_m
         procedure :: init => band_init
         procedure :: zero => band_zero
         procedure :: add => band_add
+        procedure :: add_block2 => band_add_block2
+        procedure :: release => band_release
         procedure :: get => band_get
         procedure :: set_identity_row => band_set_identity_row
         procedure :: matvec => band_matvec
@@ -57,6 +59,16 @@ contains
         call self%zero()
     end subroutine band_init
 
+    !> Free the storage of a matrix no longer used (e.g. one whose block LU solves instead):
+    !> n, kl and ku are kept; init allocates it again.
+    subroutine band_release(self)
+        class(band_t), intent(inout) :: self
+
+        if (allocated(self%ab)) deallocate (self%ab)
+        if (allocated(self%ipiv)) deallocate (self%ipiv)
+        self%factored = .false.
+    end subroutine band_release
+
     subroutine band_zero(self)
         class(band_t), intent(inout) :: self
 
@@ -74,6 +86,31 @@ contains
         if (j - i > self%ku .or. i - j > self%kl) error stop 'band_add: entry outside the band'
         self%ab(self%kl + self%ku + 1 + i - j, j) = self%ab(self%kl + self%ku + 1 + i - j, j) + value
     end subroutine band_add
+
+    !> A(i + (ia-1) stride, j + (ib-1) stride) += m(ia, ib) for ia, ib = 1, 2: the 2 x 2 block of
+    !> one element's two nodes (stride: unknowns per node) in one call, as four band_add.
+    subroutine band_add_block2(self, i, j, stride, m)
+        class(band_t), intent(inout) :: self
+        integer, intent(in) :: i, j, stride
+        real(dp), intent(in) :: m(2, 2)
+        integer :: ia, ib, r, c
+
+        if (abs(j - i) + stride > min(self%ku, self%kl)) then
+            do ia = 1, 2
+                do ib = 1, 2
+                    call self%add(i + (ia - 1) * stride, j + (ib - 1) * stride, m(ia, ib))
+                end do
+            end do
+            return
+        end if
+        do ia = 1, 2
+            do ib = 1, 2
+                r = i + (ia - 1) * stride
+                c = j + (ib - 1) * stride
+                self%ab(self%kl + self%ku + 1 + r - c, c) = self%ab(self%kl + self%ku + 1 + r - c, c) + m(ia, ib)
+            end do
+        end do
+    end subroutine band_add_block2
 
     !> A(i,j) (zero outside the band); only meaningful before factor().
     pure function band_get(self, i, j) result(value)

@@ -70,7 +70,7 @@ contains
         integer, intent(in) :: nb
         integer, intent(out) :: info
         logical, intent(in), optional :: inline_inverse
-        real(dp) :: f(nb, nb), work(nb * nb)
+        real(dp) :: f(nb, nb), p(nb, nb), work(nb * nb)
         integer :: i, ipiv(nb), lapack_info, stat
         character(len=256) :: message
         logical :: inline
@@ -87,14 +87,17 @@ contains
                   self%h(nb, nb, 0:self%last - 1), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the block LU factors')
         info = 0
+        ! blocks and products written into their places (no array-valued function results
+        ! of run-time size, which gfortran allocates on the heap: ~8 per node)
         do i = 0, self%last
-            self%g(:, :, i) = block(a, i, i)
+            call get_block(a, nb, i, i, self%g(:, :, i))
             if (i > 0) then
-                f = block(a, i, i - 1)
-                self%l(:, :, i) = block_product(f, self%g(:, :, i - 1), nb)
-                self%g(:, :, i) = self%g(:, :, i) - block_product(self%l(:, :, i), self%e(:, :, i - 1), nb)
+                call get_block(a, nb, i, i - 1, f)
+                call multiply(f, self%g(:, :, i - 1), nb, self%l(:, :, i))
+                call multiply(self%l(:, :, i), self%e(:, :, i - 1), nb, p)
+                self%g(:, :, i) = self%g(:, :, i) - p
             end if
-            if (i < self%last) self%e(:, :, i) = block(a, i, i + 1)
+            if (i < self%last) call get_block(a, nb, i, i + 1, self%e(:, :, i))
             if (inline) then
                 call invert_small(self%g(:, :, i), nb, lapack_info)
             else
@@ -107,26 +110,29 @@ contains
             end if
         end do
         do i = 0, self%last - 1
-            self%h(:, :, i) = block_product(self%g(:, :, i), self%e(:, :, i), nb)
+            call multiply(self%g(:, :, i), self%e(:, :, i), nb, self%h(:, :, i))
         end do
-    contains
-        !> The nb x nb block (row_node, col_node) of a: band_get's entries, read from the
-        !> band storage here (the type-bound call per entry was half of a factorisation).
-        pure function block(a, row_node, col_node) result(blk)
-            type(band_t), intent(in) :: a
-            integer, intent(in) :: row_node, col_node
-            real(dp) :: blk(nb, nb)
-            integer :: p, q, r, c
-            do q = 1, nb
-                c = nb * col_node + q
-                do p = 1, nb
-                    r = nb * row_node + p
-                    blk(p, q) = 0.0_dp
-                    if (c - r <= a%ku .and. r - c <= a%kl) blk(p, q) = a%ab(a%kl + a%ku + 1 + r - c, c)
-                end do
-            end do
-        end function block
     end subroutine block_factor
+
+    !> The nb x nb block (row_node, col_node) of a into blk: band_get's entries, read from the
+    !> band storage here (the type-bound call per entry was half of a factorisation).
+    pure subroutine get_block(a, nb, row_node, col_node, blk)
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: nb, row_node, col_node
+        real(dp), intent(out) :: blk(nb, nb)
+        integer :: q, c, r0, p_first, p_last
+
+        r0 = nb * row_node
+        do q = 1, nb
+            c = nb * col_node + q
+            ! rows r = r0 + p in the band: c - ku <= r <= c + kl (a column of a%ab, contiguous)
+            p_first = max(1, c - a%ku - r0)
+            p_last = min(nb, c + a%kl - r0)
+            blk(:, q) = 0.0_dp
+            if (p_first <= p_last) blk(p_first:p_last, q) = &
+                a%ab(a%kl + a%ku + 1 + r0 + p_first - c:a%kl + a%ku + 1 + r0 + p_last - c, c)
+        end do
+    end subroutine get_block
     !> a = a^{-1} for an n x n block by Gauss-Jordan elimination with partial pivoting, in
     !> place (Numerical Recipes' gaussj with row interchanges only): column k is eliminated
     !> above and below the largest pivot of rows k..n, the column of the inverse built in its
@@ -136,8 +142,8 @@ contains
         integer, intent(in) :: n
         real(dp), intent(inout) :: a(n, n)
         integer, intent(out) :: info
-        integer :: pivot_row(n), k, p, r
-        real(dp) :: inv_pivot, factor, swap(n)
+        integer :: pivot_row(NB_MAX), k, p, r
+        real(dp) :: inv_pivot, factor, swap(NB_MAX)   ! fixed size: no allocation per block
 
         info = 0
         do k = 1, n
@@ -148,9 +154,9 @@ contains
             end if
             pivot_row(k) = p
             if (p /= k) then
-                swap = a(k, :)
+                swap(1:n) = a(k, :)
                 a(k, :) = a(p, :)
-                a(p, :) = swap
+                a(p, :) = swap(1:n)
             end if
             inv_pivot = 1.0_dp / a(k, k)
             a(k, k) = 1.0_dp
@@ -165,9 +171,9 @@ contains
         do k = n, 1, -1
             p = pivot_row(k)
             if (p /= k) then
-                swap = a(:, k)
+                swap(1:n) = a(:, k)
                 a(:, k) = a(:, p)
-                a(:, p) = swap
+                a(:, p) = swap(1:n)
             end if
         end do
     end subroutine invert_small
@@ -256,22 +262,22 @@ contains
         end subroutine apply_pivot
     end subroutine solve_reduced
 
-    !> a b for nb x nb blocks: matmul, with the loops of constant length for nb = 5 (every
+    !> c = a b for nb x nb blocks: matmul, with the loops of constant length for nb = 5 (every
     !> field in the system), which the compiler unrolls (matmul with a run-time size was a
     !> quarter of an adaptive-mesh run). The same sums in the same order as matmul's.
-    pure function block_product(a, b, nb) result(c)
+    pure subroutine multiply(a, b, nb, c)
         integer, intent(in) :: nb
         real(dp), intent(in) :: a(nb, nb), b(nb, nb)
-        real(dp) :: c(nb, nb)
+        real(dp), intent(out) :: c(nb, nb)
 
         if (nb == NB_MAX) then
             c = product5(a, b)
         else
             c = matmul(a, b)
         end if
-    end function block_product
+    end subroutine multiply
 
-    !> a b for 5 x 5 blocks (block_product).
+    !> a b for 5 x 5 blocks (multiply).
     pure function product5(a, b) result(c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
         real(dp) :: c(NB_MAX, NB_MAX)

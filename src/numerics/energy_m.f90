@@ -18,6 +18,10 @@ module energy_m
     public :: PART_KINETIC, PART_STRAIN, PART_THERMAL, PART_CHEMICAL, PART_COUPLING, PART_HEAT_FLUX, &
               PART_MASS_FLUX, PART_CONTACT
 
+    !> The sums over the elements of element_sums (E_lin of any model follows from them).
+    integer, parameter :: SUM_SCALE = 1, SUM_STRAIN = 2, SUM_KINETIC = 3, SUM_THERMAL = 4, SUM_CHEMICAL = 5, &
+                          SUM_COUPLING = 6, SUM_HEAT_FLUX = 7, SUM_MASS_FLUX = 8, N_SUMS = 8
+
     !> The terms of E^n in energy_parts (the order of fields_m's energy_* series).
     integer, parameter :: PART_KINETIC = 1, PART_STRAIN = 2, PART_THERMAL = 3, PART_CHEMICAL = 4, &
                           PART_COUPLING = 5, PART_HEAT_FLUX = 6, PART_MASS_FLUX = 7, PART_CONTACT = 8
@@ -122,11 +126,7 @@ contains
     end subroutine energy_and_parts
 
     !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) in one pass over the
-    !> elements, which runs every time step: on element e the mass product of P1 functions
-    !> a, b is h/6 (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1), written here as h/6 ((a0 + a1)(b0 + b1)
-    !> + a0 b0 + a1 b1); each product is summed over the elements (weighted by h_e on a
-    !> graded mesh, scaled by h = 1/s once at the end on a uniform one) and E_lin is the
-    !> weighted sum of those sums.
+    !> elements, which runs every time step (element_sums, then linear_from_sums).
     pure subroutine linear_energy_parts(model, u, w, mesh, energy, parts)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: u(0:)
@@ -134,29 +134,41 @@ contains
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(out) :: energy
         real(dp), intent(out) :: parts(N_ENERGY_PARTS)
-        real(dp) :: mass_terms, strain_terms, h_e, scale, kinetic_difference
+        real(dp) :: sums(N_SUMS)
+
+        call element_sums(u, w, mesh, sums)
+        call linear_from_sums(model, sums, w, mesh, energy, parts)
+    end subroutine linear_energy_parts
+
+    !> The sums over the elements E_lin is made of, which do not depend on the model's
+    !> coefficients (so E_lin of two models takes one pass): on element e the mass product of
+    !> P1 functions a, b is h/6 (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1), written here as
+    !> h/6 ((a0 + a1)(b0 + b1) + a0 b0 + a1 b1); each product is summed over the elements
+    !> (weighted by h_e on a graded mesh, scaled by h = 1/s once at the end on a uniform one).
+    !> sums: SUM_* (SUM_SCALE: that scale).
+    pure subroutine element_sums(u, w, mesh, sums)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(out) :: sums(N_SUMS)
+        real(dp) :: strain_terms, h_e
         real(dp) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
-        real(dp) :: rho, c, r, d2, tau0, tau_hbar   ! the model's coefficients, in registers
         ! the parts' sums (scalars, so that the loop keeps them in registers)
         real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux
         integer :: e, s
-        logical :: uniform
 
         s = ubound(u, 1)
-        uniform = mesh%is_uniform()
         strain_terms = 0.0_dp
         kinetic = 0.0_dp; thermal = 0.0_dp; chemical = 0.0_dp; coupling = 0.0_dp
         heat_flux = 0.0_dp; mass_flux = 0.0_dp
-        rho = model%rho; c = model%c; r = model%r; d2 = 2.0_dp * model%d
-        tau0 = model%tau0; tau_hbar = model%tau * model%hbar
-        if (uniform) then
+        if (mesh%is_uniform()) then
             do e = 1, s
                 call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
                 strain_terms = strain_terms + (u(e) - u(e - 1))**2
                 kinetic = kinetic + p_v; thermal = thermal + p_theta; chemical = chemical + p_p
                 coupling = coupling + p_coupling; heat_flux = heat_flux + p_q; mass_flux = mass_flux + p_eta
             end do
-            scale = 1.0_dp / real(s, dp)
+            sums(SUM_SCALE) = 1.0_dp / real(s, dp)
         else
             do e = 1, s
                 h_e = mesh%h(e)
@@ -166,24 +178,43 @@ contains
                 coupling = coupling + h_e * p_coupling; heat_flux = heat_flux + h_e * p_q
                 mass_flux = mass_flux + h_e * p_eta
             end do
-            scale = 1.0_dp
+            sums(SUM_SCALE) = 1.0_dp
         end if
-        ! E_lin from the sums over the elements: one accumulator per term keeps the loop short
-        ! (the compiler pairs them in vector registers); the sum of the parts below is E_lin
-        ! to round-off
-        mass_terms = rho * kinetic + c * thermal + r * chemical + d2 * coupling + tau0 * heat_flux + tau_hbar * mass_flux
-        kinetic_difference = inertia_difference(model, w, mesh)
-        energy = 0.5_dp * (mass_terms * scale / 6.0_dp + model%alpha * strain_terms / scale) + kinetic_difference
-        ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
-        parts(PART_KINETIC) = model%rho * kinetic * scale / 12.0_dp + kinetic_difference
-        parts(PART_STRAIN) = 0.5_dp * model%alpha * strain_terms / scale
-        parts(PART_THERMAL) = model%c * thermal * scale / 12.0_dp
-        parts(PART_CHEMICAL) = model%r * chemical * scale / 12.0_dp
-        parts(PART_COUPLING) = model%d * coupling * scale / 6.0_dp
-        parts(PART_HEAT_FLUX) = model%tau0 * heat_flux * scale / 12.0_dp
-        parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux * scale / 12.0_dp
-        parts(PART_CONTACT) = 0.0_dp
-    end subroutine linear_energy_parts
+        sums(SUM_STRAIN:SUM_MASS_FLUX) = [strain_terms, kinetic, thermal, chemical, coupling, heat_flux, mass_flux]
+    end subroutine element_sums
+
+    !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) of model from element_sums
+    !> of the level (w: its fields, for the velocity mass's inertia_difference).
+    pure subroutine linear_from_sums(model, sums, w, mesh, energy, parts)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: sums(N_SUMS)
+        real(dp), intent(in) :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(out) :: energy
+        real(dp), intent(out) :: parts(N_ENERGY_PARTS)
+        real(dp) :: mass_terms, kinetic_difference
+
+        associate (scale => sums(SUM_SCALE), strain_terms => sums(SUM_STRAIN), kinetic => sums(SUM_KINETIC), &
+                   thermal => sums(SUM_THERMAL), chemical => sums(SUM_CHEMICAL), coupling => sums(SUM_COUPLING), &
+                   heat_flux => sums(SUM_HEAT_FLUX), mass_flux => sums(SUM_MASS_FLUX))
+            ! E_lin from the sums over the elements: one accumulator per term keeps the loop short
+            ! (the compiler pairs them in vector registers); the sum of the parts below is E_lin
+            ! to round-off
+            mass_terms = model%rho * kinetic + model%c * thermal + model%r * chemical + 2.0_dp * model%d * coupling &
+                         + model%tau0 * heat_flux + model%tau * model%hbar * mass_flux
+            kinetic_difference = inertia_difference(model, w, mesh)
+            energy = 0.5_dp * (mass_terms * scale / 6.0_dp + model%alpha * strain_terms / scale) + kinetic_difference
+            ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
+            parts(PART_KINETIC) = model%rho * kinetic * scale / 12.0_dp + kinetic_difference
+            parts(PART_STRAIN) = 0.5_dp * model%alpha * strain_terms / scale
+            parts(PART_THERMAL) = model%c * thermal * scale / 12.0_dp
+            parts(PART_CHEMICAL) = model%r * chemical * scale / 12.0_dp
+            parts(PART_COUPLING) = model%d * coupling * scale / 6.0_dp
+            parts(PART_HEAT_FLUX) = model%tau0 * heat_flux * scale / 12.0_dp
+            parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux * scale / 12.0_dp
+            parts(PART_CONTACT) = 0.0_dp
+        end associate
+    end subroutine linear_from_sums
 
     !> What the velocity's mass of &contact mass adds to the consistent kinetic energy above:
     !> 1/2 rho v^T (M_v - M) v with fe_m's inertia_element (the matrix scheme_m assembles), so
@@ -245,9 +276,7 @@ contains
         self%own_law_model = self%scheme_law%step_model
         if (self%own_law_model) self%law_model = step_model
         self%law = law
-        call measure_parts(self, state, energy_lin)
-        self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, law, state%u, state%w, state%mesh)
+        call measure_parts(self, state, energy_lin, self%law_energy)
         ! the G-energy needs the level before: it is defined from the second level on
         self%have_law = self%scheme_law%energy /= LAW_G_ENERGY
         self%max_rise = 0.0_dp
@@ -291,9 +320,7 @@ contains
         type(state_t), intent(in) :: state
         real(dp) :: energy_lin
 
-        call measure_parts(self, state, energy_lin)
-        self%law_energy = self%energy
-        if (self%own_law_model) self%law_energy = discrete_energy(self%law_model, self%law, state%u, state%w, state%mesh)
+        call measure_parts(self, state, energy_lin, self%law_energy)
         if (self%scheme_law%energy == LAW_G_ENERGY) then
             self%have_law = allocated(state%u_prev)
             if (self%have_law) then
@@ -305,15 +332,23 @@ contains
     end subroutine measure
 
     !> E^n of the level `state` and its terms (kept for monitor_parts) in one pass; returns
-    !> E_lin, E^n without the contact term.
-    subroutine measure_parts(self, state, energy_lin)
+    !> E_lin, E^n without the contact term, and law_energy, E^n with the law's model (the
+    !> same sums over the elements: discrete_energy of law_model to the bit).
+    subroutine measure_parts(self, state, energy_lin, law_energy)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
-        real(dp), intent(out) :: energy_lin
+        real(dp), intent(out) :: energy_lin, law_energy
+        real(dp) :: sums(N_SUMS), law_parts(N_ENERGY_PARTS)
 
-        call linear_energy_parts(self%model, state%u, state%w, state%mesh, energy_lin, self%last_parts)
+        call element_sums(state%u, state%w, state%mesh, sums)
+        call linear_from_sums(self%model, sums, state%w, state%mesh, energy_lin, self%last_parts)
         self%last_parts(PART_CONTACT) = self%law%energy(state%u(state%s))
         self%energy = energy_lin + self%last_parts(PART_CONTACT)
+        law_energy = self%energy
+        if (self%own_law_model) then
+            call linear_from_sums(self%law_model, sums, state%w, state%mesh, law_energy, law_parts)
+            law_energy = law_energy + self%law%energy(state%u(state%s))
+        end if
         self%have_parts = .true.
         self%parts_step = state%step
         self%parts_t = state%t
@@ -414,7 +449,7 @@ contains
     !> The mass products (element_mass_product) of element e of the level w: v v, theta
     !> theta, P P, P theta, q q, eta eta.
     pure subroutine element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: w(0:, :)
         integer, intent(in) :: e
         real(dp), intent(out) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
 

@@ -200,8 +200,9 @@ contains
         real(dp), intent(in) :: dt
         integer, intent(in) :: slots(N_FIELDS)
         type(band_t), intent(inout) :: a
-        integer :: nf, kw, s, e, row, col, ia, ib
-        real(dp) :: m(2, 2), h_e, h_blocks, blocks(2, 2, N_FIELDS, N_FIELDS)
+        integer :: nf, kw, s, e, row, col
+        real(dp) :: h_e, h_blocks, blocks(2, 2, N_FIELDS, N_FIELDS)
+        logical :: nonzero(N_FIELDS, N_FIELDS)   !< blocks(:, :, row, col) has a nonzero entry
 
         s = mesh%s()
         nf = count(slots > 0)
@@ -215,6 +216,7 @@ contains
                 do row = 1, N_FIELDS
                     do col = 1, N_FIELDS
                         blocks(:, :, row, col) = element_block(model, h_e, dt, row, col, last=e == s)
+                        nonzero(row, col) = .not. all(is_zero(blocks(:, :, row, col)))
                     end do
                 end do
                 h_blocks = h_e
@@ -222,14 +224,8 @@ contains
             do row = 1, N_FIELDS
                 if (slots(row) == 0) cycle
                 do col = 1, N_FIELDS
-                    if (slots(col) == 0) cycle
-                    m = blocks(:, :, row, col)
-                    if (all(is_zero(m))) cycle
-                    do ia = 1, 2
-                        do ib = 1, 2
-                            call a%add(nf * (e - 2 + ia) + slots(row), nf * (e - 2 + ib) + slots(col), m(ia, ib))
-                        end do
-                    end do
+                    if (slots(col) == 0 .or. .not. nonzero(row, col)) cycle
+                    call a%add_block2(nf * (e - 1) + slots(row), nf * (e - 1) + slots(col), nf, blocks(:, :, row, col))
                 end do
             end do
         end do
@@ -326,11 +322,22 @@ contains
     !> Interleave field-major w(0:s, f) into the system vector x (fields with slots > 0).
     pure subroutine scatter_fields(slots, w, x)
         integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(in) :: w(0:, :)
-        real(dp), intent(out) :: x(:)
+        real(dp), intent(in), contiguous :: w(0:, :)
+        real(dp), intent(out), contiguous :: x(:)
         integer :: f, nf, i
 
         nf = count(slots > 0)
+        if (nf == N_FIELDS) then
+            ! every field: node by node, the five slots of a node stored together
+            do i = 0, ubound(w, 1)
+                x(N_FIELDS * i + slots(1)) = w(i, 1)
+                x(N_FIELDS * i + slots(2)) = w(i, 2)
+                x(N_FIELDS * i + slots(3)) = w(i, 3)
+                x(N_FIELDS * i + slots(4)) = w(i, 4)
+                x(N_FIELDS * i + slots(5)) = w(i, 5)
+            end do
+            return
+        end if
         do f = 1, N_FIELDS
             if (slots(f) == 0) cycle
             do i = 0, ubound(w, 1)
@@ -342,11 +349,21 @@ contains
     !> Inverse of scatter_fields: copy the system vector x into the fields it holds.
     pure subroutine gather_fields(slots, x, w)
         integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(in) :: x(:)
-        real(dp), intent(inout) :: w(0:, :)
+        real(dp), intent(in), contiguous :: x(:)
+        real(dp), intent(inout), contiguous :: w(0:, :)
         integer :: f, nf, i
 
         nf = count(slots > 0)
+        if (nf == N_FIELDS) then
+            do i = 0, ubound(w, 1)
+                w(i, 1) = x(N_FIELDS * i + slots(1))
+                w(i, 2) = x(N_FIELDS * i + slots(2))
+                w(i, 3) = x(N_FIELDS * i + slots(3))
+                w(i, 4) = x(N_FIELDS * i + slots(4))
+                w(i, 5) = x(N_FIELDS * i + slots(5))
+            end do
+            return
+        end if
         do f = 1, N_FIELDS
             if (slots(f) == 0) cycle
             do i = 0, ubound(w, 1)

@@ -381,17 +381,17 @@ contains
         type(band_t), intent(in) :: a
         integer, intent(in) :: row_node, col_node
         real(dp), intent(out) :: blk(NB_MAX, NB_MAX)
-        integer :: p, q, c, d
+        integer :: q, c, r0, p, p_first, p_last, shift
 
+        r0 = NB_MAX * row_node
         do q = 1, NB_MAX
             c = NB_MAX * col_node + q
-            do p = 1, NB_MAX
-                d = NB_MAX * row_node + p - c   ! row - column
-                if (d <= a%kl .and. -d <= a%ku) then
-                    blk(p, q) = a%ab(a%kl + a%ku + 1 + d, c)
-                else
-                    blk(p, q) = 0.0_dp
-                end if
+            p_first = max(1, c - a%ku - r0)
+            p_last = min(NB_MAX, c + a%kl - r0)
+            shift = a%kl + a%ku + 1 + r0 - c
+            blk(:, q) = 0.0_dp
+            do p = p_first, p_last
+                blk(p, q) = a%ab(shift + p, c)
             end do
         end do
     end subroutine coupling_block5

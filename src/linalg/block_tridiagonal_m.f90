@@ -350,13 +350,15 @@ contains
     pure subroutine product5(a, b, c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
         real(dp), intent(out) :: c(NB_MAX, NB_MAX)
+        real(dp) :: column(NB_MAX)
         integer :: j, k
 
-        c = 0.0_dp
         do j = 1, NB_MAX
+            column = 0.0_dp
             do k = 1, NB_MAX
-                c(:, j) = c(:, j) + a(:, k) * b(k, j)
+                column = column + a(:, k) * b(k, j)
             end do
+            c(:, j) = column
         end do
     end subroutine product5
 

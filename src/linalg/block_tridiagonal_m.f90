@@ -136,7 +136,7 @@ contains
         logical, intent(in) :: inline
         real(dp), intent(out) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
         integer, intent(out) :: info
-        real(dp) :: f(NB_MAX, NB_MAX), p(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
+        real(dp) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
         integer :: i
 
         info = 0
@@ -145,8 +145,7 @@ contains
             if (i > 0) then
                 call coupling_block5(a, i, i - 1, f)
                 call product5(f, g(:, :, i - 1), l(:, :, i))
-                call product5(l(:, :, i), e_before, p)
-                g(:, :, i) = g(:, :, i) - p
+                call subtract_product5(l(:, :, i), e_before, g(:, :, i))
             end if
             if (inline) then
                 call invert5(g(:, :, i), info)
@@ -362,6 +361,22 @@ contains
         end do
     end subroutine product5
 
+    !> c = c - a b for 5 x 5 blocks: a b summed first, as product5 sums it (S_i = D_i - L_i E_{i-1}).
+    pure subroutine subtract_product5(a, b, c)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
+        real(dp), intent(inout) :: c(NB_MAX, NB_MAX)
+        real(dp) :: column(NB_MAX)
+        integer :: j, k
+
+        do j = 1, NB_MAX
+            column = 0.0_dp
+            do k = 1, NB_MAX
+                column = column + a(:, k) * b(k, j)
+            end do
+            c(:, j) = c(:, j) - column
+        end do
+    end subroutine subtract_product5
+
     !> The diagonal block (node, node) of a for nb = 5 (get_block): with kl, ku >= 4 every
     !> column of it is 5 consecutive entries of a column of a%ab.
     pure subroutine diagonal_block5(a, node, blk)
@@ -410,7 +425,7 @@ contains
         info = 0
         do k = 1, NB_MAX
             p = k - 1 + maxloc(abs(a(k:NB_MAX, k)), dim=1)
-            if (is_zero(a(p, k))) then
+            if (a(p, k) <= 0.0_dp .and. a(p, k) >= 0.0_dp) then   ! is_zero, inline
                 info = k
                 return
             end if

@@ -84,7 +84,9 @@ contains
         allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%h(nb, nb, 0:self%last - 1), &
                   stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the block LU factors')
-        if (nb == NB_MAX .and. a%kl >= NB_MAX - 1 .and. a%ku >= NB_MAX - 1) then
+        ! factor_full reads whole columns of a%ab: the band's fill-in rows must still be zero
+        if (nb == NB_MAX .and. a%kl >= NB_MAX - 1 .and. a%ku >= NB_MAX - 1 .and. a%kl + a%ku >= 2 * NB_MAX - 1 &
+            .and. .not. a%factored) then
             call factor_full(a, self%last, inline, self%g, self%l, self%h, info)
         else
             call factor_reduced(a, nb, self%last, inline, self%g, self%l, self%h, info)
@@ -141,7 +143,7 @@ contains
 
         info = 0
         do i = 0, last
-            call diagonal_block5(a, i, g(:, :, i))
+            call column_block5(a, i, i, g(:, :, i))
             if (i > 0) then
                 call coupling_block5(a, i, i - 1, f)
                 call product5(f, g(:, :, i - 1), l(:, :, i))
@@ -157,7 +159,7 @@ contains
                 return
             end if
             if (i < last) then
-                call coupling_block5(a, i, i + 1, e_now)
+                call column_block5(a, i, i + 1, e_now)
                 call product5(g(:, :, i), e_now, h(:, :, i))
                 e_before = e_now
             end if
@@ -377,23 +379,24 @@ contains
         end do
     end subroutine subtract_product5
 
-    !> The diagonal block (node, node) of a for nb = 5 (get_block): with kl, ku >= 4 every
-    !> column of it is 5 consecutive entries of a column of a%ab.
-    pure subroutine diagonal_block5(a, node, blk)
+    !> The block (row_node, col_node) of a for nb = 5 (get_block), col_node = row_node or
+    !> row_node + 1: every column of it is 5 consecutive entries of a column of a%ab, those
+    !> above the band in the fill-in rows, zero before the factorisation (kl + ku >= 9).
+    pure subroutine column_block5(a, row_node, col_node, blk)
         type(band_t), intent(in) :: a
-        integer, intent(in) :: node
+        integer, intent(in) :: row_node, col_node
         real(dp), intent(out) :: blk(NB_MAX, NB_MAX)
         integer :: q, c, first
 
         do q = 1, NB_MAX
-            c = NB_MAX * node + q
-            first = a%kl + a%ku + 1 + NB_MAX * node + 1 - c   ! row p = 1 of the block
+            c = NB_MAX * col_node + q
+            first = a%kl + a%ku + 1 + NB_MAX * row_node + 1 - c   ! row p = 1 of the block
             blk(:, q) = a%ab(first:first + NB_MAX - 1, c)
         end do
-    end subroutine diagonal_block5
+    end subroutine column_block5
 
     !> The block (row_node, col_node) of a for nb = 5 (get_block), its entries outside the
-    !> band zero.
+    !> band zero: F_i, below the diagonal (column_block5 reads the blocks on and above it).
     pure subroutine coupling_block5(a, row_node, col_node, blk)
         type(band_t), intent(in) :: a
         integer, intent(in) :: row_node, col_node

@@ -93,7 +93,7 @@ contains
         end if
     end subroutine block_factor
 
-    !> The factorisation for nb < 5 unknowns per node (or a band too narrow for factor_full):
+    !> The factorisation for nb < 5 unknowns per node (or a band factor_full does not take):
     !> S_i = D_i - L_i E_{i-1}, G_i = S_i^{-1}, H_i = G_i E_i, node by node. info as
     !> block_factor's.
     subroutine factor_reduced(a, nb, last, inline, g, l, h, info)
@@ -129,9 +129,10 @@ contains
         end do
     end subroutine factor_reduced
 
-    !> factor_reduced for every field in the system (nb = 5) and a band of at least 4 sub- and
-    !> super-diagonals: the same operations in the same order, on blocks of fixed size, which
-    !> the compiler unrolls (an adaptive-step run factors a system at every new step size).
+    !> factor_reduced for every field in the system (nb = 5), on a band not yet factored with
+    !> kl, ku >= 4 and kl + ku >= 9 (the system of (6.1): kl = ku = 7): the same operations in
+    !> the same order, on blocks of fixed size, which the compiler unrolls (an adaptive-step
+    !> run factors a system at every new step size).
     subroutine factor_full(a, last, inline, g, l, h, info)
         type(band_t), intent(in) :: a
         integer, intent(in) :: last

@@ -32,6 +32,7 @@ module banded_m
         procedure :: zero => band_zero
         procedure :: add => band_add
         procedure :: add_block2 => band_add_block2
+        procedure :: add_block2_run => band_add_block2_run
         procedure :: release => band_release
         procedure :: get => band_get
         procedure :: set_identity_row => band_set_identity_row
@@ -111,6 +112,31 @@ contains
             end do
         end do
     end subroutine band_add_block2
+
+    !> add_block2 for count consecutive elements: m added at (i + k stride, j + k stride),
+    !> k = 0, ..., count - 1, in that order (an entry shared by two elements gets the earlier
+    !> element's value first, as with one add_block2 per element), in one call.
+    subroutine band_add_block2_run(self, i, j, stride, m, count)
+        class(band_t), intent(inout) :: self
+        integer, intent(in) :: i, j, stride, count
+        real(dp), intent(in) :: m(2, 2)
+        integer :: k, c, d
+
+        if (abs(j - i) + stride > min(self%ku, self%kl)) then
+            do k = 0, count - 1
+                call self%add_block2(i + k * stride, j + k * stride, stride, m)
+            end do
+            return
+        end if
+        d = self%kl + self%ku + 1 + i - j   ! the storage row of entries (1,1) and (2,2)
+        do k = 0, count - 1
+            c = j + k * stride
+            self%ab(d, c) = self%ab(d, c) + m(1, 1)
+            self%ab(d + stride, c) = self%ab(d + stride, c) + m(2, 1)
+            self%ab(d - stride, c + stride) = self%ab(d - stride, c + stride) + m(1, 2)
+            self%ab(d, c + stride) = self%ab(d, c + stride) + m(2, 2)
+        end do
+    end subroutine band_add_block2_run
 
     !> A(i,j) (zero outside the band); only meaningful before factor().
     pure function band_get(self, i, j) result(value)

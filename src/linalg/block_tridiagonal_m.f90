@@ -51,7 +51,6 @@ module block_tridiagonal_m
         integer :: last = -1                 !< nodes are 0..last
         real(dp), allocatable :: g(:, :, :)  !< g(:,:,i) = S_i^{-1}
         real(dp), allocatable :: l(:, :, :)  !< l(:,:,i) = F_{i-1} S_{i-1}^{-1}, i >= 1
-        real(dp), allocatable :: e(:, :, :)  !< e(:,:,i) = E_i, i <= last-1
         real(dp), allocatable :: h(:, :, :)  !< h(:,:,i) = G_i E_i, i <= last-1
     contains
         procedure :: factor => block_factor
@@ -70,8 +69,7 @@ contains
         integer, intent(in) :: nb
         integer, intent(out) :: info
         logical, intent(in), optional :: inline_inverse
-        real(dp) :: f(nb, nb), p(nb, nb), work(nb * nb)
-        integer :: i, ipiv(nb), lapack_info, stat
+        integer :: stat
         character(len=256) :: message
         logical :: inline
 
@@ -82,37 +80,110 @@ contains
         if (mod(a%n, nb) /= 0 .or. a%kl > 2 * nb - 1 .or. a%ku > 2 * nb - 1) return
         self%nb = nb
         self%last = a%n / nb - 1
-        if (allocated(self%g)) deallocate (self%g, self%l, self%e, self%h)
-        allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%e(nb, nb, 0:self%last - 1), &
-                  self%h(nb, nb, 0:self%last - 1), stat=stat, errmsg=message)
+        if (allocated(self%g)) deallocate (self%g, self%l, self%h)
+        allocate (self%g(nb, nb, 0:self%last), self%l(nb, nb, 1:self%last), self%h(nb, nb, 0:self%last - 1), &
+                  stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the block LU factors')
+        ! factor_full reads whole columns of a%ab: the band's fill-in rows must still be zero
+        if (nb == NB_MAX .and. a%kl >= NB_MAX - 1 .and. a%ku >= NB_MAX - 1 .and. a%kl + a%ku >= 2 * NB_MAX - 1 &
+            .and. .not. a%factored) then
+            call factor_full(a, self%last, inline, self%g, self%l, self%h, info)
+        else
+            call factor_reduced(a, nb, self%last, inline, self%g, self%l, self%h, info)
+        end if
+    end subroutine block_factor
+
+    !> The factorisation for nb < 5 unknowns per node (or a band factor_full does not take):
+    !> S_i = D_i - L_i E_{i-1}, G_i = S_i^{-1}, H_i = G_i E_i, node by node. info as
+    !> block_factor's.
+    subroutine factor_reduced(a, nb, last, inline, g, l, h, info)
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: nb, last
+        logical, intent(in) :: inline
+        real(dp), intent(out) :: g(nb, nb, 0:last), l(nb, nb, last), h(nb, nb, 0:last - 1)
+        integer, intent(out) :: info
+        real(dp) :: f(nb, nb), p(nb, nb), e_before(nb, nb), e_now(nb, nb)
+        integer :: i
+
         info = 0
         ! blocks and products written into their places (no array-valued function results
         ! of run-time size, which gfortran allocates on the heap: ~8 per node)
-        do i = 0, self%last
-            call get_block(a, nb, i, i, self%g(:, :, i))
+        do i = 0, last
+            call get_block(a, nb, i, i, g(:, :, i))
             if (i > 0) then
                 call get_block(a, nb, i, i - 1, f)
-                call multiply(f, self%g(:, :, i - 1), nb, self%l(:, :, i))
-                call multiply(self%l(:, :, i), self%e(:, :, i - 1), nb, p)
-                self%g(:, :, i) = self%g(:, :, i) - p
+                call multiply(f, g(:, :, i - 1), nb, l(:, :, i))
+                call multiply(l(:, :, i), e_before, nb, p)
+                g(:, :, i) = g(:, :, i) - p
             end if
-            if (i < self%last) call get_block(a, nb, i, i + 1, self%e(:, :, i))
-            if (inline) then
-                call invert_small(self%g(:, :, i), nb, lapack_info)
-            else
-                call dgetrf(nb, nb, self%g(:, :, i), nb, ipiv, lapack_info)
-                if (lapack_info == 0) call dgetri(nb, self%g(:, :, i), nb, ipiv, work, size(work), lapack_info)
-            end if
-            if (lapack_info /= 0) then
+            call invert(g(:, :, i), nb, inline, info)
+            if (info /= 0) then
                 info = i + 1
                 return
             end if
+            if (i < last) then
+                call get_block(a, nb, i, i + 1, e_now)
+                call multiply(g(:, :, i), e_now, nb, h(:, :, i))
+                e_before = e_now
+            end if
         end do
-        do i = 0, self%last - 1
-            call multiply(self%g(:, :, i), self%e(:, :, i), nb, self%h(:, :, i))
+    end subroutine factor_reduced
+
+    !> factor_reduced for every field in the system (nb = 5), on a band not yet factored with
+    !> kl, ku >= 4 and kl + ku >= 9 (the system of (6.1): kl = ku = 7): the same operations in
+    !> the same order, on blocks of fixed size, which the compiler unrolls (an adaptive-step
+    !> run factors a system at every new step size).
+    subroutine factor_full(a, last, inline, g, l, h, info)
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: last
+        logical, intent(in) :: inline
+        real(dp), intent(out) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        integer, intent(out) :: info
+        real(dp) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
+        integer :: i
+
+        info = 0
+        do i = 0, last
+            call column_block5(a, i, i, g(:, :, i))
+            if (i > 0) then
+                call coupling_block5(a, i, i - 1, f)
+                call product5(f, g(:, :, i - 1), l(:, :, i))
+                call subtract_product5(l(:, :, i), e_before, g(:, :, i))
+            end if
+            if (inline) then
+                call invert5(g(:, :, i), info)
+            else
+                call invert(g(:, :, i), NB_MAX, .false., info)
+            end if
+            if (info /= 0) then
+                info = i + 1
+                return
+            end if
+            if (i < last) then
+                call column_block5(a, i, i + 1, e_now)
+                call product5(g(:, :, i), e_now, h(:, :, i))
+                e_before = e_now
+            end if
         end do
-    end subroutine block_factor
+    end subroutine factor_full
+
+    !> a = a^{-1} for an n x n pivot block: invert_small (inline) or LAPACK's dgetrf and
+    !> dgetri. info = 0, or nonzero for a singular block.
+    subroutine invert(a, n, inline, info)
+        integer, intent(in) :: n
+        real(dp), intent(inout) :: a(n, n)
+        logical, intent(in) :: inline
+        integer, intent(out) :: info
+        real(dp) :: work(n * n)
+        integer :: ipiv(n)
+
+        if (inline) then
+            call invert_small(a, n, info)
+        else
+            call dgetrf(n, n, a, n, ipiv, info)
+            if (info == 0) call dgetri(n, a, n, ipiv, work, size(work), info)
+        end if
+    end subroutine invert
 
     !> The nb x nb block (row_node, col_node) of a into blk: band_get's entries, read from the
     !> band storage here (the type-bound call per entry was half of a factorisation).
@@ -271,25 +342,122 @@ contains
         real(dp), intent(out) :: c(nb, nb)
 
         if (nb == NB_MAX) then
-            c = product5(a, b)
+            call product5(a, b, c)
         else
             c = matmul(a, b)
         end if
     end subroutine multiply
 
-    !> a b for 5 x 5 blocks (multiply).
-    pure function product5(a, b) result(c)
+    !> c = a b for 5 x 5 blocks (multiply).
+    pure subroutine product5(a, b, c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
-        real(dp) :: c(NB_MAX, NB_MAX)
+        real(dp), intent(out) :: c(NB_MAX, NB_MAX)
+        real(dp) :: column(NB_MAX)
         integer :: j, k
 
-        c = 0.0_dp
         do j = 1, NB_MAX
+            column = 0.0_dp
             do k = 1, NB_MAX
-                c(:, j) = c(:, j) + a(:, k) * b(k, j)
+                column = column + a(:, k) * b(k, j)
+            end do
+            c(:, j) = column
+        end do
+    end subroutine product5
+
+    !> c = c - a b for 5 x 5 blocks: a b summed first, as product5 sums it (S_i = D_i - L_i E_{i-1}).
+    pure subroutine subtract_product5(a, b, c)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
+        real(dp), intent(inout) :: c(NB_MAX, NB_MAX)
+        real(dp) :: column(NB_MAX)
+        integer :: j, k
+
+        do j = 1, NB_MAX
+            column = 0.0_dp
+            do k = 1, NB_MAX
+                column = column + a(:, k) * b(k, j)
+            end do
+            c(:, j) = c(:, j) - column
+        end do
+    end subroutine subtract_product5
+
+    !> The block (row_node, col_node) of a for nb = 5 (get_block), col_node = row_node or
+    !> row_node + 1: every column of it is 5 consecutive entries of a column of a%ab, those
+    !> above the band in the fill-in rows, zero before the factorisation (kl + ku >= 9).
+    pure subroutine column_block5(a, row_node, col_node, blk)
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: row_node, col_node
+        real(dp), intent(out) :: blk(NB_MAX, NB_MAX)
+        integer :: q, c, first
+
+        do q = 1, NB_MAX
+            c = NB_MAX * col_node + q
+            first = a%kl + a%ku + 1 + NB_MAX * row_node + 1 - c   ! row p = 1 of the block
+            blk(:, q) = a%ab(first:first + NB_MAX - 1, c)
+        end do
+    end subroutine column_block5
+
+    !> The block (row_node, col_node) of a for nb = 5 (get_block), its entries outside the
+    !> band zero: F_i, below the diagonal (column_block5 reads the blocks on and above it).
+    pure subroutine coupling_block5(a, row_node, col_node, blk)
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: row_node, col_node
+        real(dp), intent(out) :: blk(NB_MAX, NB_MAX)
+        integer :: q, c, r0, p, p_first, p_last, shift
+
+        r0 = NB_MAX * row_node
+        do q = 1, NB_MAX
+            c = NB_MAX * col_node + q
+            p_first = max(1, c - a%ku - r0)
+            p_last = min(NB_MAX, c + a%kl - r0)
+            shift = a%kl + a%ku + 1 + r0 - c
+            blk(:, q) = 0.0_dp
+            do p = p_first, p_last
+                blk(p, q) = a%ab(shift + p, c)
             end do
         end do
-    end function product5
+    end subroutine coupling_block5
+
+    !> invert_small for a 5 x 5 block (factor_full): the same operations on every entry, the
+    !> elimination done a column at a time (contiguous) instead of a row at a time. Row k,
+    !> the scaled pivot row, is written after the elimination, which it takes no part in.
+    pure subroutine invert5(a, info)
+        real(dp), intent(inout) :: a(NB_MAX, NB_MAX)
+        integer, intent(out) :: info
+        integer :: pivot_row(NB_MAX), j, k, p
+        real(dp) :: inv_pivot, factor(NB_MAX), pivot(NB_MAX), swap(NB_MAX)
+
+        info = 0
+        do k = 1, NB_MAX
+            p = k - 1 + maxloc(abs(a(k:NB_MAX, k)), dim=1)
+            if (a(p, k) <= 0.0_dp .and. a(p, k) >= 0.0_dp) then   ! is_zero, inline
+                info = k
+                return
+            end if
+            pivot_row(k) = p
+            if (p /= k) then
+                swap = a(k, :)
+                a(k, :) = a(p, :)
+                a(p, :) = swap
+            end if
+            inv_pivot = 1.0_dp / a(k, k)
+            a(k, k) = 1.0_dp
+            pivot = a(k, :) * inv_pivot
+            factor = a(:, k)
+            a(:, k) = 0.0_dp
+            do j = 1, NB_MAX
+                a(:, j) = a(:, j) - factor * pivot(j)
+            end do
+            a(k, :) = pivot
+        end do
+        do k = NB_MAX, 1, -1
+            p = pivot_row(k)
+            if (p /= k) then
+                swap = a(:, k)
+                a(:, k) = a(:, p)
+                a(:, p) = swap
+            end if
+        end do
+    end subroutine invert5
 
     !> a x for a 5 x 5 block, summed as a tree (depth 3) to shorten the dependency chain.
     pure function matvec5(a, x) result(y)

@@ -68,8 +68,8 @@ contains
     pure function discrete_energy(model, law, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
 
@@ -83,8 +83,8 @@ contains
     !> (linear_energy_parts, which also gives the terms one by one).
     pure function linear_energy(model, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: energy
         real(dp) :: parts(N_ENERGY_PARTS)
@@ -100,8 +100,8 @@ contains
     pure function energy_parts(model, law, u, w, mesh) result(parts)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp) :: parts(N_ENERGY_PARTS)
         real(dp) :: energy
@@ -114,8 +114,8 @@ contains
     pure subroutine energy_and_parts(model, law, u, w, mesh, energy, parts)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(out) :: energy
         real(dp), intent(out) :: parts(N_ENERGY_PARTS)
@@ -129,8 +129,8 @@ contains
     !> elements, which runs every time step (element_sums, then linear_from_sums).
     pure subroutine linear_energy_parts(model, u, w, mesh, energy, parts)
         type(model_t), intent(in) :: model
-        real(dp), intent(in) :: u(0:)
-        real(dp), intent(in) :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:)
+        real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(out) :: energy
         real(dp), intent(out) :: parts(N_ENERGY_PARTS)
@@ -240,9 +240,9 @@ contains
     subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, energy, lin_now)
         type(model_t), intent(in) :: model
         type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
+        real(dp), intent(in), contiguous :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
         type(mesh_t), intent(in) :: mesh           !< the mesh of both levels
-        real(dp), intent(inout) :: u_work(0:), w_work(0:, :)
+        real(dp), intent(inout), contiguous :: u_work(0:), w_work(0:, :)
         real(dp), intent(out) :: energy
         real(dp), intent(in), optional :: lin_now
         real(dp) :: lin

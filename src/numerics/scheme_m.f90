@@ -200,34 +200,39 @@ contains
         real(dp), intent(in) :: dt
         integer, intent(in) :: slots(N_FIELDS)
         type(band_t), intent(inout) :: a
-        integer :: nf, kw, s, e, row, col
-        real(dp) :: h_e, h_blocks, blocks(2, 2, N_FIELDS, N_FIELDS)
+        integer :: nf, kw, s, e, e_last, row, col
+        real(dp) :: h_e, blocks(2, 2, N_FIELDS, N_FIELDS)
         logical :: nonzero(N_FIELDS, N_FIELDS)   !< blocks(:, :, row, col) has a nonzero entry
 
         s = mesh%s()
         nf = count(slots > 0)
         kw = band_width(slots)
-        h_blocks = -1.0_dp
         call a%init(nf * (s + 1), kw, kw)
-        do e = 1, s
+        ! runs e..e_last of elements of one size (the contact node's element s alone), each
+        ! element block added over the run in one call (the same sums as element by element)
+        e = 1
+        do while (e <= s)
             h_e = mesh%h(e)
-            if (.not. equal(h_e, h_blocks) .or. e == s) then
-                ! the element blocks of this element size (and of the contact node's element)
-                do row = 1, N_FIELDS
-                    do col = 1, N_FIELDS
-                        blocks(:, :, row, col) = element_block(model, h_e, dt, row, col, last=e == s)
-                        nonzero(row, col) = .not. all(is_zero(blocks(:, :, row, col)))
-                    end do
+            e_last = e
+            do while (e_last + 1 < s)
+                if (.not. equal(mesh%h(e_last + 1), h_e)) exit
+                e_last = e_last + 1
+            end do
+            do row = 1, N_FIELDS
+                do col = 1, N_FIELDS
+                    blocks(:, :, row, col) = element_block(model, h_e, dt, row, col, last=e == s)
+                    nonzero(row, col) = .not. all(is_zero(blocks(:, :, row, col)))
                 end do
-                h_blocks = h_e
-            end if
+            end do
             do row = 1, N_FIELDS
                 if (slots(row) == 0) cycle
                 do col = 1, N_FIELDS
                     if (slots(col) == 0 .or. .not. nonzero(row, col)) cycle
-                    call a%add_block2(nf * (e - 1) + slots(row), nf * (e - 1) + slots(col), nf, blocks(:, :, row, col))
+                    call a%add_block2_run(nf * (e - 1) + slots(row), nf * (e - 1) + slots(col), nf, &
+                                          blocks(:, :, row, col), e_last - e + 1)
                 end do
             end do
+            e = e_last + 1
         end do
         do row = 1, N_FIELDS
             if (slots(row) == 0) cycle

@@ -526,7 +526,7 @@ contains
     logical function blocks_agree(sys, a, x)
         type(monolithic_system_t), intent(in) :: sys
         type(band_t), intent(in) :: a                 !< the matrix, not factored
-        real(dp), intent(inout) :: x(:)               !< work array of the system's size
+        real(dp), intent(inout), contiguous :: x(:)   !< work array of the system's size
         real(dp), allocatable :: b(:), reference(:)
         integer :: k, trial
         character(len=256) :: message

@@ -368,16 +368,10 @@ contains
     pure subroutine subtract_product5(a, b, c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
         real(dp), intent(inout) :: c(NB_MAX, NB_MAX)
-        real(dp) :: column(NB_MAX)
-        integer :: j, k
+        real(dp) :: ab(NB_MAX, NB_MAX)
 
-        do j = 1, NB_MAX
-            column = 0.0_dp
-            do k = 1, NB_MAX
-                column = column + a(:, k) * b(k, j)
-            end do
-            c(:, j) = c(:, j) - column
-        end do
+        call product5(a, b, ab)
+        c = c - ab
     end subroutine subtract_product5
 
     !> The block (row_node, col_node) of a for nb = 5 (get_block), col_node = row_node or

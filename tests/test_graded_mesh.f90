@@ -18,7 +18,7 @@ program test_graded_mesh
     use config_m, only: model_t, with_contact_mass
     use fields_m, only: N_FIELDS, F_V, is_dirichlet
     use energy_m, only: linear_energy
-    use transfer_m, only: transfer_level
+    use transfer_m, only: transfer_level, merge_keys
     use adaptive_mesh_m, only: adaptive_mesh_t, nodes_of_keys
     use mesh_m, only: graded_mesh
     use mms_m, only: mms_t, mms_linear_in_t, N_EXACT, U_FIELD
@@ -231,30 +231,14 @@ contains
         energy = linear_energy(model, level(:, 0), level(:, 1:), graded_mesh(x))
     end function energy
 
-    !> The sorted union of two increasing key lists.
+    !> The sorted union of two increasing key lists (transfer_m%merge_keys).
     function union(a, b) result(c)
         integer(int64), intent(in) :: a(0:), b(0:)
         integer(int64), allocatable :: c(:)
         integer(int64) :: buffer(0:size(a) + size(b))
-        integer :: i, j, n
+        integer :: n
 
-        i = 0
-        j = 0
-        n = -1
-        do while (i <= ubound(a, 1) .or. j <= ubound(b, 1))
-            n = n + 1
-            if (j > ubound(b, 1)) then
-                buffer(n) = a(i); i = i + 1
-            else if (i > ubound(a, 1)) then
-                buffer(n) = b(j); j = j + 1
-            else if (a(i) < b(j)) then
-                buffer(n) = a(i); i = i + 1
-            else if (b(j) < a(i)) then
-                buffer(n) = b(j); j = j + 1
-            else
-                buffer(n) = a(i); i = i + 1; j = j + 1
-            end if
-        end do
+        call merge_keys(a, b, buffer, n)
         allocate (c(0:n))
         c = buffer(0:n)
     end function union

@@ -31,7 +31,7 @@ module transfer_m
     use adaptive_mesh_m, only: nodes_of_keys
     implicit none
     private
-    public :: transfer_level
+    public :: transfer_level, merge_keys
 
 contains
 

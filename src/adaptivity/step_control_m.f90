@@ -83,7 +83,6 @@ module step_control_m
         procedure :: ratio => controller_ratio
         procedure :: accept => controller_accept
         procedure :: reject => controller_reject
-        procedure :: retry => controller_retry
         procedure :: proposal => controller_proposal
         procedure :: add_estimate => controller_add_estimate
         procedure :: count_forced => controller_count_forced
@@ -271,16 +270,6 @@ contains
                 dt = on_ladder(self%growth_max * dt_last, self%ladder_base)
         end if
     end function controller_proposal
-
-    !> The step of size dt is retried with size dt_retry (a contact event), without growth
-    !> on the step after it.
-    subroutine controller_retry(self, dt_retry)
-        class(step_controller_t), intent(inout) :: self
-        real(dp), intent(in) :: dt_retry
-
-        self%dt_next = dt_retry
-        self%no_growth = .true.
-    end subroutine controller_retry
 
     !> An accepted step had the estimate est: into the run's time error (error_sum).
     subroutine controller_add_estimate(self, est)

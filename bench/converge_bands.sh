@@ -18,8 +18,9 @@
 # scripts/converge.sh") and, unless CB_NO_SPLICE=1 or --quick, puts it into docs/verification.md
 # between its converge_bands markers.
 #
-#   bench/converge_bands.sh            # about 6 minutes on 2 loaded cores
-#   bench/converge_bands.sh --quick    # truths 4 x finer only, about 2 minutes; the page is left alone
+#   bench/converge_bands.sh            # about 70 s on 2 cores at load 6
+#   bench/converge_bands.sh --quick    # truths 4 x finer only (as long: the exact solutions and
+#                                      # the ladders dominate); the page is left alone
 #
 # Environment: WP_SKIP_BUILD=1 (use the existing build), BUILD_DIR, WP_OUT (default out/bench
 # or out/bench-quick), CB_NO_SPLICE=1.

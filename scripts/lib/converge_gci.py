@@ -30,8 +30,9 @@ levels, so |e1| <= |eps21| (for fields: <e1, e2> <= 0 gives ||e1||^2 <= ||e1||^2
 - 2 <e1, e2> = ||eps21||^2). The band is therefore min(Fs delta / (r21^p_used - 1),
 Fs |eps21|): the order-based band capped at Fs times that bound, which it exceeds whenever
 r21^p_used < 2 (p_used < 1 for r21 = 2) — a bound from the oscillation's range instead of an
-extrapolation with an uncertain order, as Stern et al. (2001), J. Fluids Eng. 123, 793-802,
-bound the error of oscillatory convergence.
+extrapolation with an uncertain order. Stern et al. (2001), J. Fluids Eng. 123, 793-802,
+bound the error of oscillatory convergence by the oscillation's range too (half the range of
+the levels' solutions).
 
 Fields: the same with vectors on a common grid; |eps| becomes the L2 norm over the rod and s
 the sign of the inner product <eps32, eps21>.

@@ -43,7 +43,7 @@ FIELDS = ["u", "v", "theta", "P", "q", "eta"]
 SCHEMES = ["euler", "bdf2", "midpoint"]
 S, DT = 248, 2.5e-4          # the runs checked: exp1's element size x 2, its step x 2.5
 # the adaptive mesh's runs (&mesh adaptive): coarse elements, levels, indicator tolerance
-S_COARSE, MAX_LEVEL, MESH_TOL = 64, 2, 1e-3
+S_COARSE, MAX_LEVEL, MESH_TOL = 128, 2, 1e-4
 MESHES = ["uniform", "adaptive"]
 TARGETS = {"smooth": 3.0, "front": 10.0, "contact": 10.0}
 N_MODES = 2**16

@@ -55,7 +55,9 @@ contains
         ! an unallocated actual argument (previous: single-step schemes) is an absent optional one
         if (ckpt%has_mesh) then
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
-                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt))
+                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt), &
+                                         companion_levels=ckpt%companion_levels, &
+                                         companion_scalars=ckpt%companion_scalars)
         else
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
                                          history=ckpt%history, events=ckpt%events, &

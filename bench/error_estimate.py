@@ -1,6 +1,7 @@
 """How well the built-in error estimate (&output error_estimate = .true.) tracks the true
 error: its ratio to the true relative L2 error of each field at each snapshot, for Euler,
-BDF2 and the midpoint rule, fixed and adaptive steps, on
+BDF2 and the midpoint rule, fixed and adaptive steps, uniform and adaptive meshes (&mesh
+adaptive: S_COARSE coarse elements, MAX_LEVEL levels, error_tol MESH_TOL), on
 
   smooth    experiment 1 before contact (t = 0.05, 0.10, 0.15), against the exact solution
             of the linear problem (tests/tools/exact_linear.py); target ratio in [1/3, 3];
@@ -9,15 +10,17 @@ BDF2 and the midpoint rule, fixed and adaptive steps, on
   contact   experiment 1 after contact (t = 0.25 .. 0.45, in contact from t ~ 0.19),
             against a fine run (4x finer mesh, 8x smaller steps, midpoint rule); target [1/10, 10].
 
-The true error is the relative L2 error of the run's P1 solution (exact_linear.rel_l2, or
-the same norm against the fine run on its nodes). Writes a Markdown section (the built-in
+The true error is the relative L2 error of the run's P1 solution on its own nodes (an
+adaptive mesh's /snapshots/native; exact_linear.rel_l2, or the same norm against the fine
+run on its nodes). Writes a Markdown section (the built-in
 part of docs/verification.md "How accurate is my run?") to stdout or --out; --splice puts
 it into docs/verification.md between the markers <!-- error_estimate:begin/end -->.
 --check exits 1 when a ratio is outside its target (tests/test_error_estimate.sh runs
 --quick --check: the smooth and front cases with fixed steps, and the smooth case with
 adaptive Euler and midpoint steps, which guards the companions' landing on the snapshots;
 adaptive BDF2 is left out of it: it misses its target on the smooth case, docs/scheme.md
-says why). Needs h5py, numpy, scipy.
+says why; on the adaptive mesh the smooth case with fixed Euler steps and the front case
+with fixed midpoint steps, QUICK_MESH). Needs h5py, numpy, scipy.
 
     <python> bench/error_estimate.py [--exe build/rodcontact] [--work DIR] [--quick] [--check]
                                      [--out FILE] [--splice]
@@ -43,7 +46,7 @@ FIELDS = ["u", "v", "theta", "P", "q", "eta"]
 SCHEMES = ["euler", "bdf2", "midpoint"]
 S, DT = 248, 2.5e-4          # the runs checked: exp1's element size x 2, its step x 2.5
 # the adaptive mesh's runs (&mesh adaptive): coarse elements, levels, indicator tolerance
-S_COARSE, MAX_LEVEL, MESH_TOL = 128, 2, 1e-4
+S_COARSE, MAX_LEVEL, MESH_TOL = 128, 2, 1e-4   # finest elements 1/512
 MESHES = ["uniform", "adaptive"]
 TARGETS = {"smooth": 3.0, "front": 10.0, "contact": 10.0}
 N_MODES = 2**16
@@ -141,7 +144,9 @@ def measure(exe, work, quick):
                 for case, inp in (("smooth", "exp1.nml"), ("front", "exp2.nml")):
                     if quick and mesh == "adaptive" and (case, scheme, steps) not in QUICK_MESH:
                         continue
-                    p = run(exe, work, f"{case}_{scheme}_{steps}{tag}", inp, case_sets(scheme, ad, 0.15 if case == "smooth" else 0.25, 0.05, mesh=mesh))
+                    t_end = 0.15 if case == "smooth" else 0.25
+                    p = run(exe, work, f"{case}_{scheme}_{steps}{tag}", inp,
+                            case_sets(scheme, ad, t_end, 0.05, mesh=mesh))
                     results[(case, scheme, steps, mesh)] = ratios(p, truth_exact(p, cache))
                 if quick:
                     if scheme in QUICK_ADAPTIVE and mesh == "uniform":
@@ -150,7 +155,8 @@ def measure(exe, work, quick):
                     continue
                 ref = run(exe, work, "contact_ref", "exp1.nml",
                           case_sets("midpoint", False, 0.45, 0.05, s=4 * S, dt=DT / 8, estimate=False))
-                p = run(exe, work, f"contact_{scheme}_{steps}{tag}", "exp1.nml", case_sets(scheme, ad, 0.45, 0.05, mesh=mesh))
+                p = run(exe, work, f"contact_{scheme}_{steps}{tag}", "exp1.nml",
+                        case_sets(scheme, ad, 0.45, 0.05, mesh=mesh))
                 results[("contact", scheme, steps, mesh)] = ratios(p, truth_fine(p, ref, 0.25))
     return results
 
@@ -179,7 +185,8 @@ def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "rodcontact"))
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "bench", "error_estimate"))
-    ap.add_argument("--quick", action="store_true", help="smooth and front cases with fixed steps, smooth with adaptive Euler and midpoint steps")
+    ap.add_argument("--quick", action="store_true", help="smooth and front cases with fixed steps, smooth with "
+                    "adaptive Euler and midpoint steps; adaptive mesh: QUICK_MESH")
     ap.add_argument("--check", action="store_true", help="exit 1 if a ratio misses its target")
     ap.add_argument("--out", help="write the Markdown section here (default: stdout)")
     ap.add_argument("--splice", action="store_true", help="put the section into docs/verification.md")
@@ -190,8 +197,9 @@ def main(argv):
     text, bad = table(results)
     load = os.getloadavg()[0]
     md = (f"Generated by `bench/error_estimate.py` ({time.time() - start:.0f} s, load {load:.1f}): s = {S}, "
-          f"dt = {DT:g} (adaptive steps: error_tol = 1e-5), snapshots every 0.05; every field and snapshot "
-          f"of each run counts.\n\n{text}\n")
+          f"dt = {DT:g} (adaptive steps: error_tol = 1e-5), adaptive mesh: n_elements = {S_COARSE}, "
+          f"max_level = {MAX_LEVEL}, error_tol = {MESH_TOL:g} (same dt), snapshots every 0.05; every field and "
+          f"snapshot of each run counts.\n\n{text}\n")
     if args.out:
         with open(args.out, "w") as f:
             f.write(md)

@@ -37,7 +37,8 @@
 !> and BDF2's step ratios stay within [1/2, 2] (fewer steps between snapshots than 2k: one
 !> shorter step before the last).
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
-!> has the measurement); the companions' steps skip the stepper's per-step finiteness test
+!> has the measurement; on an adaptive mesh also a transfer per companion whose mesh changes
+!> at a remesh); the companions' steps skip the stepper's per-step finiteness test
 !> (a non-finite value stays non-finite: the estimate tests the companions' levels).
 !> Meshes of a multiple of 4 (coarse) elements (validate_m). On an adaptive mesh (&mesh
 !> adaptive) "every other node" is the companion's own bisection mesh, coarser by 2 (A) and 4
@@ -388,8 +389,9 @@ contains
     end function relative
 
     !> The companions' levels (and the levels before, for a multistep scheme) and scalars
-    !> into a checkpoint: companion_levels (s/2+1, (1+N_FIELDS) x 2 per companion: level,
-    !> previous level or zeros; a companion on fewer nodes in the leading rows),
+    !> into a checkpoint: companion_levels (A's nodes: s/2+1 on a uniform mesh, (1+N_FIELDS) x 2
+    !> per companion: level, previous level or zeros; a companion on fewer nodes in the
+    !> leading rows; an adaptive mesh's companion meshes are rebuilt from the run's),
     !> companion_scalars (SCALARS_PER_COMPANION per companion, then whether they failed).
     subroutine companions_save_checkpoint(self, ckpt)
         class(error_companions_t), intent(in) :: self

@@ -9,7 +9,8 @@
 !> step changes; `history`, the error estimator's levels; `events`; `mesh` (&mesh
 !> adaptive), the mesh's field scales, the energy monitor's remesh counters (2), the node
 !> keys, then the most elements the run has held (not in files of earlier versions, whose
-!> restarts count it from the checkpoint's mesh). checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
+!> restarts count it from the checkpoint's mesh); `companion_levels`, `companion_scalars`
+!> (&output error_estimate, on either mesh: error_companion_m). checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
 !> read_checkpoint convert between the two. A restart
 !> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
 !> copies the series and snapshots up to it into the new file and continues the time loop

@@ -217,6 +217,22 @@ contains
             end associate
             return
         end if
+        if (size(weight) == 2) then   ! Euler (p = 1): the same sums, one pass
+            c1 = weight(1); c2 = weight(2)
+            associate (l => self%levels, k1 => slot(1), k2 => slot(2))
+                !GCC$ unroll 4
+                do i = 0, s
+                    self%u_diff(i) = (u(i) - c1 * l(i, 0, k1)) - c2 * l(i, 0, k2)
+                end do
+                do f = 1, N_FIELDS
+                    !GCC$ unroll 4
+                    do i = 0, s
+                        self%w_diff(i, f) = (w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)
+                    end do
+                end do
+            end associate
+            return
+        end if
         self%u_diff = u
         self%w_diff = w
         do i = 1, size(weight)

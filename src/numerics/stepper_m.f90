@@ -25,8 +25,9 @@ module stepper_m
     use system_cache_m, only: monolithic_system_t, system_cache_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
     use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
-                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields, &
-                        initial_data_present
+                        assemble_matrix, assemble_blocks, old_state_rhs, add_lagged_coupling, scatter_fields, &
+                        gather_fields, initial_data_present
+    use block_tridiagonal_m, only: NB_MAX
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
@@ -83,6 +84,8 @@ module stepper_m
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
+        !> the node blocks D_i, E_i, F_i of a system before its block LU (setup_monolithic)
+        real(dp), allocatable :: d_blocks(:, :, :), e_blocks(:, :, :), f_blocks(:, :, :)
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
@@ -226,10 +229,24 @@ contains
         logical :: fast
 
         fast = self%adaptive_steps .or. .not. self%mesh%is_uniform()
+        sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
+        if (fast .and. self%blocks_trusted .and. count(self%active) == NB_MAX) then
+            ! the trusted block LU alone, every field: its blocks assembled as such (no band;
+            ! assemble_blocks and factor_blocks give the band's factors bit for bit)
+            call require_blocks(self)
+            call assemble_blocks(self%step_model, self%mesh, dt_eff, self%d_blocks, self%e_blocks, self%f_blocks)
+            call sys%blocks%factor_blocks(self%d_blocks, self%e_blocks, self%f_blocks, info, inline_inverse=.true.)
+            if (info == 0) then
+                sys%use_blocks = .true.
+                call contact_response(sys, .true.)
+                if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
+                    call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+                return
+            end if
+        end if
         call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
         call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=fast)
         sys%use_blocks = info == 0
-        sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
         if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
             unfactored = sys%a
             call sys%a%factor(info)
@@ -258,7 +275,7 @@ contains
             logical, intent(in) :: with_blocks
 
             if (.not. allocated(sys%z)) then
-                allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
+                allocate (sys%z(count(self%active) * (self%s + 1)), stat=stat, errmsg=message)
                 call check_allocation(stat, message, 'the contact response')
             end if
             sys%z = 0.0_dp
@@ -270,6 +287,21 @@ contains
             end if
         end subroutine contact_response
     end subroutine setup_monolithic
+
+    !> The work arrays of assemble_blocks for self%s elements.
+    subroutine require_blocks(self)
+        type(stepper_t), intent(inout) :: self
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(self%d_blocks)) then
+            if (ubound(self%d_blocks, 3) == self%s) return
+            deallocate (self%d_blocks, self%e_blocks, self%f_blocks)
+        end if
+        allocate (self%d_blocks(NB_MAX, NB_MAX, 0:self%s), self%e_blocks(NB_MAX, NB_MAX, 0:self%s - 1), &
+                  self%f_blocks(NB_MAX, NB_MAX, 0:self%s - 1), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the blocks of the system')
+    end subroutine require_blocks
 
     !> Does the monolithic method solve with the block-tridiagonal LU (else dgbtrf's factors)?
     logical function stepper_uses_block_solver(self)

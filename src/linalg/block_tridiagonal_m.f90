@@ -55,8 +55,10 @@ module block_tridiagonal_m
         real(dp), allocatable :: h(:, :, :)  !< h(:,:,i) = G_i E_i, i <= last-1
     contains
         procedure :: factor => block_factor
+        procedure :: prepare => block_prepare
         procedure :: factor_blocks => block_factor_blocks
         procedure :: solve => block_solve
+        procedure :: solve_last => block_solve_last
     end type block_tridiagonal_t
 
 contains
@@ -148,66 +150,77 @@ contains
         before_in_pattern = .false.
         f = 0.0_dp
         e_now = 0.0_dp
+        e_before = 0.0_dp
         do i = 0, last
             call column_block5(a, i, i, g(:, :, i))
             if (i > 0) call coupling_block5(a, i, i - 1, f)
             if (i < last) call column_block5(a, i, i + 1, e_now)
-            call factor_node(i, last, f, e_now, inline, g, l, h, e_before, before_in_pattern, info)
+            call factor_node(i, last, f, e_before, e_now, inline, g, l, h, before_in_pattern, info)
             if (info /= 0) return
+            e_before = e_now
         end do
     end subroutine factor_full
 
-    !> The matrix given by its blocks, every field in the system (nb = 5): d(:, :, i) = D_i,
-    !> e(:, :, i) = E_i (row node i, column node i+1), f(:, :, i) = F_i (row node i+1, column
-    !> node i). factor_full's operations on them (factor_node): the factors of a band holding
-    !> the same matrix, bit for bit, without the band (an adaptive-step run factors a system
-    !> at every new step size; scheme_m's assemble_blocks). info as block_factor's;
-    !> inline_inverse as block_factor's (default .false.).
-    subroutine block_factor_blocks(self, d, e, f, info, inline_inverse)
+    !> Storage for the factors of a matrix with every field in the system (nb = 5) and nodes
+    !> 0..last, for factor_blocks: the caller puts D_i into g(:, :, i) (scheme_m's
+    !> assemble_blocks writes there).
+    subroutine block_prepare(self, last)
         class(block_tridiagonal_t), intent(inout) :: self
-        real(dp), intent(in) :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)
+        integer, intent(in) :: last
+        integer :: stat
+        character(len=256) :: message
+
+        self%nb = NB_MAX
+        self%last = last
+        if (allocated(self%g)) deallocate (self%g, self%l, self%h)
+        allocate (self%g(NB_MAX, NB_MAX, 0:last), self%l(NB_MAX, NB_MAX, 1:last), self%h(NB_MAX, NB_MAX, 0:last - 1), &
+                  stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the block LU factors')
+    end subroutine block_prepare
+
+    !> Factor the matrix given by its blocks, every field in the system (nb = 5), in place:
+    !> g(:, :, i) = D_i on entry (block_prepare), G_i on return; e(:, :, i) = E_i (row node i,
+    !> column node i+1), f(:, :, i) = F_i (row node i+1, column node i). factor_full's
+    !> operations on them (factor_node): the factors of a band holding the same matrix, bit for
+    !> bit, without the band (an adaptive-step run factors a system at every new step size;
+    !> scheme_m's assemble_blocks). info as block_factor's; inline_inverse as block_factor's
+    !> (default .false.).
+    subroutine block_factor_blocks(self, e, f, info, inline_inverse)
+        class(block_tridiagonal_t), intent(inout) :: self
+        real(dp), intent(in), contiguous :: e(:, :, 0:), f(:, :, 0:)
         integer, intent(out) :: info
         logical, intent(in), optional :: inline_inverse
-        integer :: stat, i
-        character(len=256) :: message
+        integer :: i
         logical :: inline, before_in_pattern
-        real(dp) :: e_before(NB_MAX, NB_MAX)
 
         inline = .false.
         if (present(inline_inverse)) inline = inline_inverse
         info = -1
-        if (size(d, 1) /= NB_MAX .or. size(d, 2) /= NB_MAX .or. size(e, 3) < size(d, 3) - 1 &
-            .or. size(f, 3) < size(d, 3) - 1) return
-        self%nb = NB_MAX
-        self%last = ubound(d, 3)
-        if (allocated(self%g)) deallocate (self%g, self%l, self%h)
-        allocate (self%g(NB_MAX, NB_MAX, 0:self%last), self%l(NB_MAX, NB_MAX, 1:self%last), &
-                  self%h(NB_MAX, NB_MAX, 0:self%last - 1), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the block LU factors')
+        if (self%nb /= NB_MAX .or. .not. allocated(self%g)) return
+        if (size(e, 3) < self%last .or. size(f, 3) < self%last) return
         info = 0
         before_in_pattern = .false.
         associate (last => self%last)
             do i = 0, last
-                self%g(:, :, i) = d(:, :, i)
-                call factor_node(i, last, f(:, :, max(i - 1, 0)), e(:, :, min(i, max(last - 1, 0))), inline, &
-                                 self%g, self%l, self%h, e_before, before_in_pattern, info)
+                call factor_node(i, last, f(:, :, max(i - 1, 0)), e(:, :, max(i - 1, 0)), &
+                                 e(:, :, min(i, max(last - 1, 0))), inline, self%g, self%l, self%h, &
+                                 before_in_pattern, info)
                 if (info /= 0) return
             end do
         end associate
     end subroutine block_factor_blocks
 
     !> Node i of the block LU (factor_full, block_factor_blocks): on entry g(:, :, i) = D_i,
-    !> f = F_{i-1} (read when i > 0), e_now = E_i (read when i < last), e_before = E_{i-1} and
+    !> f = F_{i-1} and e_before = E_{i-1} (read when i > 0), e_now = E_i (read when i < last),
     !> before_in_pattern = in_pattern(E_{i-1}) from node i - 1; on return G_i, L_i, H_i, and
-    !> e_before, before_in_pattern of E_i for node i + 1. S_i = D_i - L_i E_{i-1} with
-    !> L_i = F_{i-1} G_{i-1}, G_i = S_i^{-1} (invert5 when inline, else LAPACK), H_i = G_i E_i.
-    !> info: 0, or i + 1 for a singular pivot block.
-    subroutine factor_node(i, last, f, e_now, inline, g, l, h, e_before, before_in_pattern, info)
+    !> before_in_pattern of E_i for node i + 1. S_i = D_i - L_i E_{i-1} with L_i = F_{i-1} G_{i-1},
+    !> G_i = S_i^{-1} (invert5 when inline, else LAPACK), H_i = G_i E_i. info: 0, or i + 1 for a
+    !> singular pivot block.
+    subroutine factor_node(i, last, f, e_before, e_now, inline, g, l, h, before_in_pattern, info)
         integer, intent(in) :: i, last
-        real(dp), intent(in) :: f(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
+        real(dp), intent(in) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
         logical, intent(in) :: inline
         real(dp), intent(inout) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
-        real(dp), intent(inout) :: e_before(NB_MAX, NB_MAX)
         logical, intent(inout) :: before_in_pattern
         integer, intent(out) :: info
 
@@ -236,7 +249,6 @@ contains
             else
                 call product5(g(:, :, i), e_now, h(:, :, i))
             end if
-            e_before = e_now
         end if
     end subroutine factor_node
 
@@ -336,6 +348,19 @@ contains
         end if
     end subroutine block_solve
 
+    !> block_solve for a right-hand side that is +0 outside the last node (z = A^{-1} e_s, the
+    !> contact response): the same bits, without the forward sweep's products of zeros.
+    subroutine block_solve_last(self, b)
+        class(block_tridiagonal_t), intent(in) :: self
+        real(dp), intent(inout), contiguous :: b(:)
+
+        if (self%nb == NB_MAX) then
+            call solve_full_last(self%g, self%l, self%h, self%last, b)
+        else
+            call solve_reduced(self%g, self%l, self%h, self%last, self%nb, b)
+        end if
+    end subroutine block_solve_last
+
     !> forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain);
     !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i. b(:, i) is node i.
     subroutine solve_full(g, l, h, last, b)
@@ -358,6 +383,30 @@ contains
             b(:, i) = x
         end do
     end subroutine solve_full
+
+    !> solve_full for b = +0 at the nodes before the last (the contact response): there the
+    !> forward sweep's y_i = b_i - L_i y_{i-1} is +0 minus zeros, +0 = b_i, so the products
+    !> L_i y_{i-1} are left out; the same bits. (A routine of its own: solve_full, every
+    !> step's, stays as it is.)
+    subroutine solve_full_last(g, l, h, last, b)
+        integer, intent(in) :: last
+        real(dp), intent(in) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        real(dp), intent(inout) :: b(NB_MAX, 0:last)
+        real(dp) :: y(NB_MAX), x(NB_MAX)
+        integer :: i
+
+        do i = 0, last - 1
+            b(:, i) = matvec5(g(:, :, i), b(:, i))
+        end do
+        x = 0.0_dp   ! y_{last-1}
+        y = b(:, last) - matvec5(l(:, :, last), x)
+        b(:, last) = matvec5(g(:, :, last), y)
+        x = b(:, last)
+        do i = last - 1, 0, -1
+            x = b(:, i) - matvec5(h(:, :, i), x)
+            b(:, i) = x
+        end do
+    end subroutine solve_full_last
 
     !> The same sweeps for nb < 5 unknowns per node, one row at a time.
     subroutine solve_reduced(g, l, h, last, nb, b)
@@ -553,6 +602,7 @@ contains
         real(dp) :: inv_pivot, factor(NB_MAX), pivot(NB_MAX), swap(NB_MAX)
 
         info = 0
+        !GCC$ unroll 5
         do k = 1, NB_MAX
             p = pivot_index(a(:, k), k)
             if (a(p, k) <= 0.0_dp .and. a(p, k) >= 0.0_dp) then   ! is_zero, inline

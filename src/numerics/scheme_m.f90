@@ -259,14 +259,14 @@ contains
         real(dp) :: h_e, m(2, 2), m11(N_FIELDS, N_FIELDS), m12(N_FIELDS, N_FIELDS), m21(N_FIELDS, N_FIELDS), &
                     m22(N_FIELDS, N_FIELDS), d_right(N_FIELDS, N_FIELDS), d_inner(N_FIELDS, N_FIELDS)
         integer :: s, el, row, col
-        logical :: changed
+        logical :: changed, next_changed
 
         s = mesh%s()
         h_e = 0.0_dp
         d_right = 0.0_dp   ! (all set at el = 1)
         d_inner = 0.0_dp
+        changed = .true.
         do el = 1, s
-            changed = el == 1 .or. el == s .or. .not. equal(mesh%h(el), h_e)
             if (changed) then
                 h_e = mesh%h(el)
                 do col = 1, N_FIELDS
@@ -290,7 +290,12 @@ contains
             end if
             e(:, :, el - 1) = m12
             f(:, :, el - 1) = m21
-            d(:, :, el) = d_right
+            ! element el + 1 of another size (or the last element): D of node el is d_right plus its
+            ! part; else d_inner, written then
+            next_changed = el + 1 >= s
+            if (.not. next_changed) next_changed = .not. equal(mesh%h(el + 1), h_e)
+            if (next_changed) d(:, :, el) = d_right
+            changed = next_changed
         end do
         do row = 1, N_FIELDS
             if (is_dirichlet(row, 0, s)) then   ! row and column of (node 0, row) in D_0, E_0, F_0

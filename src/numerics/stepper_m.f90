@@ -84,8 +84,9 @@ module stepper_m
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
-        !> the node blocks D_i, E_i, F_i of a system before its block LU (setup_monolithic)
-        real(dp), allocatable :: d_blocks(:, :, :), e_blocks(:, :, :), f_blocks(:, :, :)
+        !> the node blocks E_i, F_i of a system before its block LU (setup_monolithic; D_i are
+        !> assembled into the factors' storage)
+        real(dp), allocatable :: e_blocks(:, :, :), f_blocks(:, :, :)
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
@@ -234,8 +235,9 @@ contains
             ! the trusted block LU alone, every field: its blocks assembled as such (no band;
             ! assemble_blocks and factor_blocks give the band's factors bit for bit)
             call require_blocks(self)
-            call assemble_blocks(self%step_model, self%mesh, dt_eff, self%d_blocks, self%e_blocks, self%f_blocks)
-            call sys%blocks%factor_blocks(self%d_blocks, self%e_blocks, self%f_blocks, info, inline_inverse=.true.)
+            call sys%blocks%prepare(self%s)
+            call assemble_blocks(self%step_model, self%mesh, dt_eff, sys%blocks%g, self%e_blocks, self%f_blocks)
+            call sys%blocks%factor_blocks(self%e_blocks, self%f_blocks, info, inline_inverse=.true.)
             if (info == 0) then
                 sys%use_blocks = .true.
                 call contact_response(sys, .true.)
@@ -281,25 +283,25 @@ contains
             sys%z = 0.0_dp
             sys%z(sys%contact_dof) = 1.0_dp
             if (with_blocks) then
-                call sys%blocks%solve(sys%z)
+                call sys%blocks%solve_last(sys%z)   ! e_s: zero outside the last node
             else
                 call sys%a%solve(sys%z)
             end if
         end subroutine contact_response
     end subroutine setup_monolithic
 
-    !> The work arrays of assemble_blocks for self%s elements.
+    !> The work arrays of assemble_blocks (E_i, F_i) for self%s elements.
     subroutine require_blocks(self)
         type(stepper_t), intent(inout) :: self
         integer :: stat
         character(len=256) :: message
 
-        if (allocated(self%d_blocks)) then
-            if (ubound(self%d_blocks, 3) == self%s) return
-            deallocate (self%d_blocks, self%e_blocks, self%f_blocks)
+        if (allocated(self%e_blocks)) then
+            if (ubound(self%e_blocks, 3) == self%s - 1) return
+            deallocate (self%e_blocks, self%f_blocks)
         end if
-        allocate (self%d_blocks(NB_MAX, NB_MAX, 0:self%s), self%e_blocks(NB_MAX, NB_MAX, 0:self%s - 1), &
-                  self%f_blocks(NB_MAX, NB_MAX, 0:self%s - 1), stat=stat, errmsg=message)
+        allocate (self%e_blocks(NB_MAX, NB_MAX, 0:self%s - 1), self%f_blocks(NB_MAX, NB_MAX, 0:self%s - 1), &
+                  stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the blocks of the system')
     end subroutine require_blocks
 

@@ -216,9 +216,11 @@ contains
     !> contact response z. A graded (adaptive) mesh, factored at every remesh, inverts the
     !> block LU's pivot blocks by the written-out kernel (LAPACK's call overhead on 5 x 5
     !> blocks was half of such a run), and once the block LU has passed blocks_agree on one
-    !> system of the run, factors later systems by it alone (docs/performance.md). So do
-    !> adaptive steps, which factor a system at every new step size. Fixed steps on a uniform
-    !> mesh keep LAPACK and the check (and their results bit for bit).
+    !> system of the run, factors later systems by it alone (docs/performance.md), with every
+    !> field in the system from node blocks assembled as such (assemble_blocks, factor_blocks:
+    !> no band, the same factors bit for bit). So do adaptive steps, which factor a system at
+    !> every new step size. Fixed steps on a uniform mesh keep LAPACK and the check (and their
+    !> results bit for bit).
     subroutine setup_monolithic(self, dt_eff, sys, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff

@@ -22,6 +22,7 @@
 !> scaling of scheme_m), and stepper_m checks the solver against the band LU once per run.
 module block_tridiagonal_m
     use kinds_m, only: dp
+    use ieee_arithmetic, only: ieee_is_nan
     use errors_m, only: check_allocation
     use reals_m, only: is_zero
     use banded_m, only: band_t
@@ -497,7 +498,10 @@ contains
 
         outside = abs(b(3, 1)) + abs(b(4, 1)) + abs(b(5, 1)) + abs(b(5, 2)) + abs(b(5, 3)) &
                   + abs(b(1, 3)) + abs(b(1, 4)) + abs(b(1, 5)) + abs(b(2, 5)) + abs(b(3, 5))
-        in_pattern = outside <= 0.0_dp
+        ! a NaN is tested first: an ordered comparison with it would raise IEEE invalid
+        ! (a trap in the Debug build)
+        in_pattern = .false.
+        if (.not. ieee_is_nan(outside)) in_pattern = outside <= 0.0_dp
     end function in_pattern
 
     !> c = a b (product5) for b in_pattern: the sums of product5 without the terms a(:, k) b(k, j)

@@ -10,9 +10,10 @@ behind docs/verification.md's table (bench/converge_bands.sh) and tests/test_con
         solution of the contact-free problem (tests/tools/exact_linear.py; it takes over the
         field rows before the first contact). Prints one line per row and the summary; --csv writes the rows
         (case,quantity,status,band,true,inside,ratio).
-    <python> bench/converge_bands.py report A.csv B.csv ... [--md OUT.md]
+    <python> bench/converge_bands.py report [A.csv ...] [--group NAME A.csv ...] ... [--md OUT.md]
         The table of docs/verification.md: per case, the rows compared, the share whose true
-        error lies inside the band, the share with band <= 10 x true, the median band/true.
+        error lies inside the band, the share with band <= 10 x true, the median band/true;
+        a total line per --group (its cases together) and one over all cases.
 Rows left out: the snapshot at t = 0 (every level starts from the same data) and rows whose
 true error and band are both at round-off (1e-12 of the value).
 Exit status: 0; 2 usage or unreadable files.
@@ -163,7 +164,28 @@ def main_report(a):
     lines = ["| case | rows | true error inside the band | inside and band ≤ 10 × true | median band / true | statuses |",
              "|---|---:|---:|---:|---:|---|"]
     everything = []
-    for path in a.csvs:
+    groups = [(None, a.csvs)] + [(g[0], g[1:]) for g in a.group]
+    totals = []
+    for name, paths in groups:
+        subset = main_report_cases(paths, lines)
+        everything += subset
+        if name is not None:
+            totals.append(table_line(f"**{name}**", subset))
+    lines += totals
+    lines.append(table_line("**all**", everything))
+    text = "\n".join(lines) + "\n"
+    print(text, end="")
+    if a.md:
+        with open(a.md, "w") as f:
+            f.write(text)
+    return 0
+
+
+def main_report_cases(paths, lines):
+    """Append the lines of the cases in paths (scalars and fields apart) to lines; return
+    their rows."""
+    everything = []
+    for path in paths:
         with open(path, newline="") as f:
             rows = list(csv.DictReader(f))
         for r in rows:
@@ -175,13 +197,7 @@ def main_report(a):
             if not subset:
                 continue
             lines.append(table_line(f"{rows[0]['case']}: {label}", subset))
-    lines.append(table_line("**all**", everything))
-    text = "\n".join(lines) + "\n"
-    print(text, end="")
-    if a.md:
-        with open(a.md, "w") as f:
-            f.write(text)
-    return 0
+    return everything
 
 
 def table_line(label, rows):
@@ -203,7 +219,9 @@ def main(argv):
     c.add_argument("--modes", type=int, default=2**18,
                    help="modes of the exact solution (default 2^18; smooth initial data need far fewer)")
     r = sub.add_parser("report")
-    r.add_argument("csvs", nargs="+")
+    r.add_argument("csvs", nargs="*")
+    r.add_argument("--group", nargs="+", action="append", default=[], metavar=("NAME", "CSV"),
+                   help="a group of cases with its own total line")
     r.add_argument("--md")
     a = ap.parse_args(argv)
     if a.cmd == "compare" and not (a.truth or a.exact):

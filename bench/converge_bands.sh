@@ -1,19 +1,26 @@
 #!/usr/bin/env bash
-# Do the GCI bands of scripts/converge.sh hold the true error? Three small cases that the
-# method was not tuned on (tests/test_converge.sh's case is experiment 1 at varpi = 0.1):
+# Do the GCI bands of scripts/converge.sh hold the true error? Six small cases that the
+# method was not tuned on (tests/test_converge.sh's case is experiment 1 at varpi = 0.1).
+# The first benchmark's three (the method's last changes were measured on them):
 #   exp1, varpi = 0.3, g = 0.05  implicit Euler, through the first contact (t <= 0.6)
 #   exp2, amplitude 12, BDF2 the two pulses of height 12 instead of 20, before contact (t <= 0.25)
-#   impact, g = 0.08         the midpoint rule, a gap of 0.08 instead of 0.05 (t <= 1)
+#   impact, g = 0.08         the midpoint rule, a gap of 0.08 instead of 0.05 (t <= 0.5)
+# and three added before the rule for oscillatory convergence changed (issue 26), each
+# family with another scheme, another material or pulse, another gap:
+#   exp3, midpoint           Fourier and Fick laws (tau = tau0 = 0), through the first contact (t <= 0.5)
+#   exp1, varpi = 0.2, g = 0.08, BDF2   through the first contact (t <= 0.6)
+#   impact, g = 0.03, u1 = 0.8 x, Euler a slower bar and a smaller gap (t <= 0.5)
 # each a converge.sh ladder of three levels refined in time and space together by 2 whose
-# finest level is the shipped input's resolution (exp1, exp2: s = 500, dt = 1e-4; impact:
+# finest level is the shipped input's resolution (exp1, exp2, exp3: s = 500, dt = 1e-4; impact:
 # s = 1000, dt = 2.5e-4), against a truth 8 times finer in h and dt than that (4 times with
 # --quick) and, before the first contact, the exact solution (tests/tools/exact_linear.py). Writes
 # OUT/converge_bands/table.md (the table of docs/verification.md, "Checking convergence with
 # scripts/converge.sh") and, unless CB_NO_SPLICE=1 or --quick, puts it into docs/verification.md
 # between its converge_bands markers.
 #
-#   bench/converge_bands.sh            # about 1.5 minutes on 2 cores
-#   bench/converge_bands.sh --quick    # truths 4 x finer only, about 30 s; the page is left alone
+#   bench/converge_bands.sh            # about 70 s on 2 cores at load 6
+#   bench/converge_bands.sh --quick    # truths 4 x finer only (as long: the exact solutions and
+#                                      # the ladders dominate); the page is left alone
 #
 # Environment: WP_SKIP_BUILD=1 (use the existing build), BUILD_DIR, WP_OUT (default out/bench
 # or out/bench-quick), CB_NO_SPLICE=1.
@@ -67,8 +74,19 @@ study exp2_amp12 "exp2, amplitude 12, BDF2" "$repo_root/input/exp2.nml" 125 4e-4
     --set time.t_end=0.25 --set output.snapshot_every=125
 study impact_g008 "impact, g = 0.08, midpoint" "$repo_root/input/impact.nml" 250 1e-3 0 \
     --set contact.g=0.08 --set time.t_end=0.5 --set output.snapshot_every=100
+study exp3_midpoint "exp3, midpoint" "$repo_root/input/exp3.nml" 125 4e-4 1 \
+    --set time.scheme=midpoint --set time.t_end=0.5 --set output.snapshot_every=125
+study exp1_varpi02 "exp1, ϖ = 0.2, g = 0.08, BDF2" "$repo_root/input/exp1.nml" 125 4e-4 1 \
+    --set model.varpi=0.2 --set contact.g=0.08 --set time.scheme=bdf2 --set time.t_end=0.6 \
+    --set output.snapshot_every=250
+study impact_g003 "impact, g = 0.03, u1 = 0.8 x, Euler" "$repo_root/input/impact.nml" 250 1e-3 0 \
+    --set contact.g=0.03 --set 'initial.u1_poly=0,0.8' --set time.scheme=euler --set time.t_end=0.5 \
+    --set output.snapshot_every=100
 
-"$py" "$repo_root/bench/converge_bands.py" report "$dir"/*.csv --md "$dir/table.md" > /dev/null
+"$py" "$repo_root/bench/converge_bands.py" report --md "$dir/table.md" \
+    --group "the first benchmark's three cases" "$dir"/exp1_varpi03.csv "$dir"/exp2_amp12.csv "$dir"/impact_g008.csv \
+    --group "the three cases added in issue 26" "$dir"/exp3_midpoint.csv "$dir"/exp1_varpi02.csv "$dir"/impact_g003.csv \
+    > /dev/null
 {
     echo "Measured by \`bench/converge_bands.sh$( ((quick)) && echo ' --quick')\` ($(date -u +%Y-%m-%d),"
     echo "load average $(cut -d' ' -f1 /proc/loadavg) on $(nproc) cores; truth ${truth_factor}x finer than the finest level):"

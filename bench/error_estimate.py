@@ -1,6 +1,7 @@
 """How well the built-in error estimate (&output error_estimate = .true.) tracks the true
 error: its ratio to the true relative L2 error of each field at each snapshot, for Euler,
-BDF2 and the midpoint rule, fixed and adaptive steps, on
+BDF2 and the midpoint rule, fixed and adaptive steps, uniform and adaptive meshes (&mesh
+adaptive: S_COARSE coarse elements, MAX_LEVEL levels, error_tol MESH_TOL), on
 
   smooth    experiment 1 before contact (t = 0.05, 0.10, 0.15), against the exact solution
             of the linear problem (tests/tools/exact_linear.py); target ratio in [1/3, 3];
@@ -9,15 +10,17 @@ BDF2 and the midpoint rule, fixed and adaptive steps, on
   contact   experiment 1 after contact (t = 0.25 .. 0.45, in contact from t ~ 0.19),
             against a fine run (4x finer mesh, 8x smaller steps, midpoint rule); target [1/10, 10].
 
-The true error is the relative L2 error of the run's P1 solution (exact_linear.rel_l2, or
-the same norm against the fine run on its nodes). Writes a Markdown section (the built-in
+The true error is the relative L2 error of the run's P1 solution on its own nodes (an
+adaptive mesh's /snapshots/native; exact_linear.rel_l2, or the same norm against the fine
+run on its nodes). Writes a Markdown section (the built-in
 part of docs/verification.md "How accurate is my run?") to stdout or --out; --splice puts
 it into docs/verification.md between the markers <!-- error_estimate:begin/end -->.
 --check exits 1 when a ratio is outside its target (tests/test_error_estimate.sh runs
 --quick --check: the smooth and front cases with fixed steps, and the smooth case with
 adaptive Euler and midpoint steps, which guards the companions' landing on the snapshots;
 adaptive BDF2 is left out of it: it misses its target on the smooth case, docs/scheme.md
-says why). Needs h5py, numpy, scipy.
+says why; on the adaptive mesh the smooth case with fixed Euler steps and the front case
+with fixed midpoint steps, QUICK_MESH). Needs h5py, numpy, scipy.
 
     <python> bench/error_estimate.py [--exe build/rodcontact] [--work DIR] [--quick] [--check]
                                      [--out FILE] [--splice]
@@ -42,9 +45,13 @@ import rodrun  # noqa: E402
 FIELDS = ["u", "v", "theta", "P", "q", "eta"]
 SCHEMES = ["euler", "bdf2", "midpoint"]
 S, DT = 248, 2.5e-4          # the runs checked: exp1's element size x 2, its step x 2.5
+# the adaptive mesh's runs (&mesh adaptive): coarse elements, levels, indicator tolerance
+S_COARSE, MAX_LEVEL, MESH_TOL = 128, 2, 1e-4   # finest elements 1/512
+MESHES = ["uniform", "adaptive"]
 TARGETS = {"smooth": 3.0, "front": 10.0, "contact": 10.0}
 N_MODES = 2**16
 QUICK_ADAPTIVE = ["euler", "midpoint"]   # --quick: the smooth case with adaptive steps
+QUICK_MESH = [("smooth", "euler", "fixed"), ("front", "midpoint", "fixed")]   # --quick: adaptive mesh
 
 
 def run(exe, work, name, inp, sets):
@@ -59,9 +66,11 @@ def run(exe, work, name, inp, sets):
     return path
 
 
-def case_sets(scheme, adaptive, t_end, snap_dt, s=S, dt=DT, estimate=True):
-    sets = [f"time.scheme='{scheme}'", f"mesh.n_elements={s}", f"time.dt={dt}", f"time.t_end={t_end}",
-            f"output.snapshot_dt={snap_dt}"]
+def case_sets(scheme, adaptive, t_end, snap_dt, s=S, dt=DT, estimate=True, mesh="uniform"):
+    sets = [f"time.scheme='{scheme}'", f"mesh.n_elements={s if mesh == 'uniform' else S_COARSE}", f"time.dt={dt}",
+            f"time.t_end={t_end}", f"output.snapshot_dt={snap_dt}"]
+    if mesh == "adaptive":
+        sets += ["mesh.adaptive=.true.", f"mesh.max_level={MAX_LEVEL}", f"mesh.error_tol={MESH_TOL}"]
     if estimate:
         sets.append("output.error_estimate=.true.")
     if adaptive:
@@ -80,7 +89,7 @@ def truth_exact(path, cache):
             if t <= 0.0 or t >= t_contact:
                 continue
             ex, fields = cache.get(attrs, float(t))
-            x, nodal = rodrun.snapshot(f, k, FIELDS)
+            x, nodal = rodrun.native_snapshot(f, k, FIELDS)   # the run's own nodes (adaptive mesh)
             out[k] = ex.rel_l2(fields, x, nodal)
     return out
 
@@ -90,7 +99,7 @@ def truth_fine(path, ref_path, t_from):
     out = {}
     with h5py.File(path, "r") as f, h5py.File(ref_path, "r") as r:
         ts, tr = f["snapshots/t"][:], r["snapshots/t"][:]
-        x, xr = f["mesh/x"][:], r["mesh/x"][:]
+        xr = r["mesh/x"][:]
         for k, t in enumerate(ts):
             if t < t_from - 1e-12:
                 continue
@@ -98,9 +107,10 @@ def truth_fine(path, ref_path, t_from):
             if abs(tr[j] - t) > 1e-9:
                 continue
             err = {}
+            x, nodal = rodrun.native_snapshot(f, k, FIELDS)   # the run's own nodes (adaptive mesh)
             for name in FIELDS:
                 fine = r["snapshots/" + name][j]
-                coarse = np.interp(xr, x, f["snapshots/" + name][k])
+                coarse = np.interp(xr, x, nodal[name])
                 w = np.full(xr.size, 1.0)
                 w[0] = w[-1] = 0.5
                 norm = math.sqrt(np.sum(w * fine**2))
@@ -122,35 +132,41 @@ def ratios(path, truth):
 
 
 def measure(exe, work, quick):
-    """{(case, scheme, steps): rows}."""
+    """{(case, scheme, steps, mesh): rows}."""
     cache = exact_linear.Cache(N_MODES)
     results = {}
     step_kinds = ["fixed"] if quick else ["fixed", "adaptive"]
-    for scheme in SCHEMES:
-        for steps in step_kinds:
-            ad = steps == "adaptive"
-            p = run(exe, work, f"smooth_{scheme}_{steps}", "exp1.nml", case_sets(scheme, ad, 0.15, 0.05))
-            results[("smooth", scheme, steps)] = ratios(p, truth_exact(p, cache))
-            p = run(exe, work, f"front_{scheme}_{steps}", "exp2.nml", case_sets(scheme, ad, 0.25, 0.05))
-            results[("front", scheme, steps)] = ratios(p, truth_exact(p, cache))
-            if quick:
-                if scheme in QUICK_ADAPTIVE:
-                    p = run(exe, work, f"smooth_{scheme}_adaptive", "exp1.nml", case_sets(scheme, True, 0.15, 0.05))
-                    results[("smooth", scheme, "adaptive")] = ratios(p, truth_exact(p, cache))
-                continue
-            ref = run(exe, work, "contact_ref", "exp1.nml",
-                      case_sets("midpoint", False, 0.45, 0.05, s=4 * S, dt=DT / 8, estimate=False))
-            p = run(exe, work, f"contact_{scheme}_{steps}", "exp1.nml", case_sets(scheme, ad, 0.45, 0.05))
-            results[("contact", scheme, steps)] = ratios(p, truth_fine(p, ref, 0.25))
+    for mesh in MESHES:
+        tag = "" if mesh == "uniform" else "_amesh"
+        for scheme in SCHEMES:
+            for steps in step_kinds:
+                ad = steps == "adaptive"
+                for case, inp in (("smooth", "exp1.nml"), ("front", "exp2.nml")):
+                    if quick and mesh == "adaptive" and (case, scheme, steps) not in QUICK_MESH:
+                        continue
+                    t_end = 0.15 if case == "smooth" else 0.25
+                    p = run(exe, work, f"{case}_{scheme}_{steps}{tag}", inp,
+                            case_sets(scheme, ad, t_end, 0.05, mesh=mesh))
+                    results[(case, scheme, steps, mesh)] = ratios(p, truth_exact(p, cache))
+                if quick:
+                    if scheme in QUICK_ADAPTIVE and mesh == "uniform":
+                        p = run(exe, work, f"smooth_{scheme}_adaptive", "exp1.nml", case_sets(scheme, True, 0.15, 0.05))
+                        results[("smooth", scheme, "adaptive", mesh)] = ratios(p, truth_exact(p, cache))
+                    continue
+                ref = run(exe, work, "contact_ref", "exp1.nml",
+                          case_sets("midpoint", False, 0.45, 0.05, s=4 * S, dt=DT / 8, estimate=False))
+                p = run(exe, work, f"contact_{scheme}_{steps}{tag}", "exp1.nml",
+                        case_sets(scheme, ad, 0.45, 0.05, mesh=mesh))
+                results[("contact", scheme, steps, mesh)] = ratios(p, truth_fine(p, ref, 0.25))
     return results
 
 
 def table(results):
-    lines = ["| case | scheme | steps | ratio estimate / true error: min | median | max | "
+    lines = ["| case | scheme | steps | mesh | ratio estimate / true error: min | median | max | "
              "field and t of the min | of the max | target | met |",
-             "|---|---|---|---:|---:|---:|---|---|---|---|"]
+             "|---|---|---|---|---:|---:|---:|---|---|---|---|"]
     bad = []
-    for (case, scheme, steps), rows in results.items():
+    for (case, scheme, steps, mesh), rows in results.items():
         rs = [r for r in rows if np.isfinite(r[4])]
         lo = min(rs, key=lambda r: r[4])
         hi = max(rs, key=lambda r: r[4])
@@ -158,8 +174,8 @@ def table(results):
         target = TARGETS[case]
         met = lo[4] >= 1.0 / target and hi[4] <= target
         if not met:
-            bad.append((case, scheme, steps))
-        lines.append(f"| {case} | {scheme} | {steps} | {lo[4]:.2f} | {med:.2f} | {hi[4]:.2f} | "
+            bad.append((case, scheme, steps, mesh))
+        lines.append(f"| {case} | {scheme} | {steps} | {mesh} | {lo[4]:.2f} | {med:.2f} | {hi[4]:.2f} | "
                      f"{lo[1]} t={lo[0]:.2f} | {hi[1]} t={hi[0]:.2f} | [1/{target:g}, {target:g}] | "
                      f"{'yes' if met else '**no**'} |")
     return "\n".join(lines), bad
@@ -169,7 +185,8 @@ def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "rodcontact"))
     ap.add_argument("--work", default=os.path.join(ROOT, "out", "bench", "error_estimate"))
-    ap.add_argument("--quick", action="store_true", help="smooth and front cases with fixed steps, smooth with adaptive Euler and midpoint steps")
+    ap.add_argument("--quick", action="store_true", help="smooth and front cases with fixed steps, smooth with "
+                    "adaptive Euler and midpoint steps; adaptive mesh: QUICK_MESH")
     ap.add_argument("--check", action="store_true", help="exit 1 if a ratio misses its target")
     ap.add_argument("--out", help="write the Markdown section here (default: stdout)")
     ap.add_argument("--splice", action="store_true", help="put the section into docs/verification.md")
@@ -180,8 +197,9 @@ def main(argv):
     text, bad = table(results)
     load = os.getloadavg()[0]
     md = (f"Generated by `bench/error_estimate.py` ({time.time() - start:.0f} s, load {load:.1f}): s = {S}, "
-          f"dt = {DT:g} (adaptive steps: error_tol = 1e-5), snapshots every 0.05; every field and snapshot "
-          f"of each run counts.\n\n{text}\n")
+          f"dt = {DT:g} (adaptive steps: error_tol = 1e-5), adaptive mesh: n_elements = {S_COARSE}, "
+          f"max_level = {MAX_LEVEL}, error_tol = {MESH_TOL:g} (same dt), snapshots every 0.05; every field and "
+          f"snapshot of each run counts.\n\n{text}\n")
     if args.out:
         with open(args.out, "w") as f:
             f.write(md)
@@ -196,7 +214,7 @@ def main(argv):
         with open(doc, "w") as f:
             f.write(page[:a] + md + page[b:])
     for b in bad:
-        print("target missed: %s %s %s" % b, file=sys.stderr)
+        print("target missed: %s %s %s steps, %s mesh" % b, file=sys.stderr)
     return 1 if (args.check and bad) else 0
 
 

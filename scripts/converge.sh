@@ -16,7 +16,8 @@
 # level costs about R^(N-1) (space or time) or R^(2(N-1)) (both) times the input. Every
 # level writes its series at every step (output.series_every = 1).
 # Adaptive steps and adaptive meshes are refused (time.adaptive, mesh.adaptive): the ladder
-# refines a fixed step on a uniform mesh.
+# refines a fixed step on a uniform mesh (the built-in &output error_estimate also takes
+# adaptive steps and meshes: docs/scheme.md).
 #
 # Options: --refine WHAT   space, time or both (default both)
 #          --levels N      levels, >= 2 (default 3; with 2 no order can be observed)

@@ -1,12 +1,16 @@
 !> band_t: storage, factor/solve with dgbtrf/dgbtrs against a dense solve (dgesv) of the
 !> same matrix, identity rows, and a singular matrix reported through info; the block
 !> LU of block_tridiagonal_m with LAPACK's and with its own (inline) 5 x 5 inversion against
-!> the dense solve, on blocks that need pivoting, and a singular pivot block reported.
+!> the dense solve, on blocks that need pivoting, and a singular pivot block reported; the
+!> products with a block in the coupling pattern of (6.1) (in_pattern) equal product5's bit for bit.
 program test_banded_m
+    use, intrinsic :: iso_fortran_env, only: int64
+    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use kinds_m, only: dp
     use banded_m, only: band_t, lapack_info_message
     use band_reference_m, only: band_to_dense, solve_with_dgbtrs
-    use block_tridiagonal_m, only: block_tridiagonal_t
+    use block_tridiagonal_m, only: block_tridiagonal_t, product5, product5_left_pattern, product5_right_pattern, &
+                                   in_pattern
     use testing_m, only: check_close, check_true, test_summary
     implicit none
     interface
@@ -85,6 +89,7 @@ program test_banded_m
     call check_block_lu(5, 9)
     call check_block_lu(5, 7)   ! the band of (6.1) with every field: blocks partly outside the band
     call check_block_lu(3, 5)
+    call check_pattern_products()
     call test_summary('test_banded_m')
 contains
 
@@ -136,5 +141,46 @@ contains
         write (label, '(a,i0,a,i0,a)') 'block LU, nb = ', nb, ', band ', kw, ', inline inverse: zero column reported'
         call check_true(trim(label), stat == 3, 'info /= 3')
     end subroutine check_block_lu
+
+    !> product5_left_pattern and product5_right_pattern against product5, bit for bit, on random
+    !> blocks with the pattern's entries (some of them zero, of either sign) and a full block
+    !> (random signs, so that terms cancel); a block with an entry outside the pattern, a NaN
+    !> outside it, are not in_pattern.
+    subroutine check_pattern_products()
+        real(dp) :: a(5, 5), b(5, 5), c_dense(5, 5), c_pattern(5, 5), r(5, 5)
+        logical :: inside(5, 5)
+        integer :: trial, i, j, n_diff
+
+        inside = .false.
+        do j = 1, 5
+            do i = 1, 5
+                inside(i, j) = abs(i - j) <= 1
+            end do
+        end do
+        inside(2, 4) = .true.
+        inside(4, 2) = .true.
+        n_diff = 0
+        do trial = 1, 200
+            call random_number(a)
+            a = a - 0.5_dp
+            call random_number(r)
+            b = merge(r - 0.5_dp, 0.0_dp, inside)
+            if (mod(trial, 3) == 0) b(2, 3) = 0.0_dp
+            if (mod(trial, 5) == 0) b(4, 4) = -0.0_dp
+            if (mod(trial, 7) == 0) a(:, 2) = 0.0_dp
+            call check_true('pattern products: the block is in_pattern', in_pattern(b))
+            call product5(a, b, c_dense)
+            call product5_right_pattern(a, b, c_pattern)
+            n_diff = n_diff + count(transfer(c_dense, 0_int64, 25) /= transfer(c_pattern, 0_int64, 25))
+            call product5(b, a, c_dense)
+            call product5_left_pattern(b, a, c_pattern)
+            n_diff = n_diff + count(transfer(c_dense, 0_int64, 25) /= transfer(c_pattern, 0_int64, 25))
+        end do
+        call check_true('pattern products = product5 bit for bit', n_diff == 0)
+        b(1, 4) = 1.0e-300_dp
+        call check_true('an entry outside the pattern: not in_pattern', .not. in_pattern(b))
+        b(1, 4) = ieee_value(1.0_dp, ieee_quiet_nan)
+        call check_true('a NaN outside the pattern: not in_pattern', .not. in_pattern(b))
+    end subroutine check_pattern_products
 
 end program test_banded_m

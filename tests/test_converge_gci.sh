@@ -60,6 +60,17 @@ r = g.scalar([1.16, 0.96, 1.01], h, 2)
 check("oscillatory: status", r["status"], "oscillatory")
 check("oscillatory: p = 2", r["observed_order"], 2.0, 1e-9)
 check("oscillatory: GCI = 3 * 0.05 / 3", r["gci_abs"], 0.05, 1e-9)
+# oscillatory at a low order: 1.2, 0.9, 1.1: eps32 = -0.3, eps21 = +0.2, p = ln 1.5 / ln 2 =
+# 0.585, delta = max(0.2, 0.3 / 2^p) = 0.2; the order-based band 3 * 0.2 / (2^p - 1) = 1.2 is
+# capped at Fs |eps21| = 0.6 (the exact value lies between the two finest levels)
+r = g.scalar([1.2, 0.9, 1.1], h, 2)
+check("oscillatory, p < 1: status", r["status"], "oscillatory")
+check("oscillatory, p < 1: p = ln 1.5 / ln 2", r["observed_order"], math.log(1.5) / math.log(2), 1e-9)
+check("oscillatory, p < 1: band capped at 3 |eps21| = 0.6", r["gci_abs"], 0.6, 1e-9)
+# below P_MIN: 1.2, 0.85, 1.1: eps32 = -0.35, eps21 = 0.25, p = 0.485, p_used = 0.5:
+# 3 * max(0.25, 0.35 / sqrt 2) / (sqrt 2 - 1) = 1.81 capped at 3 * 0.25 = 0.75
+r = g.scalar([1.2, 0.85, 1.1], h, 2)
+check("oscillatory, p < P_MIN: band capped at 3 |eps21| = 0.75", r["gci_abs"], 0.75, 1e-9)
 # diverging: the differences grow (0.1 then 0.2): no extrapolate, no band
 r = g.scalar([1.0, 1.1, 1.3], h, 2)
 check("diverging: status", r["status"], "diverging")
@@ -74,6 +85,12 @@ check("two levels: extrapolate 1", r["extrapolated"], 1.0, 1e-9)
 r = g.scalar([1.16, 1.01, 1.01], h, 2)
 check("eps21 = 0, eps32 != 0: not_asymptotic", r["status"], "not_asymptotic")
 check("eps21 = 0: GCI = 3 * (0.15 / 4) / 3", r["gci_abs"], 0.15 / 4, 1e-9)
+# levels that agree to round-off (differences 3e-14 and 1e-13, below ROUNDOFF * |phi|): the band
+# is of their differences' size, 1.25 * 3e-14 / (2^2 - 1), not one made up from the formal order
+r = g.scalar([1.0 + 1.3e-13, 1.0 + 3e-14, 1.0], h, 2)
+check("round-off agreement: asymptotic", r["status"], "asymptotic")
+check("round-off agreement: band / (1.25 * 3e-14 / 3) = 1 (to the 1 % of 3e-14's rounding)",
+      r["gci_abs"] / (1.25 * 3e-14 / 3), 1.0, 1e-2)
 # Celik's iteration with r21 != r32 on exact second-order data phi = 2 + h^2
 hv = [0.3, 0.2, 0.1]
 r = g.scalar([2 + x * x for x in hv], hv, 2)
@@ -91,6 +108,11 @@ check("field: extrapolate = ||sin(pi x)||", r["extrapolated"], g.l2(np.sin(np.pi
 check("field: asymptotic", r["status"], "asymptotic")
 r = g.field([np.sin(np.pi * x) + s * hh * hh * x for hh, s in zip(h, (1, -1, 1))], h, x, 2)
 check("field whose differences change sign: oscillatory", r["status"], "oscillatory")
+# a field oscillating at a low order: sin(pi x) + c_k x with c = 0.3, -0.2, 0.1 (eps32 = -0.5 x,
+# eps21 = 0.3 x, p = ln(5/3) / ln 2 < 1): the band is 3 ||eps21|| = 0.9 ||x||
+r = g.field([np.sin(np.pi * x) + c * x for c in (0.3, -0.2, 0.1)], h, x, 2)
+check("field oscillating at p < 1: oscillatory", r["status"], "oscillatory")
+check("field oscillating at p < 1: band 3 ||eps21|| = 0.9 ||x||", r["gci_abs"], 0.9 * norm_x, 1e-9)
 
 print(f"test_converge_gci: {n_failed} of {n_checks} checks failed")
 sys.exit(1 if n_failed else 0)

@@ -9,15 +9,20 @@
 !>     at a step of another size (step_changed) goes to max_rise_step_change, not max_rise;
 !>  3. a remesh (remeshed) gives the rise of the law energy across it, which the mesh's
 !>     record_remesh keeps as max_rise_remesh and counts (as remesh_m does), apart from max_rise.
+!>  4. linear_energy_by_nodes (the step-size controller's norm, summed by nodes) against E_lin
+!>     written out here, to round-off, on a smooth and on a sawtooth level (where the sums by
+!>     nodes cancel most); on a graded mesh it is energy_m's linear_energy, bit for bit.
 !> The runs' own checks (test_energy_law) see only levels whose energy falls, where a monitor
 !> that compared a level with itself would also report 0.
 program test_energy_monitor
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_m, only: dp
     use config_m, only: model_t
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme
     use state_m, only: state_t
-    use energy_m, only: energy_monitor_t
+    use energy_m, only: energy_monitor_t, linear_energy_by_nodes, energy_m_linear => linear_energy
+    use mesh_m, only: graded_mesh
     use checkpoint_m, only: checkpoint_t, COUNTER_LAW_ENERGY
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA
     use testing_m, only: check_close, check_true, test_summary
@@ -34,6 +39,7 @@ program test_energy_monitor
     x0 = level(1.0_dp, 0.05_dp)
     call euler_checks()
     call bdf2_checks()
+    call by_nodes_checks()
     call test_summary('test_energy_monitor')
 
 contains
@@ -127,6 +133,27 @@ contains
         end do
         x%u(S) = u_end
     end function level
+
+    !> 4. (module header)
+    subroutine by_nodes_checks()
+        type(state_t) :: x
+        real(dp) :: work(S), by_nodes
+        integer :: i
+
+        x = level(1.0_dp, 0.05_dp)
+        call linear_energy_by_nodes(MODEL, x%u, x%w, x%mesh, work, by_nodes)
+        call check_close('E_lin by nodes, smooth level', linear_energy(x), by_nodes, TOL * linear_energy(x))
+        do i = 0, S
+            x%u(i) = 0.01_dp * (-1)**i
+            x%w(i, :) = (-1)**i * [1.0_dp, 0.5_dp, 2.0_dp, 0.7_dp, 1.3_dp]
+        end do
+        call linear_energy_by_nodes(MODEL, x%u, x%w, x%mesh, work, by_nodes)
+        call check_close('E_lin by nodes, sawtooth level', linear_energy(x), by_nodes, TOL * linear_energy(x))
+        x%mesh = graded_mesh([(real(i, dp)**2 / S**2, i = 0, S)])
+        call linear_energy_by_nodes(MODEL, x%u, x%w, x%mesh, work, by_nodes)
+        call check_true('E_lin by nodes on a graded mesh = linear_energy', &
+                        transfer(by_nodes, 0_int64) == transfer(energy_m_linear(MODEL, x%u, x%w, x%mesh), 0_int64))
+    end subroutine by_nodes_checks
 
     type(state_t) function with_previous(x, previous) result(y)
         type(state_t), intent(in) :: x, previous

@@ -7,16 +7,20 @@
 #  2. with it: /snapshots/error_estimate{,_time,_space}/<field>, one finite value per
 #     snapshot with long_name and units, the root attributes error_estimate.<field> etc. =
 #     the last snapshot's values; --summary's columns error_<field> hold them;
-#  3. refused (exit 2, named): an adaptive mesh, a number of elements that is not a
-#     multiple of 4; a restart that switches the option (it changes the checkpoint);
-#  4. restart of a run with estimates (fixed BDF2, adaptive midpoint with snapshot_dt) is bit
-#     for bit the uninterrupted run, estimates included (the companions are in the checkpoint);
+#  3. refused (exit 2, named): a number of elements (on an adaptive mesh: of coarse
+#     elements) that is not a multiple of 4; a restart that switches the option (it changes
+#     the checkpoint);
+#  4. restart of a run with estimates (fixed BDF2, adaptive midpoint with snapshot_dt; on a
+#     uniform and on an adaptive mesh, whose companions remesh with the run) is bit for bit the
+#     uninterrupted run, estimates included (the companions are in the checkpoint, their
+#     meshes rebuilt from the run's);
 #  5. the estimate against the exact solution (bench/error_estimate.py --quick --check):
 #     experiment 1 before contact within [1/3, 3] of the true error, experiment 2's fronts
 #     within [1/10, 10], every field and snapshot, Euler, BDF2, midpoint with fixed steps, and
 #     experiment 1 with adaptive Euler and midpoint steps (the companions land on every
 #     snapshot: when they caught up with one shorter step instead, the midpoint rule's v was
-#     0.03x its true error) (skipped without scipy).
+#     0.03x its true error); on an adaptive mesh experiment 1 with fixed Euler steps and
+#     experiment 2 with fixed midpoint steps (skipped without scipy).
 # The manufactured solution's ratios: tests/test_error_estimate_mms.f90.
 # Usage: bash test_error_estimate.sh <rodcontact> <source dir> <scratch dir>
 set -u
@@ -98,8 +102,9 @@ refuses() {   # refuses <label> <word in the message> <args...>: exit 2, message
     fi
     echo "  $label: exit $status: $(cat err.txt)"; return 1
 }
-check "3a. an adaptive mesh with the estimate is refused" \
-    refuses "adaptive mesh" "uniform mesh" "$src/input/exp2.nml" --set mesh.adaptive=.true. --set output.error_estimate=.true.
+check "3a. an adaptive mesh of coarse elements not a multiple of 4 is refused" \
+    refuses "adaptive mesh, n_elements = 50" "multiple of 4" "$src/input/exp2.nml" --set mesh.adaptive=.true. \
+    --set mesh.n_elements=50 --set output.error_estimate=.true.
 check "3b. a number of elements that is not a multiple of 4 is refused" \
     refuses "n_elements = 250" "multiple of 4" "$src/input/exp1.nml" --set mesh.n_elements=250 --set output.error_estimate=.true.
 
@@ -119,6 +124,12 @@ check "4a. restart with estimates, fixed BDF2 steps: bit for bit the uninterrupt
     split_run fixed "${est[@]}" --set time.scheme="'bdf2'" --set output.snapshot_every=30
 check "4b. restart with estimates, adaptive midpoint steps and snapshot_dt: bit for bit the uninterrupted run" \
     split_run adaptive "${est[@]}" --set time.scheme="'midpoint'" --set time.adaptive=.true. --set output.snapshot_dt=0.05
+amesh=(--set mesh.adaptive=.true. --set mesh.max_level=2 --set mesh.error_tol=1e-4)
+check "4c. restart with estimates on an adaptive mesh, fixed BDF2 steps: bit for bit the uninterrupted run" \
+    split_run amesh_fixed "${est[@]}" "${amesh[@]}" --set time.scheme="'bdf2'" --set output.snapshot_every=30
+check "4d. restart with estimates on an adaptive mesh, adaptive midpoint steps: bit for bit the uninterrupted run" \
+    split_run amesh_adaptive "${est[@]}" "${amesh[@]}" --set time.scheme="'midpoint'" --set time.adaptive=.true. \
+    --set output.snapshot_dt=0.05
 "$exe" "${exp1[@]}" --set time.t_end=0.6 --set time.restart_from="'fixed_half.h5'" --set time.scheme="'bdf2'" \
     --set output.snapshot_every=30 --set output.prefix="'switched'" >/dev/null 2>err.txt
 status=$?
@@ -126,7 +137,7 @@ check "3c. a restart that drops the option is refused (exit 2, names output.erro
     test "$status" = 2 -a -n "$(grep output.error_estimate err.txt)"
 
 if "$py" -c 'import scipy.fft, scipy.linalg' 2>/dev/null; then
-    check "5. estimate / true error on exp1 before contact in [1/3, 3] (fixed steps; adaptive Euler, midpoint), on exp2's fronts in [1/10, 10]" \
+    check "5. estimate / true error on exp1 before contact in [1/3, 3] (fixed steps; adaptive Euler, midpoint; adaptive mesh: Euler), on exp2's fronts in [1/10, 10] (adaptive mesh: midpoint)" \
         "$py" "$src/bench/error_estimate.py" --exe "$exe" --work "$scratch/bench" --quick --check
 else
     echo "SKIP 5: $py has no scipy (the exact solution)"

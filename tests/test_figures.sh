@@ -33,6 +33,11 @@ if ! py=$("$src/scripts/lib/find_python.sh" 2>/dev/null); then
     exit 77
 fi
 
+# The PDFs carry the date of the latest commit (figures.sh); a commit made while this test runs
+# (a developer committing beside the suite) changed it between the two calls below and the
+# PDFs differed. One fixed date for both calls.
+export SOURCE_DATE_EPOCH=946684800
+
 out="$scratch/out"
 figs="$scratch/figures"
 doc="$scratch/doc/reproduction.md"

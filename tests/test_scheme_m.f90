@@ -3,16 +3,22 @@
 !>  1. every block of the assembled band matrix equals the reference block times the row
 !>     scaling of scheme_m (dt, and dt*hbar for (6.1)_5), on 3 and 4 element meshes;
 !>  2. one time step of the monolithic banded solver and of the paper iteration equals the
-!>     dense semismooth-Newton solution of the same step, with and without active contact.
+!>     dense semismooth-Newton solution of the same step, with and without active contact;
+!>  3. assemble_blocks gives the node blocks of assemble_matrix's band bit for bit, and
+!>     block_tridiagonal_m's factor_blocks on them the factors of its band factorisation bit
+!>     for bit (uniform and graded meshes, consistent and redistributed mass).
 program test_scheme_m
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_m, only: dp
     use config_m, only: config_t, model_t
     use banded_m, only: band_t
     use band_reference_m, only: band_to_dense
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, FIELDS, is_dirichlet
-    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix, band_width, THERMAL_SLOTS, MECHANICAL_SLOTS
+    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix, assemble_blocks, band_width, THERMAL_SLOTS, &
+                        MECHANICAL_SLOTS
+    use block_tridiagonal_m, only: block_tridiagonal_t
     use state_m, only: state_t
-    use mesh_m, only: uniform_mesh
+    use mesh_m, only: mesh_t, uniform_mesh, graded_mesh
     use stepper_m, only: stepper_t, step_result_t
     use quadrature_m, only: integrate_product
     use testing_m, only: check_close, check_true, test_summary
@@ -43,9 +49,64 @@ program test_scheme_m
     call check_step(model, 4, 0.01_dp, contact=.true.)
     call check_step(model_t(), 4, 1.0e-4_dp, contact=.false.)
     call check_step(model_t(), 4, 1.0e-4_dp, contact=.true.)
+
+    call check_node_blocks('uniform, s = 7', model, uniform_mesh(7), 0.01_dp)
+    call check_node_blocks('uniform, s = 500, (7.1)', model_t(), uniform_mesh(500), 1.0e-3_dp)
+    call check_node_blocks('graded', model, graded_mesh([0.0_dp, 0.25_dp, 0.5_dp, 0.625_dp, 0.75_dp, 0.8125_dp, &
+                                                         0.875_dp, 0.9375_dp, 1.0_dp]), 0.02_dp)
+    model%mass_lumped = 7.0_dp / 16.0_dp       ! &contact mass = 'redistributed' (config_m)
+    model%mass_end_moved = .true.
+    call check_node_blocks('uniform, redistributed mass', model, uniform_mesh(6), 0.01_dp)
     call test_summary('test_scheme_m')
 
 contains
+
+    !> assemble_blocks against the blocks of assemble_matrix's band, and factor_blocks on them
+    !> against the band's block LU (both with the inline inversion): every entry bit for bit.
+    subroutine check_node_blocks(label, model, mesh, dt)
+        character(len=*), intent(in) :: label
+        type(model_t), intent(in) :: model
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(in) :: dt
+        type(band_t) :: a
+        type(block_tridiagonal_t) :: from_band, from_blocks
+        real(dp), allocatable :: d(:, :, :), e(:, :, :), f(:, :, :)
+        integer :: s, i, r, c, info_band, info_blocks, n_diff
+
+        s = mesh%s()
+        allocate (d(N_FIELDS, N_FIELDS, 0:s), e(N_FIELDS, N_FIELDS, 0:s - 1), f(N_FIELDS, N_FIELDS, 0:s - 1))
+        call assemble_matrix(model, mesh, dt, MONOLITHIC_SLOTS, a)
+        call assemble_blocks(model, mesh, dt, d, e, f)
+        n_diff = 0
+        do i = 0, s
+            do c = 1, N_FIELDS
+                do r = 1, N_FIELDS
+                    if (.not. same_bits(d(r, c, i), a%get(idx(i, r), idx(i, c)))) n_diff = n_diff + 1
+                    if (i == s) cycle
+                    if (.not. same_bits(e(r, c, i), a%get(idx(i, r), idx(i + 1, c)))) n_diff = n_diff + 1
+                    if (.not. same_bits(f(r, c, i), a%get(idx(i + 1, r), idx(i, c)))) n_diff = n_diff + 1
+                end do
+            end do
+        end do
+        call check_true('assemble_blocks = the band''s blocks bit for bit, '//label, n_diff == 0)
+        call from_band%factor(a, N_FIELDS, info_band, inline_inverse=.true.)
+        call from_blocks%prepare(s)
+        from_blocks%g = d
+        call from_blocks%factor_blocks(e, f, info_blocks, inline_inverse=.true.)
+        call check_true('factor_blocks and the band''s block LU factor, '//label, info_band == 0 .and. info_blocks == 0)
+        if (info_band /= 0 .or. info_blocks /= 0) return
+        n_diff = count(.not. same_bits(from_band%g, from_blocks%g)) &
+                 + count(.not. same_bits(from_band%l, from_blocks%l)) &
+                 + count(.not. same_bits(from_band%h, from_blocks%h))
+        call check_true('factor_blocks = the band''s block LU bit for bit, '//label, n_diff == 0)
+    end subroutine check_node_blocks
+
+    !> x and y are the same double (sign of zero included).
+    elemental logical function same_bits(x, y)
+        real(dp), intent(in) :: x, y
+
+        same_bits = transfer(x, 0_int64) == transfer(y, 0_int64)
+    end function same_bits
 
     integer function idx(i, f)
         integer, intent(in) :: i, f

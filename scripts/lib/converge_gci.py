@@ -17,12 +17,22 @@ The verdict (status), from the three finest levels:
                   range between the two orders): Fs = 1.25 with the observed order (Celik)
   not_asymptotic  monotone convergence at an order far from the formal one, or only two
                   levels (no order can be observed): Fs = 3 (Roache's fall-back)
-  oscillatory     eps21/eps32 < 0 (the differences change sign), and |eps21| < |eps32|: Fs = 3
+  oscillatory     eps21/eps32 < 0 (the differences change sign), and |eps21| < |eps32|: Fs = 3,
+                  and the band at most Fs |eps21| (below)
   diverging       |eps21| >= |eps32|: the differences do not shrink; no extrapolate, no band
 In the Fs = 3 cases the order used is p_used = min(max(P_MIN, p), p_formal) (never more
 than the formal order, the lower one of a range, never below P_MIN), applied to the larger of |eps21| and
 |eps32| / r32^p_used (the next difference scaled to the finest level), so that a ladder whose
 two finest levels agree by accident still gets a band.
+Oscillatory convergence: read as errors e_k = phi_k - phi that alternate in sign from level
+to level (the model behind the sign test), the exact value lies between the two finest
+levels, so |e1| <= |eps21| (for fields: <e1, e2> <= 0 gives ||e1||^2 <= ||e1||^2 + ||e2||^2
+- 2 <e1, e2> = ||eps21||^2). The band is therefore min(Fs delta / (r21^p_used - 1),
+Fs |eps21|): the order-based band capped at Fs times that bound, which it exceeds whenever
+r21^p_used < 2 (p_used < 1 for r21 = 2) — a bound from the oscillation's range instead of an
+extrapolation with an uncertain order. Stern et al. (2001), J. Fluids Eng. 123, 793-802,
+bound the error of oscillatory convergence by the oscillation's range too (half the range of
+the levels' solutions).
 
 Fields: the same with vectors on a common grid; |eps| becomes the L2 norm over the rod and s
 the sign of the inner product <eps32, eps21>.
@@ -73,7 +83,7 @@ def formal_range(p_formal):
 def verdict(e21, e32, s, r21, r32, p_formal, scale, trusted=True):
     """(status, p_observed, p_used, fs, delta) for the magnitudes |eps21| = e21, |eps32| = e32
     (None for two levels) and the sign s of eps32/eps21; delta is the difference the band is
-    built on (see the module's docstring); scale: |phi| for the round-off test. trusted =
+    built on, band = fs delta / (r21^p_used - 1) (see the module's docstring); scale: |phi| for the round-off test. trusted =
     False (an inconsistent ladder): never asymptotic."""
     tiny = ROUNDOFF * scale
     if e32 is None:                                   # two levels: formal order, Fs = 3
@@ -89,8 +99,8 @@ def verdict(e21, e32, s, r21, r32, p_formal, scale, trusted=True):
     lo, hi = formal_range(p_formal)
     p_used = min(max(P_MIN, p), lo)
     delta = max(e21, e32 / r32 ** p_used)
-    if s < 0:
-        return "oscillatory", p, p_used, FS_TWO, delta
+    if s < 0:                                         # the band at most FS_TWO e21 (docstring)
+        return "oscillatory", p, p_used, FS_TWO, min(delta, e21 * (r21 ** p_used - 1.0))
     if trusted and lo * (1 - ORDER_WINDOW) <= p <= hi * (1 + ORDER_WINDOW):
         return "asymptotic", p, p, FS_THREE, e21
     return "not_asymptotic", p, p_used, FS_TWO, delta

@@ -37,19 +37,28 @@
 !> and BDF2's step ratios stay within [1/2, 2] (fewer steps between snapshots than 2k: one
 !> shorter step before the last).
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
-!> has the measurement); the companions' steps skip the stepper's per-step finiteness test
+!> has the measurement; on an adaptive mesh also a transfer per companion whose mesh changes
+!> at a remesh); the companions' steps skip the stepper's per-step finiteness test
 !> (a non-finite value stays non-finite: the estimate tests the companions' levels).
-!> Uniform meshes of a multiple of 4 elements only (validate_m).
+!> Meshes of a multiple of 4 (coarse) elements (validate_m). On an adaptive mesh (&mesh
+!> adaptive) "every other node" is the companion's own bisection mesh, coarser by 2 (A) and 4
+!> (C, D) where the run's level is the same, nested in the run's (companion_mesh_m); it is
+!> rebuilt when the run remeshes, the companion's levels moved onto it by transfer_m, and the
+!> norms are the trapezoidal rule on its nodes (companions_remesh, estimate_graded).
 module error_companion_m
     use kinds_m, only: dp
+    use iso_fortran_env, only: int64
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use config_m, only: config_t
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
-    use state_m, only: state_t, initial_state, field_values, land_on, copy_state
+    use state_m, only: state_t, initial_state, field_values, land_on, copy_state, set_mesh
     use stepper_m, only: stepper_t, step_result_t
     use sources_m, only: source_t
     use checkpoint_m, only: checkpoint_t
     use errors_m, only: check_allocation, fatal, EXIT_INPUT
+    use adaptive_mesh_m, only: nodes_of_keys
+    use companion_mesh_m, only: companion_keys, key_positions, trapezoid_weights
+    use remesh_m, only: move_level
     implicit none
     private
     public :: error_companions_t, N_ESTIMATE_PARTS, PART_TOTAL, PART_TIME, PART_SPACE, &
@@ -91,6 +100,8 @@ module error_companion_m
         !> the run's steps since the companion's last step: their sizes and end times
         integer :: n_queued = 0
         real(dp) :: queue_dt(QUEUE_MAX) = 0.0_dp, queue_t(QUEUE_MAX) = 0.0_dp
+        !> an adaptive mesh: the companion's node keys (companion_mesh_m)
+        integer(int64), allocatable :: k(:)
     end type companion_t
 
     !> The companions of a run and its last estimate.
@@ -105,8 +116,14 @@ module error_companion_m
         integer :: n_since = 0             !< the run's steps since the last snapshot
         !> the last estimate (values(k, part): field OUTPUT_ORDER(k))
         real(dp) :: last(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS) = 0.0_dp
+        !> an adaptive mesh (&mesh adaptive): the run's coarse elements, finest elements, keys
+        logical :: adaptive = .false.
+        integer :: n_coarse = 0
+        integer(int64) :: n_fine = 0
+        integer(int64), allocatable :: k_run(:)
     contains
         procedure :: init => companions_init
+        procedure :: remesh => companions_remesh
         procedure :: follow => companions_follow
         procedure :: estimate => companions_estimate
         procedure :: save_checkpoint => companions_save_checkpoint
@@ -115,14 +132,16 @@ module error_companion_m
 
 contains
 
-    !> Companions for the run cfg (validated: a uniform mesh of a multiple of 4 elements),
-    !> from the run's initial level `initial` (its values at their nodes); source: the run's
-    !> source terms (manufactured solutions).
-    subroutine companions_init(self, cfg, initial, source)
+    !> Companions for the run cfg (validated: a mesh of a multiple of 4 elements), from the
+    !> run's initial level `initial` (its values at their nodes); source: the run's source
+    !> terms (manufactured solutions); keys: the node keys of the run's adaptive mesh
+    !> (adaptive_mesh_m; absent: a uniform mesh).
+    subroutine companions_init(self, cfg, initial, source, keys)
         class(error_companions_t), intent(out) :: self
         type(config_t), intent(in) :: cfg
         type(state_t), intent(in) :: initial
         class(source_t), intent(in), optional :: source
+        integer(int64), intent(in), optional :: keys(0:)
         type(config_t) :: coarse
         integer :: j, k
 
@@ -135,10 +154,15 @@ contains
                 k = ELEMENTS_PER_ELEMENT(j)
                 coarse%mesh%n_elements = cfg%mesh%n_elements / k
                 coarse%time%dt = real(c%steps_per_step, dp) * cfg%time%dt
-                call initial_state(coarse, c%state)
-                c%state%u = initial%u(0::k)
-                c%state%w = initial%w(0::k, :)
+                if (present(keys)) then
+                    call start_graded(self, j, cfg, coarse, keys, initial)
+                else
+                    call initial_state(coarse, c%state)
+                    c%state%u = initial%u(0::k)
+                    c%state%w = initial%w(0::k, :)
+                end if
                 call c%stepper%init(coarse, c%result, source)
+                if (present(keys)) call c%stepper%remesh(c%state)
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
                 c%stepper%check_finite = .false.
                 if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
@@ -284,6 +308,11 @@ contains
             self%last = values
             return
         end if
+        if (self%adaptive) then
+            call estimate_graded(self, state, values)
+            self%last = values
+            return
+        end if
         do k = 1, N_OUTPUT_FIELDS
             x = field_values(state, OUTPUT_ORDER(k))
             a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
@@ -360,8 +389,9 @@ contains
     end function relative
 
     !> The companions' levels (and the levels before, for a multistep scheme) and scalars
-    !> into a checkpoint: companion_levels (s/2+1, (1+N_FIELDS) x 2 per companion: level,
-    !> previous level or zeros; a companion on fewer nodes in the leading rows),
+    !> into a checkpoint: companion_levels (A's nodes: s/2+1 on a uniform mesh, (1+N_FIELDS) x 2
+    !> per companion: level, previous level or zeros; a companion on fewer nodes in the
+    !> leading rows; an adaptive mesh's companion meshes are rebuilt from the run's),
     !> companion_scalars (SCALARS_PER_COMPANION per companion, then whether they failed).
     subroutine companions_save_checkpoint(self, ckpt)
         class(error_companions_t), intent(in) :: self
@@ -409,6 +439,7 @@ contains
                        'version of rodcontact (companion_scalars has the wrong length): restart without '// &
                        'output.error_estimate, or from a checkpoint of this version')
         width = 1 + N_FIELDS
+        if (self%adaptive) call restore_graded(self, ckpt)
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j), st => self%pair(j)%state)
                 col = (j - 1) * 2 * width
@@ -439,5 +470,131 @@ contains
         if (ckpt%companion_scalars(N_COMPANION_SCALARS - 1) > 0.0_dp) &
             call stop_companions(self, 'failed before the checkpoint')
     end subroutine companions_restore_checkpoint
+
+    !> Companion j of an adaptive mesh (&mesh adaptive): on its mesh for the run's mesh with
+    !> node keys `keys` (companion_mesh_m), holding the run's level `initial` at its nodes
+    !> (nodes of the run's mesh). cfg: the run's input, coarse: the companion's.
+    subroutine start_graded(self, j, cfg, coarse, keys, initial)
+        type(error_companions_t), intent(inout) :: self
+        integer, intent(in) :: j
+        type(config_t), intent(in) :: cfg, coarse
+        integer(int64), intent(in) :: keys(0:)
+        type(state_t), intent(in) :: initial
+        integer, allocatable :: on_run(:)
+
+        self%adaptive = .true.
+        self%n_coarse = cfg%mesh%n_elements
+        self%n_fine = int(cfg%mesh%n_elements, int64) * 2_int64**cfg%mesh%max_level
+        self%k_run = keys
+        associate (c => self%pair(j))
+            call companion_keys(keys, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), c%k)
+            call initial_state(coarse, c%state, nodes_of_keys(c%k, self%n_fine))
+            on_run = key_positions(c%k, keys)
+            c%state%u = initial%u(on_run)
+            c%state%w = initial%w(on_run, :)
+        end associate
+    end subroutine start_graded
+
+    !> The run's adaptive mesh has changed (keys: its new node keys; remesh_m): each companion
+    !> onto its mesh for the new one (companion_mesh_m), its level and the level before (a
+    !> multistep scheme) moved as the run's are (remesh_m's move_level: transfer_m); a
+    !> companion whose mesh stays keeps its levels untouched.
+    subroutine companions_remesh(self, keys)
+        class(error_companions_t), intent(inout) :: self
+        integer(int64), intent(in) :: keys(0:)
+        integer(int64), allocatable :: k_new(:)
+        integer :: j
+
+        self%k_run = keys
+        do j = 1, N_COMPANIONS
+            associate (c => self%pair(j))
+                call companion_keys(keys, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), k_new)
+                if (size(k_new) == size(c%k)) then
+                    if (all(k_new == c%k)) cycle
+                end if
+                call move_level(c%k, k_new, self%n_fine, c%stepper%model, c%state%u, c%state%w)
+                if (allocated(c%state%u_prev)) &
+                    call move_level(c%k, k_new, self%n_fine, c%stepper%model, c%state%u_prev, c%state%w_prev)
+                call set_mesh(c%state, nodes_of_keys(k_new, self%n_fine))
+                call c%stepper%remesh(c%state)
+                call move_alloc(k_new, c%k)
+            end associate
+        end do
+    end subroutine companions_remesh
+
+    !> A restart on an adaptive mesh, before the companions' levels are read: each companion
+    !> on its mesh for the checkpoint's run mesh (ckpt%mesh_keys: the companions' meshes are a
+    !> function of it), with level arrays of its size.
+    subroutine restore_graded(self, ckpt)
+        type(error_companions_t), intent(inout) :: self
+        type(checkpoint_t), intent(in) :: ckpt
+        integer :: j, s, stat
+        character(len=256) :: message
+
+        self%k_run = ckpt%mesh_keys
+        do j = 1, N_COMPANIONS
+            associate (c => self%pair(j))
+                call companion_keys(self%k_run, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), c%k)
+                s = ubound(c%k, 1)
+                call set_mesh(c%state, nodes_of_keys(c%k, self%n_fine))
+                deallocate (c%state%u, c%state%w)
+                if (allocated(c%state%u_prev)) deallocate (c%state%u_prev, c%state%w_prev)
+                allocate (c%state%u(0:s), c%state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
+                call check_allocation(stat, message, 'the error estimate''s companions')
+                call c%stepper%remesh(c%state)
+            end associate
+        end do
+        if (size(ckpt%companion_levels, 1) /= self%pair(COMP_A)%state%s + 1) &
+            call fatal(EXIT_INPUT, 'restart', 'the checkpoint''s error-estimate companions do not fit its '// &
+                       'adaptive mesh (companion_levels has the wrong shape)')
+    end subroutine restore_graded
+
+    !> companions_estimate on an adaptive mesh: the same extrapolation, the run X and A
+    !> compared on A's nodes, and A - X, C - A, D - C on C's nodes (C's nodes are A's, A's are
+    !> the run's: companion_mesh_m), each norm the trapezoidal rule on those nodes.
+    subroutine estimate_graded(self, state, values)
+        type(error_companions_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(out) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
+        integer, dimension(0:self%pair(COMP_A)%state%s) :: x_on_a
+        integer, dimension(0:self%pair(COMP_C)%state%s) :: x_on_c, a_on_c
+        real(dp), dimension(0:self%pair(COMP_A)%state%s) :: a, total, weights_a
+        real(dp), dimension(0:self%pair(COMP_C)%state%s) :: c, d, time, weights_c
+        real(dp) :: x(0:state%s)
+        real(dp) :: r, p_t, d1, d2
+        integer :: k
+
+        associate (k_a => self%pair(COMP_A)%k, k_c => self%pair(COMP_C)%k)
+            x_on_a = key_positions(k_a, self%k_run)
+            x_on_c = key_positions(k_c, self%k_run)
+            a_on_c = key_positions(k_c, k_a)
+            weights_a = trapezoid_weights(k_a)
+            weights_c = trapezoid_weights(k_c)
+        end associate
+        do k = 1, N_OUTPUT_FIELDS
+            x = field_values(state, OUTPUT_ORDER(k))
+            a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
+            c = landed_values(self%pair(COMP_C), OUTPUT_ORDER(k))
+            d = landed_values(self%pair(COMP_D), OUTPUT_ORDER(k))
+            d1 = weighted_norm(a(a_on_c) - x(x_on_c), weights_c)
+            d2 = weighted_norm(c - a(a_on_c), weights_c)
+            r = observed_order(d1, d2)
+            total = (a - x(x_on_a)) / (2.0_dp**r - 1.0_dp)
+            if (d2 / 2.0_dp**r > d1) total = total * (d2 / 2.0_dp**r / d1)
+            p_t = min(real(self%p, dp), r)
+            time = (d - c) / (4.0_dp**p_t * (2.0_dp**p_t - 1.0_dp))
+            values(k, PART_TOTAL) = relative(weighted_norm(total, weights_a), weighted_norm(x(x_on_a), weights_a))
+            values(k, PART_TIME) = relative(weighted_norm(time, weights_c), weighted_norm(x(x_on_c), weights_c))
+            values(k, PART_SPACE) = sqrt(max(values(k, PART_TOTAL)**2 - values(k, PART_TIME)**2, 0.0_dp))
+        end do
+    end subroutine estimate_graded
+
+    !> The L2 norm of the P1 function with nodal values x by the trapezoidal rule with weights
+    !> (companion_mesh_m's trapezoid_weights).
+    pure real(dp) function weighted_norm(x, weights)
+        real(dp), intent(in) :: x(:), weights(:)
+
+        weighted_norm = sqrt(sum(weights * x**2))
+    end function weighted_norm
 
 end module error_companion_m

@@ -6,7 +6,7 @@
 module remesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
-    use config_m, only: config_t
+    use config_m, only: config_t, model_t
     use fields_m, only: N_FIELDS
     use state_m, only: state_t, initial_state, set_mesh
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
@@ -17,7 +17,7 @@ module remesh_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: initial_mesh, remesh, front_buffer
+    public :: initial_mesh, remesh, front_buffer, move_level
 
 contains
 
@@ -79,8 +79,9 @@ contains
         call mesh%adapt(state%mesh, state%u, state%w, changed)
         if (.not. changed) return
         s = mesh%s()
-        call move(state%u, state%w)
-        if (allocated(state%u_prev)) call move(state%u_prev, state%w_prev)
+        call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u, state%w)
+        if (allocated(state%u_prev)) &
+            call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u_prev, state%w_prev)
         call set_mesh(state, mesh%nodes())
         allocate (levels_old, source=estimator%levels, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the remesh')
@@ -92,23 +93,28 @@ contains
         call stepper%remesh(state)
         call monitor%remeshed(state, rise)
         call state%mesh%record_remesh(rise)
-
-    contains
-
-        !> One level (u, w) onto the new mesh (reallocated with its size).
-        subroutine move(u, w)
-            real(dp), allocatable, intent(inout) :: u(:), w(:, :)
-            real(dp) :: old(0:ubound(u, 1), 0:N_FIELDS), new(0:s, 0:N_FIELDS)
-
-            old(:, 0) = u
-            old(:, 1:) = w
-            call transfer_level(k_old, mesh%k, mesh%n_fine, old, new, stepper%model)
-            deallocate (u, w)
-            allocate (u(0:s), w(0:s, N_FIELDS), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the remeshed state')
-            u = new(:, 0)
-            w = new(:, 1:)
-        end subroutine move
     end subroutine remesh
+
+    !> One level (u, w) on the mesh of keys k_old onto the mesh of keys k_new (u and w
+    !> reallocated with its size), by transfer_m (model: the run's, whose velocity mass v is
+    !> moved in).
+    subroutine move_level(k_old, k_new, n_fine, model, u, w)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        type(model_t), intent(in) :: model
+        real(dp), allocatable, intent(inout) :: u(:), w(:, :)
+        real(dp) :: old(0:ubound(u, 1), 0:N_FIELDS), new(0:ubound(k_new, 1), 0:N_FIELDS)
+        integer :: s, stat
+        character(len=256) :: message
+
+        s = ubound(k_new, 1)
+        old(:, 0) = u
+        old(:, 1:) = w
+        call transfer_level(k_old, k_new, n_fine, old, new, model)
+        deallocate (u, w)
+        allocate (u(0:s), w(0:s, N_FIELDS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remeshed state')
+        u = new(:, 0)
+        w = new(:, 1:)
+    end subroutine move_level
 
 end module remesh_m

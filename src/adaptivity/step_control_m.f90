@@ -25,7 +25,7 @@ module step_control_m
     use kinds_m, only: dp
     use config_m, only: model_t
     use fields_m, only: N_FIELDS
-    use energy_m, only: linear_energy
+    use energy_m, only: linear_energy_by_nodes
     use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
     use time_scheme_m, only: time_scheme_t
@@ -53,6 +53,7 @@ module step_control_m
         real(dp) :: steps(MAX_LEVELS) = 0.0_dp   !< steps(slot): the step that reached that level
         real(dp), allocatable :: levels(:, :, :)  !< (0:s, 0:N_FIELDS, slot): u, then fields_m's F_*
         real(dp), allocatable :: u_diff(:), w_diff(:, :)   !< work: X^n - P^n
+        real(dp), allocatable :: work(:)                   !< work: linear_energy_by_nodes' terms
     contains
         procedure :: init => estimator_init
         procedure :: resize => estimator_resize
@@ -83,7 +84,6 @@ module step_control_m
         procedure :: ratio => controller_ratio
         procedure :: accept => controller_accept
         procedure :: reject => controller_reject
-        procedure :: retry => controller_retry
         procedure :: proposal => controller_proposal
         procedure :: add_estimate => controller_add_estimate
         procedure :: count_forced => controller_count_forced
@@ -120,9 +120,9 @@ contains
         integer :: stat
         character(len=256) :: message
 
-        if (allocated(self%levels)) deallocate (self%levels, self%u_diff, self%w_diff)
+        if (allocated(self%levels)) deallocate (self%levels, self%u_diff, self%w_diff, self%work)
         allocate (self%levels(0:s, 0:N_FIELDS, MAX_LEVELS), self%u_diff(0:s), self%w_diff(0:s, N_FIELDS), &
-                  stat=stat, errmsg=message)
+                  self%work(s), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the error estimator''s levels')
         self%levels = 0.0_dp
     end subroutine estimator_resize
@@ -163,7 +163,7 @@ contains
         real(dp), intent(in) :: dt
         type(mesh_t), intent(in) :: mesh
         real(dp) :: est
-        real(dp) :: d(MAX_LEVELS), weight(MAX_LEVELS)
+        real(dp) :: d(MAX_LEVELS), weight(MAX_LEVELS), energy
         integer :: j, k, n
 
         n = self%order + 1
@@ -180,8 +180,8 @@ contains
             end do
         end do
         call extrapolation_difference(self, u, w, weight(1:n))
-        est = self%scheme%error_factor(d(1:n), self%steps(level_slot(self%head, 1))) * &
-              energy_norm(linear_energy(model, self%u_diff, self%w_diff, mesh))
+        call linear_energy_by_nodes(model, self%u_diff, self%w_diff, mesh, self%work, energy)
+        est = self%scheme%error_factor(d(1:n), self%steps(level_slot(self%head, 1))) * energy_norm(energy)
     end function estimator_estimate
 
     !> u_diff, w_diff = X^n - P^n, P^n = sum_j weight(j) X^{n-j} over the levels held (the
@@ -212,6 +212,22 @@ contains
                     !GCC$ unroll 4
                     do i = 0, s
                         self%w_diff(i, f) = ((w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)) - c3 * l(i, f, k3)
+                    end do
+                end do
+            end associate
+            return
+        end if
+        if (size(weight) == 2) then   ! Euler (p = 1): the same sums, one pass
+            c1 = weight(1); c2 = weight(2)
+            associate (l => self%levels, k1 => slot(1), k2 => slot(2))
+                !GCC$ unroll 8
+                do i = 0, s
+                    self%u_diff(i) = (u(i) - c1 * l(i, 0, k1)) - c2 * l(i, 0, k2)
+                end do
+                do f = 1, N_FIELDS
+                    !GCC$ unroll 8
+                    do i = 0, s
+                        self%w_diff(i, f) = (w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)
                     end do
                 end do
             end associate
@@ -271,16 +287,6 @@ contains
                 dt = on_ladder(self%growth_max * dt_last, self%ladder_base)
         end if
     end function controller_proposal
-
-    !> The step of size dt is retried with size dt_retry (a contact event), without growth
-    !> on the step after it.
-    subroutine controller_retry(self, dt_retry)
-        class(step_controller_t), intent(inout) :: self
-        real(dp), intent(in) :: dt_retry
-
-        self%dt_next = dt_retry
-        self%no_growth = .true.
-    end subroutine controller_retry
 
     !> An accepted step had the estimate est: into the run's time error (error_sum).
     subroutine controller_add_estimate(self, est)

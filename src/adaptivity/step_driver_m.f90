@@ -18,7 +18,7 @@ module step_driver_m
     use iso_fortran_env, only: error_unit
     use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t, with_contact_mass
-    use state_m, only: state_t, advance_time, land_on, copy_state
+    use state_m, only: state_t, advance_time, land_on, copy_state, keep_copy
     use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t, energy_and_parts
@@ -48,6 +48,13 @@ module step_driver_m
         type(step_controller_t) :: control
         type(event_log_t) :: events
         type(state_t) :: saved                 !< the state before a tried step (adaptive)
+        !> the state's level (u, w) is the estimator's newest level, bit for bit (pushed at the
+        !> end of the step that reached it, unchanged since): a step tried from it saves the
+        !> rest of the state only, and a step taken back restores the level from the estimator
+        logical :: level_kept = .false.
+        !> the state saved before the last tried step has no level of its own (level_kept):
+        !> the level before that step is the estimator's newest (before the step's push)
+        logical :: saved_without_level = .false.
         logical :: in_contact = .false.        !< the contact state after the last accepted step
         logical :: warned_forced = .false.
         !> dense output: E of the j-th most recent level (dense_series), for the step energies_step
@@ -109,6 +116,7 @@ contains
         if (self%mesh_adaptive) call self%estimator%resize(state%s)
         call self%estimator%reset()
         call self%estimator%push(state%u, state%w, state%dt_last)
+        self%level_kept = .false.
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
         if (allocated(ckpt%control) .and. allocated(ckpt%history)) then
             call self%control%restore_checkpoint(ckpt)
@@ -177,7 +185,10 @@ contains
             t_before = state%t
             saved_dt_last = state%dt_last
             gap_start = state%u(state%s) - stepper%law%g
-            if (self%adaptive) call copy_state(state, self%saved)
+            if (self%adaptive) then
+                self%saved_without_level = self%level_kept
+                call copy_state(state, self%saved, level=.not. self%saved_without_level)
+            end if
             call stepper%advance(state, result, dt_try)
             if (.not. result%ok) then
                 failure = step_failure(state%step + 1, advance_time(state, dt_try), trim(result%message))
@@ -233,6 +244,16 @@ contains
         if (self%dense .and. .not. self%adaptive) call self%estimator%push(state%u, state%w, dt_try)
         if (self%adaptive) then
             call self%estimator%push(state%u, state%w, dt_try)
+            self%level_kept = .true.
+            if (self%saved_without_level .and. self%estimator%n_levels < 2) then
+                ! after an event the levels are forgotten: dense output takes the level before
+                ! the step from the saved state (dense_weights), so it gets its level now
+                associate (e => self%estimator, before => modulo(self%estimator%head - 2, MAX_LEVELS) + 1)
+                    call keep_copy(e%levels(:, 0, before), e%levels(:, 1:, before), self%saved%u, self%saved%w, &
+                                   'the saved state')
+                end associate
+                self%saved_without_level = .false.
+            end if
             if (err >= 0.0_dp) call self%control%add_estimate(est)
             ! a step cut to end at an event, and the event's step, keep the proposal made before it
             call self%control%accept(dt_try, err, shortened=lands .or. landed .or. flipped)
@@ -525,7 +546,13 @@ contains
         type(state_t), intent(inout) :: state
 
         call stepper%take_back(result)
-        call copy_state(self%saved, state)
+        call copy_state(self%saved, state, level=.not. self%saved_without_level)
+        if (self%saved_without_level) then   ! the level the step started from: the estimator's newest
+            associate (e => self%estimator)
+                state%u = e%levels(:, 0, e%head)
+                state%w = e%levels(:, 1:, e%head)
+            end associate
+        end if
     end subroutine driver_undo_step
 
     !> Adapt the mesh to the level in state and, if it changed, move the state, the
@@ -539,6 +566,7 @@ contains
         logical, intent(out) :: changed
 
         call remesh(mesh, state, stepper, self%estimator, monitor, changed)
+        if (changed) self%level_kept = .false.
     end subroutine driver_remesh
 
     !> The contact state after a step, as events are counted: penalty, u^n(1) > g (the end

@@ -100,7 +100,13 @@ contains
         if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
         call run%monitor%init(run%stepper%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
-        if (cfg%output%error_estimate) call run%companions%init(cfg, run%state)
+        if (cfg%output%error_estimate) then
+            if (cfg%mesh%adaptive) then
+                call run%companions%init(cfg, run%state, keys=run%mesh%k)
+            else
+                call run%companions%init(cfg, run%state)
+            end if
+        end if
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
             call run%state%restore_checkpoint(ckpt)
@@ -192,6 +198,7 @@ contains
                 run%last_written = state%step
                 if (cfg%mesh%adaptive .and. .not. last .and. mod(state%step, cfg%mesh%remesh_every) == 0) then
                     call run%driver%remesh(run%mesh, state, run%stepper, run%monitor, remeshed)
+                    if (remeshed .and. cfg%output%error_estimate) call run%companions%remesh(run%mesh%k)
                     run%n_elements_max = max(run%n_elements_max, state%s)
                 end if
                 if (cfg%output%checkpoint_every > 0) then

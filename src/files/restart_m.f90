@@ -9,7 +9,8 @@
 !> step changes; `history`, the error estimator's levels; `events`; `mesh` (&mesh
 !> adaptive), the mesh's field scales, the energy monitor's remesh counters (2), the node
 !> keys, then the most elements the run has held (not in files of earlier versions, whose
-!> restarts count it from the checkpoint's mesh). checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
+!> restarts count it from the checkpoint's mesh); `companion_levels`, `companion_scalars`
+!> (&output error_estimate, on either mesh: error_companion_m). checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
 !> read_checkpoint convert between the two. A restart
 !> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
 !> copies the series and snapshots up to it into the new file and continues the time loop
@@ -55,7 +56,9 @@ contains
         ! an unallocated actual argument (previous: single-step schemes) is an absent optional one
         if (ckpt%has_mesh) then
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
-                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt))
+                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt), &
+                                         companion_levels=ckpt%companion_levels, &
+                                         companion_scalars=ckpt%companion_scalars)
         else
             call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
                                          history=ckpt%history, events=ckpt%events, &
@@ -138,7 +141,8 @@ contains
                 "': its checkpoint has no error-estimate companions")
             call read_real_2d(file, slot//'/companion_levels', ckpt%companion_levels)
             call read_real_1d(file, slot//'/companion_scalars', ckpt%companion_scalars)
-            if (size(ckpt%companion_levels, 1) /= s / 2 + 1) &
+            ! an adaptive mesh: error_companion_m checks them against the companions' meshes
+            if (.not. cfg%mesh%adaptive .and. size(ckpt%companion_levels, 1) /= s / 2 + 1) &
                 call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/companion_levels has the wrong shape")
         end if
         if (dataset_exists(file, slot//'/events')) then

@@ -68,18 +68,17 @@ contains
     end subroutine validate_config
 
     !> &output error_estimate: its companion solutions live on every other and every fourth
-    !> node of a uniform mesh.
+    !> node of a uniform mesh, or on the bisection of the coarse mesh halved and quartered
+    !> (an adaptive mesh: n_elements its coarse elements).
     subroutine validate_error_estimate(cfg)
         type(config_t), intent(in) :: cfg
 
         if (.not. cfg%output%error_estimate) return
-        if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'output.error_estimate', 'got .true. with mesh.adaptive = ' // &
-            '.true.; the built-in estimate needs a uniform mesh (its companion solutions use every other node): ' // &
-            'set mesh.adaptive = .false., or check convergence with scripts/converge.sh')
         if (mod(cfg%mesh%n_elements, 4) /= 0 .or. cfg%mesh%n_elements < 8) call fatal(EXIT_INPUT, &
             'output.error_estimate', 'got .true. with mesh.n_elements = ' // int_str(cfg%mesh%n_elements) // &
             '; the built-in estimate needs a multiple of 4 elements, at least 8 (its companion solutions ' // &
-            'use every other and every fourth node)')
+            'use every other and every fourth node; on an adaptive mesh, coarse meshes of n_elements / 2 ' // &
+            'and n_elements / 4 elements)')
         if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) call fatal(EXIT_INPUT, &
             'output.error_estimate', 'got .true. with output.snapshot_land = .false.; the built-in estimate is ' // &
             'that of the levels the steps reach: let the steps land on the snapshot times (snapshot_land = .true.)')

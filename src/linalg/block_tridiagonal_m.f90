@@ -22,12 +22,14 @@
 !> scaling of scheme_m), and stepper_m checks the solver against the band LU once per run.
 module block_tridiagonal_m
     use kinds_m, only: dp
+    use ieee_arithmetic, only: ieee_is_nan
     use errors_m, only: check_allocation
     use reals_m, only: is_zero
     use banded_m, only: band_t
     implicit none
     private
     public :: block_tridiagonal_t
+    public :: product5, product5_left_pattern, product5_right_pattern, in_pattern   ! (for test_banded_m)
     interface
         subroutine dgetrf(m, n, a, lda, ipiv, info)
             import :: dp
@@ -54,7 +56,10 @@ module block_tridiagonal_m
         real(dp), allocatable :: h(:, :, :)  !< h(:,:,i) = G_i E_i, i <= last-1
     contains
         procedure :: factor => block_factor
+        procedure :: prepare => block_prepare
+        procedure :: factor_blocks => block_factor_blocks
         procedure :: solve => block_solve
+        procedure :: solve_last => block_solve_last
     end type block_tridiagonal_t
 
 contains
@@ -131,8 +136,7 @@ contains
 
     !> factor_reduced for every field in the system (nb = 5), on a band not yet factored with
     !> kl, ku >= 4 and kl + ku >= 9 (the system of (6.1): kl = ku = 7): the same operations in
-    !> the same order, on blocks of fixed size, which the compiler unrolls (an adaptive-step
-    !> run factors a system at every new step size).
+    !> the same order, on blocks of fixed size, which the compiler unrolls (factor_node).
     subroutine factor_full(a, last, inline, g, l, h, info)
         type(band_t), intent(in) :: a
         integer, intent(in) :: last
@@ -141,31 +145,113 @@ contains
         integer, intent(out) :: info
         real(dp) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
         integer :: i
+        logical :: before_in_pattern   !< in_pattern(e_before)
 
         info = 0
+        before_in_pattern = .false.
+        f = 0.0_dp
+        e_now = 0.0_dp
+        e_before = 0.0_dp
         do i = 0, last
             call column_block5(a, i, i, g(:, :, i))
-            if (i > 0) then
-                call coupling_block5(a, i, i - 1, f)
+            if (i > 0) call coupling_block5(a, i, i - 1, f)
+            if (i < last) call column_block5(a, i, i + 1, e_now)
+            call factor_node(i, last, f, e_before, e_now, inline, g, l, h, before_in_pattern, info)
+            if (info /= 0) return
+            e_before = e_now
+        end do
+    end subroutine factor_full
+
+    !> Storage for the factors of a matrix with every field in the system (nb = 5) and nodes
+    !> 0..last, for factor_blocks: the caller puts D_i into g(:, :, i) (scheme_m's
+    !> assemble_blocks writes there).
+    subroutine block_prepare(self, last)
+        class(block_tridiagonal_t), intent(inout) :: self
+        integer, intent(in) :: last
+        integer :: stat
+        character(len=256) :: message
+
+        self%nb = NB_MAX
+        self%last = last
+        if (allocated(self%g)) deallocate (self%g, self%l, self%h)
+        allocate (self%g(NB_MAX, NB_MAX, 0:last), self%l(NB_MAX, NB_MAX, 1:last), self%h(NB_MAX, NB_MAX, 0:last - 1), &
+                  stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the block LU factors')
+    end subroutine block_prepare
+
+    !> Factor the matrix given by its blocks, every field in the system (nb = 5), in place:
+    !> g(:, :, i) = D_i on entry (block_prepare), G_i on return; e(:, :, i) = E_i (row node i,
+    !> column node i+1), f(:, :, i) = F_i (row node i+1, column node i). factor_full's
+    !> operations on them (factor_node): the factors of a band holding the same matrix, bit for
+    !> bit, without the band (an adaptive-step run factors a system at every new step size;
+    !> scheme_m's assemble_blocks). info as block_factor's; inline_inverse as block_factor's
+    !> (default .false.).
+    subroutine block_factor_blocks(self, e, f, info, inline_inverse)
+        class(block_tridiagonal_t), intent(inout) :: self
+        real(dp), intent(in), contiguous :: e(:, :, 0:), f(:, :, 0:)
+        integer, intent(out) :: info
+        logical, intent(in), optional :: inline_inverse
+        integer :: i
+        logical :: inline, before_in_pattern
+
+        inline = .false.
+        if (present(inline_inverse)) inline = inline_inverse
+        info = -1
+        if (self%nb /= NB_MAX .or. .not. allocated(self%g)) return
+        if (size(e, 3) < self%last .or. size(f, 3) < self%last) return
+        info = 0
+        before_in_pattern = .false.
+        associate (last => self%last)
+            do i = 0, last
+                call factor_node(i, last, f(:, :, max(i - 1, 0)), e(:, :, max(i - 1, 0)), &
+                                 e(:, :, min(i, max(last - 1, 0))), inline, self%g, self%l, self%h, &
+                                 before_in_pattern, info)
+                if (info /= 0) return
+            end do
+        end associate
+    end subroutine block_factor_blocks
+
+    !> Node i of the block LU (factor_full, block_factor_blocks): on entry g(:, :, i) = D_i,
+    !> f = F_{i-1} and e_before = E_{i-1} (read when i > 0), e_now = E_i (read when i < last),
+    !> before_in_pattern = in_pattern(E_{i-1}) from node i - 1; on return G_i, L_i, H_i, and
+    !> before_in_pattern of E_i for node i + 1. S_i = D_i - L_i E_{i-1} with L_i = F_{i-1} G_{i-1},
+    !> G_i = S_i^{-1} (invert5 when inline, else LAPACK), H_i = G_i E_i. info: 0, or i + 1 for a
+    !> singular pivot block.
+    subroutine factor_node(i, last, f, e_before, e_now, inline, g, l, h, before_in_pattern, info)
+        integer, intent(in) :: i, last
+        real(dp), intent(in) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
+        logical, intent(in) :: inline
+        real(dp), intent(inout) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        logical, intent(inout) :: before_in_pattern
+        integer, intent(out) :: info
+
+        if (i > 0) then
+            if (in_pattern(f) .and. before_in_pattern) then
+                call product5_left_pattern(f, g(:, :, i - 1), l(:, :, i))
+                call subtract_product5_pattern(l(:, :, i), e_before, g(:, :, i))
+            else
                 call product5(f, g(:, :, i - 1), l(:, :, i))
                 call subtract_product5(l(:, :, i), e_before, g(:, :, i))
             end if
-            if (inline) then
-                call invert5(g(:, :, i), info)
+        end if
+        if (inline) then
+            call invert5(g(:, :, i), info)
+        else
+            call invert(g(:, :, i), NB_MAX, .false., info)
+        end if
+        if (info /= 0) then
+            info = i + 1
+            return
+        end if
+        if (i < last) then
+            before_in_pattern = in_pattern(e_now)
+            if (before_in_pattern) then
+                call product5_right_pattern(g(:, :, i), e_now, h(:, :, i))
             else
-                call invert(g(:, :, i), NB_MAX, .false., info)
-            end if
-            if (info /= 0) then
-                info = i + 1
-                return
-            end if
-            if (i < last) then
-                call column_block5(a, i, i + 1, e_now)
                 call product5(g(:, :, i), e_now, h(:, :, i))
-                e_before = e_now
             end if
-        end do
-    end subroutine factor_full
+        end if
+    end subroutine factor_node
 
     !> a = a^{-1} for an n x n pivot block: invert_small (inline) or LAPACK's dgetrf and
     !> dgetri. info = 0, or nonzero for a singular block.
@@ -263,6 +349,19 @@ contains
         end if
     end subroutine block_solve
 
+    !> block_solve for a right-hand side that is +0 outside the last node (z = A^{-1} e_s, the
+    !> contact response): the same bits, without the forward sweep's products of zeros.
+    subroutine block_solve_last(self, b)
+        class(block_tridiagonal_t), intent(in) :: self
+        real(dp), intent(inout), contiguous :: b(:)
+
+        if (self%nb == NB_MAX) then
+            call solve_full_last(self%g, self%l, self%h, self%last, b)
+        else
+            call solve_reduced(self%g, self%l, self%h, self%last, self%nb, b)
+        end if
+    end subroutine block_solve_last
+
     !> forward: y_i = b_i - L_i y_{i-1}; c_i = G_i y_i (off the dependency chain);
     !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i. b(:, i) is node i.
     subroutine solve_full(g, l, h, last, b)
@@ -285,6 +384,30 @@ contains
             b(:, i) = x
         end do
     end subroutine solve_full
+
+    !> solve_full for b = +0 at the nodes before the last (the contact response): there the
+    !> forward sweep's y_i = b_i - L_i y_{i-1} is +0 minus zeros, +0 = b_i, so the products
+    !> L_i y_{i-1} are left out; the same bits. (A routine of its own: solve_full, every
+    !> step's, stays as it is.)
+    subroutine solve_full_last(g, l, h, last, b)
+        integer, intent(in) :: last
+        real(dp), intent(in) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        real(dp), intent(inout) :: b(NB_MAX, 0:last)
+        real(dp) :: y(NB_MAX), x(NB_MAX)
+        integer :: i
+
+        do i = 0, last - 1
+            b(:, i) = matvec5(g(:, :, i), b(:, i))
+        end do
+        x = 0.0_dp   ! y_{last-1}
+        y = b(:, last) - matvec5(l(:, :, last), x)
+        b(:, last) = matvec5(g(:, :, last), y)
+        x = b(:, last)
+        do i = last - 1, 0, -1
+            x = b(:, i) - matvec5(h(:, :, i), x)
+            b(:, i) = x
+        end do
+    end subroutine solve_full_last
 
     !> The same sweeps for nb < 5 unknowns per node, one row at a time.
     subroutine solve_reduced(g, l, h, last, nb, b)
@@ -364,6 +487,68 @@ contains
         end do
     end subroutine product5
 
+    !> The pattern: the entries of the coupling blocks E_i, F_i of the system of (6.1) with every
+    !> field (scheme_m's order q, theta, v, P, eta) that can be nonzero, |r - c| <= 1 and
+    !> theta-P: column (and row) j has them in rows (columns) 1-2, 1-4, 2-4, 2-5, 4-5.
+    !> Are the entries of a 5 x 5 block outside the pattern all zero (then product5's terms
+    !> with them add zeros, which the *_pattern products skip)? A NaN or infinity there: .false.
+    pure logical function in_pattern(b)
+        real(dp), intent(in) :: b(NB_MAX, NB_MAX)
+        real(dp) :: outside
+
+        outside = abs(b(3, 1)) + abs(b(4, 1)) + abs(b(5, 1)) + abs(b(5, 2)) + abs(b(5, 3)) &
+                  + abs(b(1, 3)) + abs(b(1, 4)) + abs(b(1, 5)) + abs(b(2, 5)) + abs(b(3, 5))
+        ! a NaN is tested first: an ordered comparison with it would raise IEEE invalid
+        ! (a trap in the Debug build)
+        in_pattern = .false.
+        if (.not. ieee_is_nan(outside)) in_pattern = outside <= 0.0_dp
+    end function in_pattern
+
+    !> c = a b (product5) for b in_pattern: the sums of product5 without the terms a(:, k) b(k, j)
+    !> of the zeros of b. Bit for bit product5's: a partial sum starts at +0 and so is never -0, and
+    !> adding a zero (+0 or -0) to a sum that is not -0 leaves it unchanged.
+    pure subroutine product5_right_pattern(a, b, c)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
+        real(dp), intent(out) :: c(NB_MAX, NB_MAX)
+        real(dp), parameter :: ZERO(NB_MAX) = 0.0_dp
+
+        ! column j: the rows of the pattern's column j of b (in_pattern), from a zero sum (as product5)
+        c(:, 1) = (ZERO + a(:, 1) * b(1, 1)) + a(:, 2) * b(2, 1)
+        c(:, 2) = (((ZERO + a(:, 1) * b(1, 2)) + a(:, 2) * b(2, 2)) + a(:, 3) * b(3, 2)) + a(:, 4) * b(4, 2)
+        c(:, 3) = ((ZERO + a(:, 2) * b(2, 3)) + a(:, 3) * b(3, 3)) + a(:, 4) * b(4, 3)
+        c(:, 4) = (((ZERO + a(:, 2) * b(2, 4)) + a(:, 3) * b(3, 4)) + a(:, 4) * b(4, 4)) + a(:, 5) * b(5, 4)
+        c(:, 5) = (ZERO + a(:, 4) * b(4, 5)) + a(:, 5) * b(5, 5)
+    end subroutine product5_right_pattern
+
+    !> c = a b (product5) for a in_pattern: product5's sums without the terms of the zeros of a
+    !> (product5_right_pattern says why they are the same bits).
+    pure subroutine product5_left_pattern(a, b, c)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
+        real(dp), intent(out) :: c(NB_MAX, NB_MAX)
+        real(dp) :: column(NB_MAX)
+        integer :: j
+
+        do j = 1, NB_MAX
+            column = 0.0_dp
+            column(1:2) = column(1:2) + a(1:2, 1) * b(1, j)
+            column(1:4) = column(1:4) + a(1:4, 2) * b(2, j)
+            column(2:4) = column(2:4) + a(2:4, 3) * b(3, j)
+            column(2:5) = column(2:5) + a(2:5, 4) * b(4, j)
+            column(4:5) = column(4:5) + a(4:5, 5) * b(5, j)
+            c(:, j) = column
+        end do
+    end subroutine product5_left_pattern
+
+    !> c = c - a b for b in_pattern (subtract_product5 with product5_right_pattern).
+    pure subroutine subtract_product5_pattern(a, b, c)
+        real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
+        real(dp), intent(inout) :: c(NB_MAX, NB_MAX)
+        real(dp) :: ab(NB_MAX, NB_MAX)
+
+        call product5_right_pattern(a, b, ab)
+        c = c - ab
+    end subroutine subtract_product5_pattern
+
     !> c = c - a b for 5 x 5 blocks: a b summed first, as product5 sums it (S_i = D_i - L_i E_{i-1}).
     pure subroutine subtract_product5(a, b, c)
         real(dp), intent(in) :: a(NB_MAX, NB_MAX), b(NB_MAX, NB_MAX)
@@ -421,8 +606,9 @@ contains
         real(dp) :: inv_pivot, factor(NB_MAX), pivot(NB_MAX), swap(NB_MAX)
 
         info = 0
+        !GCC$ unroll 5
         do k = 1, NB_MAX
-            p = k - 1 + maxloc(abs(a(k:NB_MAX, k)), dim=1)
+            p = pivot_index(a(:, k), k)
             if (a(p, k) <= 0.0_dp .and. a(p, k) >= 0.0_dp) then   ! is_zero, inline
                 info = k
                 return
@@ -452,6 +638,24 @@ contains
             end if
         end do
     end subroutine invert5
+
+    !> k - 1 + maxloc(abs(column(k:NB_MAX)), dim=1) written out (the intrinsic's call was a fifth
+    !> of invert5): the first row of the largest |column(r)|, r >= k, NaNs passed over (all NaN: k).
+    pure integer function pivot_index(column, k) result(p)
+        real(dp), intent(in) :: column(NB_MAX)
+        integer, intent(in) :: k
+        real(dp) :: largest
+        integer :: r
+
+        p = k
+        largest = -1.0_dp
+        do r = k, NB_MAX
+            if (abs(column(r)) > largest) then
+                largest = abs(column(r))
+                p = r
+            end if
+        end do
+    end function pivot_index
 
     !> a x for a 5 x 5 block, summed as a tree (depth 3) to shorten the dependency chain.
     pure function matvec5(a, x) result(y)

@@ -31,7 +31,7 @@ module scheme_m
     implicit none
     private
     public :: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
-    public :: element_block, band_width, assemble_matrix, active_fields, slots_of
+    public :: element_block, band_width, assemble_matrix, assemble_blocks, active_fields, slots_of
     public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields, initial_data_present
 
     ! Field order within a node (fields_m's F_*). The coupling graph (q-theta, theta-v,
@@ -240,6 +240,80 @@ contains
             if (is_dirichlet(row, s, s)) call a%set_identity_row(nf * s + slots(row))
         end do
     end subroutine assemble_matrix
+
+    !> The matrix of assemble_matrix with every field in the system (MONOLITHIC_SLOTS) as its
+    !> node blocks, for block_tridiagonal_m's factor_blocks: d(:, :, i) = D_i (node i),
+    !> e(:, :, i) = E_i (row node i, column node i+1), f(:, :, i) = F_i (row node i+1, column
+    !> node i), each s+1 (d) or s (e, f) blocks. The same entries bit for bit: assemble_matrix
+    !> adds into a zero band, at each entry, the element on its left and then the element on
+    !> its right (runs in element order; a block it skips is zero, and adding a zero to a sum
+    !> that starts at +0 changes nothing), and replaces the Dirichlet rows as set_identity_row.
+    !> Element blocks are computed again only where the element size changes (and for the
+    !> contact node's element).
+    subroutine assemble_blocks(model, mesh, dt, d, e, f)
+        type(model_t), intent(in) :: model
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(in) :: dt
+        real(dp), intent(out), contiguous :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)   !< (N_FIELDS, N_FIELDS, 0:)
+        real(dp), parameter :: ZERO(N_FIELDS, N_FIELDS) = 0.0_dp
+        real(dp) :: h_e, m(2, 2), m11(N_FIELDS, N_FIELDS), m12(N_FIELDS, N_FIELDS), m21(N_FIELDS, N_FIELDS), &
+                    m22(N_FIELDS, N_FIELDS), d_right(N_FIELDS, N_FIELDS), d_inner(N_FIELDS, N_FIELDS)
+        integer :: s, el, row, col
+        logical :: changed, next_changed
+
+        s = mesh%s()
+        h_e = 0.0_dp
+        d_right = 0.0_dp   ! (all set at el = 1)
+        d_inner = 0.0_dp
+        changed = .true.
+        do el = 1, s
+            if (changed) then
+                h_e = mesh%h(el)
+                do col = 1, N_FIELDS
+                    do row = 1, N_FIELDS
+                        m = element_block(model, h_e, dt, row, col, last=el == s)
+                        m11(row, col) = m(1, 1); m21(row, col) = m(2, 1)
+                        m12(row, col) = m(1, 2); m22(row, col) = m(2, 2)
+                    end do
+                end do
+                m12 = ZERO + m12
+                m21 = ZERO + m21
+                d_right = ZERO + m22             ! D of the element's right node, before the next element
+                d_inner = d_right + m11          ! D between two elements of this size
+            end if
+            if (el == 1) then
+                d(:, :, 0) = ZERO + m11
+            else if (changed) then
+                d(:, :, el - 1) = d(:, :, el - 1) + m11
+            else
+                d(:, :, el - 1) = d_inner       ! the element before has this size too
+            end if
+            e(:, :, el - 1) = m12
+            f(:, :, el - 1) = m21
+            ! element el + 1 of another size (or the last element): D of node el is d_right plus its
+            ! part; else d_inner, written then
+            next_changed = el + 1 >= s
+            if (.not. next_changed) next_changed = .not. equal(mesh%h(el + 1), h_e)
+            if (next_changed) d(:, :, el) = d_right
+            changed = next_changed
+        end do
+        do row = 1, N_FIELDS
+            if (is_dirichlet(row, 0, s)) then   ! row and column of (node 0, row) in D_0, E_0, F_0
+                d(row, :, 0) = 0.0_dp
+                d(:, row, 0) = 0.0_dp
+                e(row, :, 0) = 0.0_dp
+                f(:, row, 0) = 0.0_dp
+                d(row, row, 0) = 1.0_dp
+            end if
+            if (is_dirichlet(row, s, s)) then   ! row and column of (node s, row) in D_s, F_{s-1}, E_{s-1}
+                d(row, :, s) = 0.0_dp
+                d(:, row, s) = 0.0_dp
+                f(row, :, s - 1) = 0.0_dp
+                e(:, row, s - 1) = 0.0_dp
+                d(row, row, s) = 1.0_dp
+            end if
+        end do
+    end subroutine assemble_blocks
 
     !> Right-hand side of (6.1) from the previous time level (module header), field-major:
     !> b(:, f) is the right-hand side of the equation of field f. Dirichlet rows are zero.

@@ -146,10 +146,13 @@ contains
     end subroutine land_on
 
     !> copy = state, reusing copy's arrays (a rejected adaptive step restores from it; the
-    !> intrinsic assignment would allocate every step).
-    subroutine copy_state(state, copy)
+    !> intrinsic assignment would allocate every step). level = .false.: all but the level
+    !> (u, w), which the caller keeps elsewhere (default .true.).
+    subroutine copy_state(state, copy, level)
         type(state_t), intent(in) :: state
         type(state_t), intent(inout) :: copy
+        logical, intent(in), optional :: level
+        logical :: with_level
 
         copy%s = state%s
         copy%step = state%step
@@ -158,7 +161,9 @@ contains
         copy%t_anchor = state%t_anchor
         copy%step_anchor = state%step_anchor
         call copy_mesh(state%mesh, copy%mesh)
-        call keep_copy(state%u, state%w, copy%u, copy%w, 'the saved state')
+        with_level = .true.
+        if (present(level)) with_level = level
+        if (with_level) call keep_copy(state%u, state%w, copy%u, copy%w, 'the saved state')
         if (allocated(state%u_prev)) then
             call keep_copy(state%u_prev, state%w_prev, copy%u_prev, copy%w_prev, 'the saved state')
         else if (allocated(copy%u_prev)) then

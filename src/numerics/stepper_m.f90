@@ -25,8 +25,9 @@ module stepper_m
     use system_cache_m, only: monolithic_system_t, system_cache_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
     use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
-                        assemble_matrix, old_state_rhs, add_lagged_coupling, scatter_fields, gather_fields, &
-                        initial_data_present
+                        assemble_matrix, assemble_blocks, old_state_rhs, add_lagged_coupling, scatter_fields, &
+                        gather_fields, initial_data_present
+    use block_tridiagonal_m, only: NB_MAX
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
@@ -83,6 +84,9 @@ module stepper_m
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
+        !> the node blocks E_i, F_i of a system before its block LU (setup_monolithic; D_i are
+        !> assembled into the factors' storage)
+        real(dp), allocatable :: e_blocks(:, :, :), f_blocks(:, :, :)
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
@@ -212,9 +216,11 @@ contains
     !> contact response z. A graded (adaptive) mesh, factored at every remesh, inverts the
     !> block LU's pivot blocks by the written-out kernel (LAPACK's call overhead on 5 x 5
     !> blocks was half of such a run), and once the block LU has passed blocks_agree on one
-    !> system of the run, factors later systems by it alone (docs/performance.md). So do
-    !> adaptive steps, which factor a system at every new step size. Fixed steps on a uniform
-    !> mesh keep LAPACK and the check (and their results bit for bit).
+    !> system of the run, factors later systems by it alone (docs/performance.md), with every
+    !> field in the system from node blocks assembled as such (assemble_blocks, factor_blocks:
+    !> no band, the same factors bit for bit). So do adaptive steps, which factor a system at
+    !> every new step size. Fixed steps on a uniform mesh keep LAPACK and the check (and their
+    !> results bit for bit).
     subroutine setup_monolithic(self, dt_eff, sys, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
@@ -226,10 +232,25 @@ contains
         logical :: fast
 
         fast = self%adaptive_steps .or. .not. self%mesh%is_uniform()
+        sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
+        if (fast .and. self%blocks_trusted .and. count(self%active) == NB_MAX) then
+            ! the trusted block LU alone, every field: its blocks assembled as such (no band;
+            ! assemble_blocks and factor_blocks give the band's factors bit for bit)
+            call require_blocks(self)
+            call sys%blocks%prepare(self%s)
+            call assemble_blocks(self%step_model, self%mesh, dt_eff, sys%blocks%g, self%e_blocks, self%f_blocks)
+            call sys%blocks%factor_blocks(self%e_blocks, self%f_blocks, info, inline_inverse=.true.)
+            if (info == 0) then
+                sys%use_blocks = .true.
+                call contact_response(sys, .true.)
+                if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
+                    call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
+                return
+            end if
+        end if
         call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
         call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=fast)
         sys%use_blocks = info == 0
-        sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
         if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
             unfactored = sys%a
             call sys%a%factor(info)
@@ -258,18 +279,33 @@ contains
             logical, intent(in) :: with_blocks
 
             if (.not. allocated(sys%z)) then
-                allocate (sys%z(sys%a%n), stat=stat, errmsg=message)
+                allocate (sys%z(count(self%active) * (self%s + 1)), stat=stat, errmsg=message)
                 call check_allocation(stat, message, 'the contact response')
             end if
             sys%z = 0.0_dp
             sys%z(sys%contact_dof) = 1.0_dp
             if (with_blocks) then
-                call sys%blocks%solve(sys%z)
+                call sys%blocks%solve_last(sys%z)   ! e_s: zero outside the last node
             else
                 call sys%a%solve(sys%z)
             end if
         end subroutine contact_response
     end subroutine setup_monolithic
+
+    !> The work arrays of assemble_blocks (E_i, F_i) for self%s elements.
+    subroutine require_blocks(self)
+        type(stepper_t), intent(inout) :: self
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(self%e_blocks)) then
+            if (ubound(self%e_blocks, 3) == self%s - 1) return
+            deallocate (self%e_blocks, self%f_blocks)
+        end if
+        allocate (self%e_blocks(NB_MAX, NB_MAX, 0:self%s - 1), self%f_blocks(NB_MAX, NB_MAX, 0:self%s - 1), &
+                  stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the blocks of the system')
+    end subroutine require_blocks
 
     !> Does the monolithic method solve with the block-tridiagonal LU (else dgbtrf's factors)?
     logical function stepper_uses_block_solver(self)

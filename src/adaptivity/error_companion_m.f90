@@ -39,7 +39,9 @@
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
 !> has the measurement; on an adaptive mesh also a transfer per companion whose mesh changes
 !> at a remesh); the companions' steps skip the stepper's per-step finiteness test
-!> (a non-finite value stays non-finite: the estimate tests the companions' levels).
+!> (a non-finite value stays non-finite: the estimate tests the companions' levels), and on
+!> a uniform mesh their levels stay in the solver's node-major layout between snapshots
+!> (stepper_m's packed_levels: no scatter and gather per step; unpacked after landing).
 !> Meshes of a multiple of 4 (coarse) elements (validate_m). On an adaptive mesh (&mesh
 !> adaptive) "every other node" is the companion's own bisection mesh, coarser by 2 (A) and 4
 !> (C, D) where the run's level is the same, nested in the run's (companion_mesh_m); it is
@@ -165,8 +167,8 @@ contains
                 if (present(keys)) call c%stepper%remesh(c%state)
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
                 c%stepper%check_finite = .false.
-                ! the level stays in the solver's layout between snapshots (unpacked when it
-                ! is read: companions_land, save_checkpoint, companions_remesh)
+                ! on a uniform mesh the level stays in the solver's layout between snapshots
+                ! (unpacked where it is read: companions_land, save_checkpoint)
                 call c%stepper%keep_levels_packed()
                 if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
                                                             ': '//trim(c%result%message))

@@ -359,16 +359,16 @@ contains
         call zero_dirichlet_rows(b)
     end subroutine old_state_rhs
 
-    !> old_state_rhs with every field in the system and no inertia difference (model's
-    !> mass_lumped = 0, mass_end_moved false), from and into the system's node-major layout
+    !> old_state_rhs on a uniform mesh with every field in the system and no inertia
+    !> difference (model's mass_lumped = 0, mass_end_moved false), from and into the system's node-major layout
     !> (scatter_fields): w_old(slots(f), i) is field f at node i and b(slots(f), i) the
     !> right-hand side of its equation there, written in place of the system vector (no
     !> scatter). y first holds what the mass matrix acts on in each equation (v, c theta +
     !> d P, q, d theta + r P, eta); then one pass applies the mass matrix to the five at
     !> once, node by node, and scales each equation (rho, 1, tau0, 1, hbar tau: a factor 1
     !> is exact), and the stiffness term enters the v rows. Each entry takes the operations
-    !> of old_state_rhs (mesh_m's apply_mass and apply_stiffness, row by row): the values are
-    !> the same bit for bit. Used by the error estimate's companions (stepper_m's
+    !> of old_state_rhs (mesh_m's apply_mass and apply_stiffness: fe_m's apply_assembled, row
+    !> by row): the values are the same bit for bit. Used by the error estimate's companions (stepper_m's
     !> packed_levels).
     subroutine old_state_rhs_packed(model, dt, u_old, slots, w_old, b, y, mesh)
         type(model_t), intent(in) :: model
@@ -378,7 +378,7 @@ contains
         real(dp), intent(in) :: w_old(N_FIELDS, 0:ubound(u_old, 1))
         real(dp), intent(out) :: b(N_FIELDS, 0:ubound(u_old, 1))
         real(dp), intent(out) :: y(N_FIELDS, 0:ubound(u_old, 1))   !< scratch
-        type(mesh_t), intent(in) :: mesh
+        type(mesh_t), intent(in) :: mesh           !< uniform
         real(dp) :: m(2, 2), k(2, 2), m_mid, k_mid, dt_alpha, scale(N_FIELDS)
         integer :: i, s, f, sv, st, sp
 
@@ -396,38 +396,21 @@ contains
             y(st, i) = model%c * w_old(st, i) + model%d * w_old(sp, i)
             y(sp, i) = model%d * w_old(st, i) + model%r * w_old(sp, i)
         end do
-        if (mesh%is_uniform()) then
-            ! fe_m's apply_assembled, row by row
-            m = element_mass(mesh%h(1))
-            k = element_stiffness(mesh%h(1))
-            m_mid = m(2, 2) + m(1, 1)
-            k_mid = k(2, 2) + k(1, 1)
-            b(:, 0) = scale * (m(1, 1) * y(:, 0) + m(1, 2) * y(:, 1))
-            b(sv, 0) = b(sv, 0) - dt_alpha * (k(1, 1) * u_old(0) + k(1, 2) * u_old(1))
-            do i = 1, s - 1
-                b(:, i) = scale * (m(2, 1) * y(:, i - 1) + m_mid * y(:, i) + m(1, 2) * y(:, i + 1))
-            end do
-            do i = 1, s - 1
-                b(sv, i) = b(sv, i) - dt_alpha * (k(2, 1) * u_old(i - 1) + k_mid * u_old(i) + k(1, 2) * u_old(i + 1))
-            end do
-            b(:, s) = scale * (m(2, 1) * y(:, s - 1) + m(2, 2) * y(:, s))
-            b(sv, s) = b(sv, s) - dt_alpha * (k(2, 1) * u_old(s - 1) + k(2, 2) * u_old(s))
-        else
-            ! fe_m's apply_mass_graded and apply_stiffness_graded, row by row
-            associate (h => mesh%h)
-                b(:, 0) = scale * (h(1) * (2.0_dp * y(:, 0) + y(:, 1)) / 6.0_dp)
-                b(sv, 0) = b(sv, 0) - dt_alpha * ((u_old(0) - u_old(1)) / h(1))
-                do i = 1, s - 1
-                    b(:, i) = scale * ((h(i) * (y(:, i - 1) + 2.0_dp * y(:, i)) &
-                                        + h(i + 1) * (2.0_dp * y(:, i) + y(:, i + 1))) / 6.0_dp)
-                end do
-                do i = 1, s - 1
-                    b(sv, i) = b(sv, i) - dt_alpha * ((u_old(i) - u_old(i - 1)) / h(i) + (u_old(i) - u_old(i + 1)) / h(i + 1))
-                end do
-                b(:, s) = scale * (h(s) * (y(:, s - 1) + 2.0_dp * y(:, s)) / 6.0_dp)
-                b(sv, s) = b(sv, s) - dt_alpha * ((u_old(s) - u_old(s - 1)) / h(s))
-            end associate
-        end if
+        ! fe_m's apply_assembled, row by row
+        m = element_mass(mesh%h(1))
+        k = element_stiffness(mesh%h(1))
+        m_mid = m(2, 2) + m(1, 1)
+        k_mid = k(2, 2) + k(1, 1)
+        b(:, 0) = scale * (m(1, 1) * y(:, 0) + m(1, 2) * y(:, 1))
+        b(sv, 0) = b(sv, 0) - dt_alpha * (k(1, 1) * u_old(0) + k(1, 2) * u_old(1))
+        do i = 1, s - 1
+            b(:, i) = scale * (m(2, 1) * y(:, i - 1) + m_mid * y(:, i) + m(1, 2) * y(:, i + 1))
+        end do
+        do i = 1, s - 1
+            b(sv, i) = b(sv, i) - dt_alpha * (k(2, 1) * u_old(i - 1) + k_mid * u_old(i) + k(1, 2) * u_old(i + 1))
+        end do
+        b(:, s) = scale * (m(2, 1) * y(:, s - 1) + m(2, 2) * y(:, s))
+        b(sv, s) = b(sv, s) - dt_alpha * (k(2, 1) * u_old(s - 1) + k(2, 2) * u_old(s))
         do f = 1, N_FIELDS
             if (is_dirichlet(f, 0, s)) b(slots(f), 0) = 0.0_dp
             if (is_dirichlet(f, s, s)) b(slots(f), s) = 0.0_dp

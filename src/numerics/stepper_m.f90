@@ -76,8 +76,8 @@ module stepper_m
         logical :: check_finite = .true.
         !> the levels it steps stay in the system's node-major layout between steps (state_t's
         !> packed: no scatter of the right-hand side, no gather of the solution; the caller
-        !> unpacks a level before it reads its fields: unpack_level). Every field in the
-        !> system, no source terms: keep_levels_packed
+        !> unpacks a level before it reads its fields: unpack_level). A uniform mesh, every
+        !> field in the system, no source terms: keep_levels_packed
         logical :: packed_levels = .false.
         integer :: slots(N_FIELDS) = MONOLITHIC_SLOTS
         class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
@@ -89,8 +89,9 @@ module stepper_m
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
-        real(dp), allocatable :: wp_star(:)                !< ... its fields packed (packed_levels)
-        real(dp), allocatable :: wp_work(:)                !< old_state_rhs_packed's scratch
+        !> packed_levels: the fields of u_star packed, and old_state_rhs_packed's scratch (of
+        !> the system's size, allocated by the first step that needs them)
+        real(dp), allocatable :: wp_star(:), wp_work(:)
         !> the node blocks E_i, F_i of a system before its block LU (setup_monolithic; D_i are
         !> assembled into the factors' storage)
         real(dp), allocatable :: e_blocks(:, :, :), f_blocks(:, :, :)
@@ -169,9 +170,7 @@ contains
         self%w_new = 0.0_dp
         if (self%method /= METHOD_MONOLITHIC) return
         if (allocated(self%x)) deallocate (self%x)
-        if (allocated(self%wp_star)) deallocate (self%wp_star, self%wp_work)
-        allocate (self%x(count(self%active) * (s + 1)), self%wp_star(count(self%active) * (s + 1)), &
-                  self%wp_work(count(self%active) * (s + 1)), stat=stat, errmsg=message)
+        allocate (self%x(count(self%active) * (s + 1)), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the system')
     end subroutine allocate_work
 
@@ -186,6 +185,8 @@ contains
         self%s = self%mesh%s()
         call allocate_work(self)
         call self%cache%invalidate()
+        ! a graded mesh: levels are no longer kept packed (the caller has unpacked them)
+        self%packed_levels = self%packed_levels .and. self%mesh%is_uniform()
     end subroutine stepper_remesh
 
     !> The paper's Section 7 blocks for step dt, factored.
@@ -404,7 +405,9 @@ contains
         type(step_result_t), intent(inout) :: result
 
         call pack_level(self, state)
+        call sized(self%wp_work, size(self%x))
         if (plan%from_history) then
+            call sized(self%wp_star, size(self%x))
             self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
             self%wp_star = (plan%a * state%wp - plan%b * state%wp_prev) / plan%d
             call old_state_rhs_packed(self%step_model, plan%dt_eff, self%u_star, self%slots, self%wp_star, &
@@ -702,15 +705,17 @@ contains
         call move_alloc(held, self%x)
     end subroutine take_solution
 
-    !> Levels this stepper advances stay packed between steps (packed_levels) when every
-    !> field is in the monolithic system, there are no source terms and no inertia
-    !> difference (scheme_m's old_state_rhs_packed); otherwise nothing changes.
+    !> Levels this stepper advances stay packed between steps (packed_levels) when its mesh
+    !> is uniform, every field is in the monolithic system, and there are no source terms
+    !> and no inertia difference (scheme_m's old_state_rhs_packed); otherwise nothing
+    !> changes. (On a graded mesh the node-major right-hand side, written out, cost more
+    !> than the scatter and gather it saves: docs/scheme.md.)
     subroutine stepper_keep_levels_packed(self)
         class(stepper_t), intent(inout) :: self
 
-        self%packed_levels = self%method == METHOD_MONOLITHIC .and. all(self%active) .and. &
-                             .not. allocated(self%source) .and. .not. self%step_model%mass_end_moved .and. &
-                             .not. self%step_model%mass_lumped > 0.0_dp
+        self%packed_levels = self%method == METHOD_MONOLITHIC .and. self%mesh%is_uniform() .and. &
+                             all(self%active) .and. .not. allocated(self%source) .and. &
+                             .not. self%step_model%mass_end_moved .and. .not. self%step_model%mass_lumped > 0.0_dp
     end subroutine stepper_keep_levels_packed
 
     !> A packed level's fields (and the level before's) back into w (w_prev): readable again.

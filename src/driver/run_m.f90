@@ -8,7 +8,7 @@ module run_m
     use iso_fortran_env, only: int64, error_unit
     use config_m, only: config_t, number_of_steps
     use errors_m, only: fatal, check_allocation, EXIT_NUMERIC, EXIT_INTERRUPTED
-    use stop_signal_m, only: install_stop_handlers, stop_signal_name, ignore_file_size_signal
+    use stop_signal_m, only: install_stop_handlers, stop_signal_arrived, stop_signal_name, ignore_file_size_signal
     use state_m, only: state_t, initial_state, set_mesh, copy_state
     use adaptive_mesh_m, only: adaptive_mesh_t
     use remesh_m, only: initial_mesh
@@ -210,7 +210,9 @@ contains
                     call progress%update(state%step, state%t, run%result%in_contact)
                 end if
                 ! a signal stops the run after this step, with a checkpoint of it (close_output)
-                if (.not. last) interrupted = stop_signal_name()
+                if (.not. last) then
+                    if (stop_signal_arrived()) interrupted = stop_signal_name()
+                end if
             end associate
         end do
         call progress%finish()

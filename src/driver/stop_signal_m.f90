@@ -7,7 +7,7 @@ module stop_signal_m
     use errors_m, only: fatal, EXIT_OUTPUT
     implicit none
     private
-    public :: install_stop_handlers, stop_signal_name, ignore_file_size_signal
+    public :: install_stop_handlers, stop_signal_arrived, stop_signal_name, ignore_file_size_signal
 
     interface
         function c_install() bind(C, name='rc_install_stop_handlers') result(rc)
@@ -45,6 +45,12 @@ contains
     subroutine ignore_file_size_signal()
         if (c_ignore_xfsz() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot ignore SIGXFSZ (sigaction failed)')
     end subroutine ignore_file_size_signal
+
+    !> A stop signal has arrived (the time loop's test after every step: no allocation, unlike
+    !> stop_signal_name).
+    logical function stop_signal_arrived()
+        stop_signal_arrived = c_stop_signal() /= 0
+    end function stop_signal_arrived
 
     !> 'SIGTERM', 'SIGINT' or 'SIGUSR1' when one of them has arrived, else ''.
     function stop_signal_name() result(name)

@@ -39,7 +39,9 @@
 !> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
 !> has the measurement; on an adaptive mesh also a transfer per companion whose mesh changes
 !> at a remesh); the companions' steps skip the stepper's per-step finiteness test
-!> (a non-finite value stays non-finite: the estimate tests the companions' levels).
+!> (a non-finite value stays non-finite: the estimate tests the companions' levels), and on
+!> a uniform mesh their levels stay in the solver's node-major layout between snapshots
+!> (stepper_m's packed_levels: no scatter and gather per step; unpacked after landing).
 !> Meshes of a multiple of 4 (coarse) elements (validate_m). On an adaptive mesh (&mesh
 !> adaptive) "every other node" is the companion's own bisection mesh, coarser by 2 (A) and 4
 !> (C, D) where the run's level is the same, nested in the run's (companion_mesh_m); it is
@@ -165,6 +167,9 @@ contains
                 if (present(keys)) call c%stepper%remesh(c%state)
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
                 c%stepper%check_finite = .false.
+                ! on a uniform mesh the level stays in the solver's layout between snapshots
+                ! (unpacked where it is read: companions_land, save_checkpoint)
+                call c%stepper%keep_levels_packed()
                 if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
                                                             ': '//trim(c%result%message))
             end associate
@@ -210,9 +215,11 @@ contains
                 if (c%on_copy) then
                     call copy_state(c%state, c%ahead)
                     call land_level(c%ahead)
+                    call c%stepper%unpack_level(c%ahead)
                 else
                     call land_level(c%state)
                     call drop(c, c%n_queued)
+                    call c%stepper%unpack_level(c%state)
                 end if
             end associate
         end do
@@ -411,10 +418,10 @@ contains
                 col = (j - 1) * 2 * width
                 n = st%s + 1
                 ckpt%companion_levels(1:n, col + 1) = st%u
-                ckpt%companion_levels(1:n, col + 2:col + width) = st%w
+                ckpt%companion_levels(1:n, col + 2:col + width) = c%stepper%level_fields(st, .false.)
                 if (allocated(st%u_prev)) then
                     ckpt%companion_levels(1:n, col + width + 1) = st%u_prev
-                    ckpt%companion_levels(1:n, col + width + 2:col + 2 * width) = st%w_prev
+                    ckpt%companion_levels(1:n, col + width + 2:col + 2 * width) = c%stepper%level_fields(st, .true.)
                 end if
                 ckpt%companion_scalars((j - 1) * SCALARS_PER_COMPANION + 1:j * SCALARS_PER_COMPANION) = &
                     [real(st%step, dp), st%t, st%dt_last, st%t_anchor, real(st%step_anchor, dp), &
@@ -447,6 +454,7 @@ contains
                 n = st%s + 1
                 st%u = ckpt%companion_levels(1:n, col + 1)
                 st%w = ckpt%companion_levels(1:n, col + 2:col + width)
+                st%packed = .false.
                 if (scalars(8) > 0.0_dp) then
                     if (.not. allocated(st%u_prev)) then
                         allocate (st%u_prev(0:n - 1), st%w_prev(0:n - 1, N_FIELDS), stat=stat, errmsg=message)
@@ -512,6 +520,7 @@ contains
                 if (size(k_new) == size(c%k)) then
                     if (all(k_new == c%k)) cycle
                 end if
+                call c%stepper%unpack_level(c%state)
                 call move_level(c%k, k_new, self%n_fine, c%stepper%model, c%state%u, c%state%w)
                 if (allocated(c%state%u_prev)) &
                     call move_level(c%k, k_new, self%n_fine, c%stepper%model, c%state%u_prev, c%state%w_prev)
@@ -538,6 +547,7 @@ contains
                 s = ubound(c%k, 1)
                 call set_mesh(c%state, nodes_of_keys(c%k, self%n_fine))
                 deallocate (c%state%u, c%state%w)
+                c%state%packed = .false.
                 if (allocated(c%state%u_prev)) deallocate (c%state%u_prev, c%state%w_prev)
                 allocate (c%state%u(0:s), c%state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
                 call check_allocation(stat, message, 'the error estimate''s companions')

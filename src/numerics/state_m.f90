@@ -12,7 +12,7 @@ module state_m
     implicit none
     private
     public :: state_t, initial_state, set_mesh, field_values, advance_time, accept_step, land_on, &
-              copy_state, keep_copy
+              copy_state, keep_copy, keep_vector
 
     type :: state_t
         integer :: s = 0                !< number of elements (mesh%s())
@@ -27,6 +27,12 @@ module state_m
         real(dp), allocatable :: w(:, :)    !< w(i, f): field f (fields_m's F_*) at node i
         real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
                                                           !< only; allocated by the stepper)
+        !> packed: the fields of the level (and of the level before) are wp (wp_prev), in the
+        !> stepper's node-major system layout, and w (w_prev) are stale (a stepper with
+        !> packed_levels: error_companion_m's companions between snapshots; stepper_m's
+        !> unpack_level brings them back)
+        logical :: packed = .false.
+        real(dp), allocatable :: wp(:), wp_prev(:)
         type(mesh_t) :: mesh            !< the nodes x_i and element sizes h_e (set_mesh)
     contains
         procedure :: save_checkpoint => state_save_checkpoint
@@ -169,7 +175,30 @@ contains
         else if (allocated(copy%u_prev)) then
             deallocate (copy%u_prev, copy%w_prev)
         end if
+        copy%packed = state%packed
+        if (.not. state%packed) return
+        if (with_level) call keep_vector(state%wp, copy%wp, 'the saved state')
+        if (allocated(state%wp_prev)) call keep_vector(state%wp_prev, copy%wp_prev, 'the saved state')
     end subroutine copy_state
+
+    !> copy = x, allocated with its size when it has another (what: for the message if the
+    !> allocation fails).
+    subroutine keep_vector(x, copy, what)
+        real(dp), intent(in) :: x(:)
+        real(dp), allocatable, intent(inout) :: copy(:)
+        character(len=*), intent(in) :: what
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(copy)) then
+            if (size(copy) /= size(x)) deallocate (copy)
+        end if
+        if (.not. allocated(copy)) then
+            allocate (copy(size(x)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, what)
+        end if
+        copy = x
+    end subroutine keep_vector
 
     !> (u_copy, w_copy) = (u, w), allocated with their bounds on the first call (what: for
     !> the message if the allocation fails).
@@ -225,6 +254,7 @@ contains
         end if
         self%u = ckpt%state(:, 1)
         self%w = ckpt%state(:, 2:)
+        self%packed = .false.
         if (allocated(ckpt%previous)) then
             if (allocated(self%u_prev)) deallocate (self%u_prev, self%w_prev)
             allocate (self%u_prev(0:s), self%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)

@@ -3,9 +3,13 @@
 !> 40 elements, into contact, for Euler, BDF2 and the midpoint rule, with steps of varying
 !> size: after every step the packed level, unpacked (unpack_level) or read packed
 !> (level_fields), equals the other stepper's level and level before; a copy of a packed
-!> state (copy_state) and a level unpacked in between go on bit for bit too.
+!> state (copy_state) and a level unpacked in between go on bit for bit too (the packed
+!> arrays are filled with NaN at each unpack, so that packing again must read the level).
+!> A stepper whose right-hand side old_state_rhs_packed cannot build does not pack: the
+!> redistributed mass, fields left out of the system (input/impact.nml).
 program test_packed_levels
     use kinds_m, only: dp
+    use ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use reals_m, only: equal
     use config_m, only: config_t
     use state_m, only: state_t, initial_state, copy_state
@@ -27,6 +31,10 @@ program test_packed_levels
         cfg%time%scheme = SCHEMES(j)
         call compare(cfg, trim(SCHEMES(j)))
     end do
+    cfg%contact%mass = 'redistributed'
+    call check_not_packed(cfg, 'the redistributed mass')
+    call load_input(source_dir, 'impact', scratch_dir, cfg)
+    call check_not_packed(cfg, 'input/impact.nml (fields left out of the system)')
     call test_summary('test_packed_levels')
 
 contains
@@ -72,6 +80,9 @@ contains
                 call packed%unpack_level(y)
                 same = same .and. .not. y%packed .and. all(equal(x%w, y%w))
                 if (allocated(x%u_prev)) same = same .and. all(equal(x%w_prev, y%w_prev))
+                ! what the packed arrays held must not matter from now on
+                if (allocated(y%wp)) y%wp = ieee_value(1.0_dp, ieee_quiet_nan)
+                if (allocated(y%wp_prev)) y%wp_prev = ieee_value(1.0_dp, ieee_quiet_nan)
             end if
         end do
         call check_true(name//': every step succeeds, and the level was packed', ok .and. went_packed)
@@ -88,5 +99,18 @@ contains
         same_copy = all(equal(y%u, y_copy%u)) .and. all(equal(y%w, y_copy%w)) .and. all(equal(x%w, y%w))
         call check_true(name//': a copy of a packed state steps as the state', same_copy)
     end subroutine compare
+
+    !> A stepper for cfg keeps its levels unpacked when asked to pack them (what: the case).
+    subroutine check_not_packed(cfg, what)
+        type(config_t), intent(in) :: cfg
+        character(len=*), intent(in) :: what
+        type(stepper_t) :: stepper
+        type(step_result_t) :: result
+
+        call stepper%init(cfg, result)
+        call stepper%keep_levels_packed()
+        call check_true(what//': the stepper is set up and does not pack its levels', &
+                        result%ok .and. .not. stepper%packed_levels)
+    end subroutine check_not_packed
 
 end program test_packed_levels

@@ -168,7 +168,8 @@ contains
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
                 c%stepper%check_finite = .false.
                 ! on a uniform mesh the level stays in the solver's layout between snapshots
-                ! (unpacked where it is read: companions_land, save_checkpoint)
+                ! (unpacked where it is read: companions_land, companions_remesh; a checkpoint
+                ! reads it packed through level_fields)
                 call c%stepper%keep_levels_packed()
                 if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
                                                             ': '//trim(c%result%message))

@@ -153,7 +153,9 @@ contains
 
     !> copy = state, reusing copy's arrays (a rejected adaptive step restores from it; the
     !> intrinsic assignment would allocate every step). level = .false.: all but the level
-    !> (u, w), which the caller keeps elsewhere (default .true.).
+    !> (u, w), which the caller keeps elsewhere (default .true.); of a packed level
+    !> (stepper_m's keep_levels_packed) that leaves wp uncopied, so the caller that keeps the
+    !> level must keep wp too (today only the run's own state, never packed, is copied so).
     subroutine copy_state(state, copy, level)
         type(state_t), intent(in) :: state
         type(state_t), intent(inout) :: copy

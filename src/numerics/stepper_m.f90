@@ -478,7 +478,8 @@ contains
     !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
     !> force (contact_law_m's midpoint_impulse); then X^n = 2 Y - X^{n-1}, except for the
     !> algebraic fields (X^n = Y), and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new (whose
-    !> columns of fields left out of the system stay zero from set-up).
+    !> columns of fields left out of the system stay zero from set-up), or, with packed
+    !> levels (keep_levels_packed), in the solver's vector.
     subroutine advance_midpoint(self, sys, state, result)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys

@@ -12,7 +12,7 @@ module state_m
     implicit none
     private
     public :: state_t, initial_state, set_mesh, field_values, advance_time, accept_step, land_on, &
-              copy_state, keep_copy, keep_vector
+              copy_state, keep_copy, keep_vector, sized_vector, sized_level
 
     type :: state_t
         integer :: s = 0                !< number of elements (mesh%s())
@@ -189,16 +189,8 @@ contains
         real(dp), intent(in) :: x(:)
         real(dp), allocatable, intent(inout) :: copy(:)
         character(len=*), intent(in) :: what
-        integer :: stat
-        character(len=256) :: message
 
-        if (allocated(copy)) then
-            if (size(copy) /= size(x)) deallocate (copy)
-        end if
-        if (.not. allocated(copy)) then
-            allocate (copy(size(x)), stat=stat, errmsg=message)
-            call check_allocation(stat, message, what)
-        end if
+        call sized_vector(copy, size(x), what)
         copy = x
     end subroutine keep_vector
 
@@ -208,21 +200,50 @@ contains
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp), allocatable, intent(inout) :: u_copy(:), w_copy(:, :)
         character(len=*), intent(in) :: what
-        integer :: stat
-        character(len=256) :: message
 
-        if (allocated(u_copy)) then
-            if (size(u_copy) /= size(u)) deallocate (u_copy, w_copy)   ! the mesh has changed
-        end if
-        if (.not. allocated(u_copy)) then
-            allocate (u_copy(0:ubound(u, 1)), stat=stat, errmsg=message)
-            call check_allocation(stat, message, what)
-            allocate (w_copy(0:ubound(w, 1), size(w, 2)), stat=stat, errmsg=message)
-            call check_allocation(stat, message, what)
-        end if
+        call sized_level(u_copy, w_copy, ubound(u, 1), size(w, 2), what)
         u_copy = u
         w_copy = w
     end subroutine keep_copy
+
+    !> x allocated with n entries: kept when it has them, else allocated anew (its values not
+    !> kept; what: for the message if the allocation fails).
+    subroutine sized_vector(x, n, what)
+        real(dp), allocatable, intent(inout) :: x(:)
+        integer, intent(in) :: n
+        character(len=*), intent(in) :: what
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(x)) then
+            if (size(x) == n) return
+            deallocate (x)
+        end if
+        allocate (x(n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, what)
+    end subroutine sized_vector
+
+    !> A level's arrays u(0:last), w(0:last, n_fields): kept when u has last + 1 entries (the
+    !> mesh is the same), else allocated anew and zero (what: for the message if the
+    !> allocation fails).
+    subroutine sized_level(u, w, last, n_fields, what)
+        real(dp), allocatable, intent(inout) :: u(:), w(:, :)
+        integer, intent(in) :: last, n_fields
+        character(len=*), intent(in) :: what
+        integer :: stat
+        character(len=256) :: message
+
+        if (allocated(u)) then
+            if (size(u) == last + 1) return
+            deallocate (u, w)   ! the mesh has changed
+        end if
+        allocate (u(0:last), stat=stat, errmsg=message)
+        call check_allocation(stat, message, what)
+        allocate (w(0:last, n_fields), stat=stat, errmsg=message)
+        call check_allocation(stat, message, what)
+        u = 0.0_dp
+        w = 0.0_dp
+    end subroutine sized_level
 
     !> The level, the level before (multistep schemes) and the time counters into a checkpoint.
     subroutine state_save_checkpoint(self, ckpt)

@@ -30,7 +30,7 @@ module stepper_m
     use block_tridiagonal_m, only: NB_MAX
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
-    use state_m, only: state_t, advance_time, accept_step, keep_copy, keep_vector
+    use state_m, only: state_t, advance_time, accept_step, keep_copy, keep_vector, sized_vector, sized_level
     use mesh_m, only: mesh_t, copy_mesh
     use sources_m, only: source_t, add_source_terms
     use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
@@ -405,9 +405,9 @@ contains
         type(step_result_t), intent(inout) :: result
 
         call pack_level(self, state)
-        call sized(self%wp_work, size(self%x))
+        call sized_vector(self%wp_work, size(self%x), 'the packed level')
         if (plan%from_history) then
-            call sized(self%wp_star, size(self%x))
+            call sized_vector(self%wp_star, size(self%x), 'the packed level')
             self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
             self%wp_star = (plan%a * state%wp - plan%b * state%wp_prev) / plan%d
             call old_state_rhs_packed(self%step_model, plan%dt_eff, self%u_star, self%slots, self%wp_star, &
@@ -651,45 +651,21 @@ contains
         type(state_t), intent(inout) :: state
 
         if (state%packed) return
-        call sized(state%wp, size(self%x))
+        call sized_vector(state%wp, size(self%x), 'the packed level')
         call scatter_fields(self%slots, state%w, state%wp)
         if (allocated(state%u_prev)) then
-            call sized(state%wp_prev, size(self%x))
+            call sized_vector(state%wp_prev, size(self%x), 'the packed level')
             call scatter_fields(self%slots, state%w_prev, state%wp_prev)
         end if
         state%packed = .true.
     end subroutine pack_level
 
-    !> x allocated with n entries (its values are not kept when it had another size).
-    subroutine sized(x, n)
-        real(dp), allocatable, intent(inout) :: x(:)
-        integer, intent(in) :: n
-        integer :: stat
-        character(len=256) :: message
-
-        if (allocated(x)) then
-            if (size(x) == n) return
-            deallocate (x)
-        end if
-        allocate (x(n), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the packed level')
-    end subroutine sized
-
     !> keep_previous_level for a packed level: u and the packed fields (w_prev, allocated
     !> with u_prev, is stale until unpack_level).
     subroutine keep_previous_packed(state)
         type(state_t), intent(inout) :: state
-        integer :: stat
-        character(len=256) :: message
 
-        if (allocated(state%u_prev)) then
-            if (size(state%u_prev) /= size(state%u)) deallocate (state%u_prev, state%w_prev)
-        end if
-        if (.not. allocated(state%u_prev)) then
-            allocate (state%u_prev(0:state%s), state%w_prev(0:state%s, N_FIELDS), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the previous level')
-            state%w_prev = 0.0_dp
-        end if
+        call sized_level(state%u_prev, state%w_prev, state%s, N_FIELDS, 'the previous level')
         state%u_prev = state%u
         call keep_vector(state%wp, state%wp_prev, 'the previous level')
     end subroutine keep_previous_packed

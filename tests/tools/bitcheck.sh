@@ -8,6 +8,10 @@
 #   tests/tools/bitcheck.sh OLD_BINARY NEW_BINARY [WORKDIR]
 #
 # Prints one line a case (SAME, or DIFF with what differs) and then ALL SAME, or exits 1.
+# With BITCHECK_RTOL=1e-12 in the environment, a case that differs is compared again with
+# that relative tolerance (every float dataset within RTOL * its largest |value|, integer
+# datasets and the /events counts equal): CLOSE when it holds (a changed summation order),
+# and the summary says ALL SAME OR CLOSE.
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
@@ -67,6 +71,33 @@ compare() {  # compare NAME
     local out
     if out=$("$py" "$repo/tests/tools/regression.py" same "$work/$1_old.h5" "$work/$1_new.h5" 2>&1); then
         echo "SAME  $1"
+    elif [[ -n "${BITCHECK_RTOL:-}" ]] && close=$("$py" - "$work/$1_old.h5" "$work/$1_new.h5" "$BITCHECK_RTOL" << 'PY'
+import sys, h5py, numpy as np
+a, b, rtol = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r"), float(sys.argv[3])
+worst, bad = 0.0, []
+def visit(name, obj):
+    global worst
+    if not isinstance(obj, h5py.Dataset) or name.startswith("checkpoint"):
+        return
+    if name not in b:
+        bad.append(f"/{name} missing"); return
+    x, y = obj[()], b[name][()]
+    if x.shape != y.shape:
+        bad.append(f"/{name} shapes {x.shape} {y.shape}"); return
+    if x.dtype.kind == "f":
+        scale = float(np.max(np.abs(x))) if x.size else 0.0
+        d = float(np.max(np.abs(x - y))) if x.size else 0.0
+        r = d / scale if scale > 0 else d
+        worst = max(worst, r)
+        if r > rtol: bad.append(f"/{name} rel {r:.2e}")
+    elif x.dtype.kind in "iu" and not np.array_equal(x, y):
+        bad.append(f"/{name} integers differ")
+a.visititems(visit)
+print("; ".join(bad[:4]) if bad else f"max rel {worst:.2e}")
+sys.exit(1 if bad else 0)
+PY
+); then
+        echo "CLOSE $1: $close"
     else
         echo "DIFF  $1: $(echo "$out" | head -5 | tr '\n' ' ')"; status=1
     fi
@@ -89,5 +120,9 @@ for c in "${restarts[@]}"; do
     done
     compare "$name"
 done
-[[ $status == 0 ]] && echo "ALL SAME" || echo "SOME DIFFER (files in $work)"
+if [[ $status == 0 ]]; then
+    [[ -n "${BITCHECK_RTOL:-}" ]] && echo "ALL SAME OR CLOSE (rtol $BITCHECK_RTOL)" || echo "ALL SAME"
+else
+    echo "SOME DIFFER (files in $work)"
+fi
 exit $status

@@ -158,11 +158,10 @@ def read_variables(path):
     return groups, variables
 
 
-def string_list(words, indent, width=100):
-    """Fortran string literals separated by ', ', broken into continuation lines."""
+def wrap(items, indent, width):
+    """The items separated by ', ', broken into Fortran continuation lines of about width."""
     lines, line = [], ""
-    for word in words:
-        item = f"'{word}'"
+    for item in items:
         if line and len(line) + len(item) + 2 > width:
             lines.append(line + ",")
             line = ""
@@ -176,7 +175,7 @@ def table(groups, variables):
            "",
            "    !> Namelist groups (config_t's components), in the order validation checks them.",
            f"    character(len=*), parameter :: GROUP_NAMES({len(groups)}) = [character(len={LEN_GROUP}) :: &",
-           "        " + string_list(groups, "        ") + "]",
+           "        " + wrap([f"'{g}'" for g in groups], "        ", 100) + "]",
            "",
            "    !> Every input variable, by group in the order of GROUP_NAMES; within a group in the",
            "    !> order of its type in config_m, which is the order of the messages, the echo and the file.",
@@ -218,7 +217,7 @@ def access(groups, variables):
     out += ["        " + declaration for declaration in locals_]
     for group in groups:
         members = [v.name for v in variables if v.group == group]
-        out.append(f"        namelist /{group}/ " + wrap(members, "            "))
+        out.append(f"        namelist /{group}/ " + wrap(members, "            ", 80))
     out += ["        type(input_item_t) :: work",
             "        integer :: j",
             "",
@@ -263,17 +262,6 @@ def access(groups, variables):
             "",
             "    end subroutine access"]
     return "\n".join(out) + "\n"
-
-
-def wrap(names, indent, width=80):
-    lines, line = [], ""
-    for name in names:
-        if line and len(line) + len(name) + 2 > width:
-            lines.append(line + ",")
-            line = ""
-        line = f"{line}, {name}" if line else name
-    lines.append(line)
-    return (" &\n" + indent).join(lines)
 
 
 def write(path, text):

@@ -230,43 +230,18 @@ contains
         type(group_t), intent(in) :: grp
         type(assignments_t), intent(out) :: asg
         character(len=:), allocatable :: lhs, name, value, where
-        character :: quote
-        character(len=LEN_MSG) :: msg
-        integer :: j, k, p, n, stat
+        integer :: k, p, n
 
         asg%group = grp%name
         asg%from_set = grp%from_set
         asg%body = group_body(lines, grp)
-        allocate (asg%first(0), asg%eq(0), stat=stat, errmsg=msg)
-        call check_allocation(stat, msg, 'the assignments of &' // trim(grp%name))
-        associate (body => asg%body)
-            ! each '=' outside quoted strings, and where the variable name before it begins
-            quote = ' '
-            do j = 1, len(body)
-                if (quote /= ' ') then
-                    if (body(j:j) == quote) quote = ' '
-                else if (body(j:j) == "'" .or. body(j:j) == '"') then
-                    quote = body(j:j)
-                else if (body(j:j) == '=') then
-                    p = len_trim(body(:j - 1))
-                    if (p > 0) then   ! skip a subscript: name(2) = ...
-                        if (body(p:p) == ')') p = len_trim(body(:max(0, index(body(:p), '(', back=.true.) - 1)))
-                    end if
-                    do while (p > 0)
-                        if (.not. is_name_char(body(p:p))) exit
-                        p = p - 1
-                    end do
-                    asg%first = [asg%first, p + 1]
-                    asg%eq = [asg%eq, j]
-                end if
-            end do
-            n = size(asg%eq)
-            p = len(body) + 1
-            if (n > 0) p = asg%first(1)
-            if (verify(body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), &
-                "expected 'variable = value' in &" // trim(grp%name) // ", got '" // excerpt(body(:p - 1)) // &
-                "'; allowed variables: " // var_list(grp%name))
-        end associate
+        call find_assignments(asg)
+        n = size(asg%eq)
+        p = len(asg%body) + 1
+        if (n > 0) p = asg%first(1)
+        if (verify(asg%body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), &
+            "expected 'variable = value' in &" // trim(grp%name) // ", got '" // excerpt(asg%body(:p - 1)) // &
+            "'; allowed variables: " // var_list(grp%name))
         do k = 1, n
             lhs = assignment_lhs(asg, k)
             name = identifier_at(lhs, 1)
@@ -288,6 +263,39 @@ contains
                 'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // name // ' = ' // quoted(excerpt(value)))
         end do
     end subroutine split_group
+
+    !> asg%first and asg%eq of the assignments in asg%body: each '=' outside quoted strings,
+    !> and where the variable name before it (and its subscript, if any) begins.
+    subroutine find_assignments(asg)
+        type(assignments_t), intent(inout) :: asg
+        character :: quote
+        character(len=LEN_MSG) :: msg
+        integer :: j, p, stat
+
+        allocate (asg%first(0), asg%eq(0), stat=stat, errmsg=msg)
+        call check_allocation(stat, msg, 'the assignments of &' // trim(asg%group))
+        associate (body => asg%body)
+            quote = ' '
+            do j = 1, len(body)
+                if (quote /= ' ') then
+                    if (body(j:j) == quote) quote = ' '
+                else if (body(j:j) == "'" .or. body(j:j) == '"') then
+                    quote = body(j:j)
+                else if (body(j:j) == '=') then
+                    p = len_trim(body(:j - 1))
+                    if (p > 0) then   ! skip a subscript: name(2) = ...
+                        if (body(p:p) == ')') p = len_trim(body(:max(0, index(body(:p), '(', back=.true.) - 1)))
+                    end if
+                    do while (p > 0)
+                        if (.not. is_name_char(body(p:p))) exit
+                        p = p - 1
+                    end do
+                    asg%first = [asg%first, p + 1]
+                    asg%eq = [asg%eq, j]
+                end if
+            end do
+        end associate
+    end subroutine find_assignments
 
     !> '--set ' before group.variable in messages about an override, '' for the text.
     pure function origin(asg) result(prefix)

@@ -45,6 +45,8 @@ module validate_m
     !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
     real(dp), parameter :: MAX_MAGNITUDE = 1.0e30_dp
     real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
+    !> The bounds of require_real.
+    integer, parameter :: NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3
 
 contains
 
@@ -93,17 +95,17 @@ contains
 
         note = ''
         if (from_material) note = ' (computed from &material by (2.10)-(2.11))'
-        call require_positive(m%rho, 'model.rho', note, scaled=.true.)
-        call require_positive(m%alpha, 'model.alpha', note, scaled=.true.)
-        call require_nonnegative(m%varpi, 'model.varpi', note)
-        call require_nonnegative(m%gamma1, 'model.gamma1', note)
-        call require_nonnegative(m%gamma2, 'model.gamma2', note)
-        call require_positive(m%c, 'model.c', note, scaled=.true.)
-        call require_nonnegative(m%d, 'model.d', note)
-        call require_positive(m%r, 'model.r', note, scaled=.true.)
-        call require_positive(m%hbar, 'model.hbar', note, scaled=.true.)
-        call require_nonnegative(m%tau0, 'model.tau0', note)
-        call require_nonnegative(m%tau, 'model.tau', note)
+        call require_real(m%rho, 'model.rho', DIVISOR, note)
+        call require_real(m%alpha, 'model.alpha', DIVISOR, note)
+        call require_real(m%varpi, 'model.varpi', NONNEGATIVE, note)
+        call require_real(m%gamma1, 'model.gamma1', NONNEGATIVE, note)
+        call require_real(m%gamma2, 'model.gamma2', NONNEGATIVE, note)
+        call require_real(m%c, 'model.c', DIVISOR, note)
+        call require_real(m%d, 'model.d', NONNEGATIVE, note)
+        call require_real(m%r, 'model.r', DIVISOR, note)
+        call require_real(m%hbar, 'model.hbar', DIVISOR, note)
+        call require_real(m%tau0, 'model.tau0', NONNEGATIVE, note)
+        call require_real(m%tau, 'model.tau', NONNEGATIVE, note)
         if (.not. m%c * m%r - m%d**2 > 0.0_dp) call fatal(EXIT_INPUT, 'model.d', 'got d = ' // format_real(m%d) // &
             ' with c = ' // format_real(m%c) // ', r = ' // format_real(m%r) // ': c*r - d**2 = ' // &
             format_real(m%c * m%r - m%d**2) // '; condition (2.16) needs c*r - d**2 > 0' // note)
@@ -112,8 +114,8 @@ contains
     subroutine validate_contact(contact)
         type(contact_t), intent(in) :: contact
 
-        call require_positive(contact%g, 'contact.g')
-        call require_positive(contact%eps, 'contact.eps', scaled=.true.)
+        call require_real(contact%g, 'contact.g', POSITIVE)
+        call require_real(contact%eps, 'contact.eps', DIVISOR)
         call require_one_of(contact%law, [character(len=9) :: 'penalty', 'signorini'], 'contact.law')
         call require_one_of(contact%mass, [character(len=13) :: 'consistent', 'redistributed'], 'contact.mass')
     end subroutine validate_contact
@@ -123,7 +125,8 @@ contains
         real(dp) :: bytes
 
         call require_at_least(mesh%n_elements, 2, 'mesh.n_elements')
-        call require_positive(mesh%error_tol, 'mesh.error_tol', '(relative L2 error per unit length, e.g. 1e-3)')
+        call require_real(mesh%error_tol, 'mesh.error_tol', POSITIVE, &
+                          '(relative L2 error per unit length, e.g. 1e-3)')
         if (mesh%max_level < 0 .or. mesh%max_level > MAX_MESH_LEVEL) call fatal(EXIT_INPUT, 'mesh.max_level', &
             'got ' // int_str(mesh%max_level) // '; must be an integer from 0 (no refinement) to ' // &
             int_str(MAX_MESH_LEVEL) // ' (bisections of a coarse element)')
@@ -146,8 +149,8 @@ contains
         real(dp), intent(out) :: n_steps
         character(len=len(schemes%name)), allocatable :: names(:)
 
-        call require_positive(time%dt, 'time.dt', scaled=.true.)
-        call require_positive(time%t_end, 'time.t_end')
+        call require_real(time%dt, 'time.dt', DIVISOR)
+        call require_real(time%t_end, 'time.t_end', POSITIVE)
         if (time%t_end < time%dt) call fatal(EXIT_INPUT, 'time.t_end', 'got ' // format_real(time%t_end) // &
             ' < dt = ' // format_real(time%dt) // '; must be >= dt (at least one time step)')
         ! the step counter is a default integer
@@ -164,12 +167,12 @@ contains
     subroutine validate_step_control(time)
         type(time_t), intent(in) :: time
 
-        call require_positive(time%error_tol, 'time.error_tol', scaled=.true.)
+        call require_real(time%error_tol, 'time.error_tol', DIVISOR)
         if (time%error_tol >= 1.0_dp) call fatal(EXIT_INPUT, 'time.error_tol', 'got ' // &
             format_real(time%error_tol) // '; must be in (0, 1): the local error allowed per step, ' // &
             'relative to the largest energy norm of the solution so far (e.g. 1e-5)')
-        call require_positive(time%dt_min, 'time.dt_min', scaled=.true.)
-        call require_positive(time%dt_max, 'time.dt_max', scaled=.true.)
+        call require_real(time%dt_min, 'time.dt_min', DIVISOR)
+        call require_real(time%dt_max, 'time.dt_max', DIVISOR)
         if (time%dt_min > time%dt_max) call fatal(EXIT_INPUT, 'time.dt_min', 'got ' // format_real(time%dt_min) // &
             ' > dt_max = ' // format_real(time%dt_max) // '; must be <= dt_max')
         if (time%dt < time%dt_min .or. time%dt > time%dt_max) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
@@ -221,9 +224,7 @@ contains
         if (cfg%contact%law /= 'penalty') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the penalty term and " // &
             "has no Signorini form; method must be 'monolithic' with this law")
-        do k = 1, size(schemes) - 1   ! validate_time has checked the name: it is one of them
-            if (schemes(k)%name == cfg%time%scheme) exit
-        end do
+        k = findloc(schemes%name, cfg%time%scheme, dim=1)   ! validate_time has checked it is there
         if (.not. schemes(k)%paper_iteration) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "time.scheme = '" // trim(cfg%time%scheme) // "': the paper's iteration is implicit Euler; " // &
             "method must be 'monolithic' with this scheme")
@@ -233,7 +234,7 @@ contains
         type(solver_t), intent(in) :: solver
 
         call require_one_of(solver%method, [character(len=10) :: 'monolithic', 'paper'], 'solver.method')
-        call require_positive(solver%tol, 'solver.tol')
+        call require_real(solver%tol, 'solver.tol', POSITIVE)
         call require_at_least(solver%max_iter, 1, 'solver.max_iter')
     end subroutine validate_solver
 
@@ -255,8 +256,10 @@ contains
         if (output%n_points < 0 .or. output%n_points == 1) call fatal(EXIT_INPUT, 'output.n_points', 'got ' // &
             int_str(output%n_points) // '; must be 0 (the nodes of the coarsest mesh, n_elements + 1) or at ' // &
             'least 2 (points of the snapshot grid /mesh/x)')
-        call require_nonnegative(output%snapshot_dt, 'output.snapshot_dt', ' (0: snapshots every snapshot_every steps)')
-        call require_nonnegative(output%series_dt, 'output.series_dt', ' (0: a series entry every series_every steps)')
+        call require_real(output%snapshot_dt, 'output.snapshot_dt', NONNEGATIVE, &
+                          ' (0: snapshots every snapshot_every steps)')
+        call require_real(output%series_dt, 'output.series_dt', NONNEGATIVE, &
+                          ' (0: a series entry every series_every steps)')
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
             'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
@@ -317,45 +320,34 @@ contains
 
     ! ---------------------------------------------------------------- small checks
 
-    subroutine require_finite(x, where, note)
+    !> x finite and at most MAX_MAGNITUDE in magnitude, and within `bound`: NONNEGATIVE
+    !> (>= 0), POSITIVE (> 0) or DIVISOR (> 0 and >= MIN_POSITIVE: the energy or the scheme
+    !> divides by it). note, if given, ends every message.
+    subroutine require_real(x, where, bound, note)
         real(dp), intent(in) :: x
         character(len=*), intent(in) :: where
+        integer, intent(in) :: bound
         character(len=*), intent(in), optional :: note
+        character(len=:), allocatable :: must
 
-        if (.not. ieee_is_finite(x)) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
-                                                '; must be a finite real number' // optional_text(note))
-        if (abs(x) > MAX_MAGNITUDE) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
-            '; must be at most ' // format_real(MAX_MAGNITUDE) // ' in magnitude (larger values overflow ' // &
-            'double precision inside the scheme)' // optional_text(note))
-    end subroutine require_finite
-
-    !> x finite, > 0 and at most MAX_MAGNITUDE; with scaled=.true. also >= MIN_POSITIVE (a
-    !> coefficient the scheme divides by).
-    subroutine require_positive(x, where, note, scaled)
-        real(dp), intent(in) :: x
-        character(len=*), intent(in) :: where
-        character(len=*), intent(in), optional :: note
-        logical, intent(in), optional :: scaled
-
-        call require_finite(x, where, note)
-        if (.not. x > 0.0_dp) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be > 0' // &
-                                         optional_text(note))
-        if (present(scaled)) then
-            if (scaled .and. x < MIN_POSITIVE) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // &
-                '; must be >= ' // format_real(MIN_POSITIVE) // ' (the energy or the scheme divides by it; smaller ' // &
-                'values can make the fields overflow double precision)' // optional_text(note))
+        if (.not. ieee_is_finite(x)) then
+            must = 'a finite real number'
+        else if (abs(x) > MAX_MAGNITUDE) then
+            must = 'at most ' // format_real(MAX_MAGNITUDE) // &
+                   ' in magnitude (larger values overflow double precision inside the scheme)'
+        else if (bound == NONNEGATIVE .and. .not. x >= 0.0_dp) then
+            must = '>= 0'
+        else if (bound /= NONNEGATIVE .and. .not. x > 0.0_dp) then
+            must = '> 0'
+        else if (bound == DIVISOR .and. x < MIN_POSITIVE) then
+            must = '>= ' // format_real(MIN_POSITIVE) // ' (the energy or the scheme divides by it; ' // &
+                   'smaller values can make the fields overflow double precision)'
+        else
+            return
         end if
-    end subroutine require_positive
-
-    subroutine require_nonnegative(x, where, note)
-        real(dp), intent(in) :: x
-        character(len=*), intent(in) :: where
-        character(len=*), intent(in), optional :: note
-
-        call require_finite(x, where, note)
-        if (.not. x >= 0.0_dp) call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be >= 0' // &
-                                          optional_text(note))
-    end subroutine require_nonnegative
+        if (present(note)) must = must // note
+        call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be ' // must)
+    end subroutine require_real
 
     subroutine require_at_least(n, n_min, where)
         integer, intent(in) :: n, n_min
@@ -385,13 +377,8 @@ contains
         integer :: k
 
         do k = 0, ubound(coefficients, 1)
-            if (.not. ieee_is_finite(coefficients(k))) call fatal(EXIT_INPUT, where, 'got ' // &
-                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k) // &
-                '; every coefficient must be a finite real number')
-            if (abs(coefficients(k)) > MAX_MAGNITUDE) call fatal(EXIT_INPUT, where, 'got ' // &
-                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k) // &
-                '; every coefficient must be at most ' // format_real(MAX_MAGNITUDE) // ' in magnitude ' // &
-                '(larger initial data overflow double precision in the energy)')
+            call require_datum(coefficients(k), where, &
+                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
         end do
     end subroutine require_finite_array
 
@@ -400,16 +387,26 @@ contains
         real(dp), intent(in) :: step(2)
         character(len=*), intent(in) :: where
 
-        if (.not. ieee_is_finite(step(1))) call fatal(EXIT_INPUT, where, 'got amplitude ' // format_real(step(1)) // &
-                                                      '; must be a finite real number')
-        if (abs(step(1)) > MAX_MAGNITUDE) call fatal(EXIT_INPUT, where, 'got amplitude ' // format_real(step(1)) // &
-            '; must be at most ' // format_real(MAX_MAGNITUDE) // ' in magnitude ' // &
-            '(larger initial data overflow double precision in the energy)')
+        call require_datum(step(1), where, 'amplitude ' // format_real(step(1)), 'must')
         if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
                                                       '; must be a finite real number')
         if (.not. (step(2) >= 0.0_dp .and. step(2) <= 1.0_dp)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
             format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= 1')
     end subroutine require_step
+
+    !> An initial datum x, given as `what`, finite and at most MAX_MAGNITUDE in magnitude;
+    !> `must`: the subject of the message ('must', 'every coefficient must').
+    subroutine require_datum(x, where, what, must)
+        real(dp), intent(in) :: x
+        character(len=*), intent(in) :: where, what, must
+        character(len=:), allocatable :: bound
+
+        if (ieee_is_finite(x) .and. abs(x) <= MAX_MAGNITUDE) return
+        bound = 'a finite real number'
+        if (ieee_is_finite(x)) bound = 'at most ' // format_real(MAX_MAGNITUDE) // &
+            ' in magnitude (larger initial data overflow double precision in the energy)'
+        call fatal(EXIT_INPUT, where, 'got ' // what // '; ' // must // ' be ' // bound)
+    end subroutine require_datum
 
     !> The initial profile `name` (polynomial plus optional step) must vanish at the
     !> boundary point x of its finite element space; evaluated by the same profile() that
@@ -436,16 +433,6 @@ contains
         call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // format_real(value) // what // &
                    '; must be 0 at x = ' // format_real(x) // ' (boundary condition ' // why // ')')
     end subroutine require_boundary_zero
-
-    ! ---------------------------------------------------------------- formatting
-
-    pure function optional_text(text) result(s)
-        character(len=*), intent(in), optional :: text
-        character(len=:), allocatable :: s
-
-        s = ''
-        if (present(text)) s = text
-    end function optional_text
 
     !> bytes in GiB with one decimal.
     pure function gib_str(bytes) result(s)

@@ -160,16 +160,16 @@ contains
 
         call w%create(prefix, mesh_nodes())
         call check_true('.h5.part exists while writing', file_exists(prefix//'.h5.part'))
-        call w%attr_real('model.rho', 1.2298e-17_dp)
-        call w%attr_int('mesh.n_elements', S)
-        call w%attr_str('solver.method', 'monolithic')
-        call w%attr_logical('output.quiet', .true.)
-        call w%attr_logical('contact.other', .false.)
-        call w%attr_real_array('initial.theta0_poly', [0.0_dp, 40.0_dp, -80.0_dp, 40.0_dp])
-        call w%attr_int('steps', 1)
-        call w%attr_real('wall_seconds', 0.5_dp)
-        call w%attr_str('note', 'a first value that is longer than the second')
-        call w%attr_str('empty', '')
+        call w%attr('model.rho', 1.2298e-17_dp)
+        call w%attr('mesh.n_elements', S)
+        call w%attr('solver.method', 'monolithic')
+        call w%attr('output.quiet', .true.)
+        call w%attr('contact.other', .false.)
+        call w%attr('initial.theta0_poly', [0.0_dp, 40.0_dp, -80.0_dp, 40.0_dp])
+        call w%attr('steps', 1)
+        call w%attr('wall_seconds', 0.5_dp)
+        call w%attr('note', 'a first value that is longer than the second')
+        call w%attr('empty', '')
 
         m = 0
         do i = 0, N_SERIES - 1
@@ -184,9 +184,9 @@ contains
             if (i == FLUSH_AT) call w%flush()
         end do
         ! end-of-run values replace the earlier ones
-        call w%attr_int('steps', N_SERIES - 1)
-        call w%attr_real('wall_seconds', 1.25_dp)
-        call w%attr_str('note', 'short')
+        call w%attr('steps', N_SERIES - 1)
+        call w%attr('wall_seconds', 1.25_dp)
+        call w%attr('note', 'short')
         call w%finish('complete')
 
         call check_true('.h5.part gone after finish', .not. file_exists(prefix//'.h5.part'))
@@ -286,7 +286,7 @@ contains
         do i = 1, SERIES_BUFFER_SIZE + 10
             call w%append_series(series_row([real(i, dp), 0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(i, dp), 0.0_dp, 0.0_dp]))
         end do
-        call w%attr_str('status', 'whatever')
+        call w%attr('status', 'whatever')
         call w%abandon()
         call check_true('abandon removes .h5.part', .not. file_exists(prefix//'.h5.part'))
         call check_true('abandon leaves no .h5', .not. file_exists(prefix//'.h5'))
@@ -305,7 +305,7 @@ contains
         prefix = scratch//'/replaced'
         file = prefix//'.h5'
         call w%create(prefix, mesh_nodes())
-        call w%attr_int('run', 1)
+        call w%attr('run', 1)
         call w%finish('complete')
         call read_real_1d(file, '/series/t', got)
         call check_int_1d('first file: series length (empty)', [0], [size(got)])
@@ -313,7 +313,7 @@ contains
         call check_int_1d('first file: snapshot shape', [S + 1, 0], shape(got_2d))
 
         call w%create(prefix, mesh_nodes())
-        call w%attr_int('run', 2)
+        call w%attr('run', 2)
         call w%append_series(series_row([0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(1, dp), 0.0_dp, 0.0_dp]))
         call w%append_series(series_row([0.1_dp, 2.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(2, dp), 0.0_dp, 0.0_dp]))
         call w%append_series(series_row([0.2_dp, 1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, real(3, dp), 0.0_dp, 0.0_dp]))

@@ -60,15 +60,15 @@ contains
 
         call remove_file(scratch // '/' // name // '.h5')
         call w%create(scratch // '/' // name, [0.0_dp, 0.5_dp, 1.0_dp])
-        call w%attr_real('contact.g', G)
+        call w%attr('contact.g', G)
         do k = 1, size(t)
             pen = max(u_end(k) - G, 0.0_dp)
             call w%append_series([t(k), energy(k), u_end(k), pen, -pen / 0.01_dp, 1.0_dp, 0.0_dp, 0.0_dp, &
                                   [(0.0_dp, j = 9, N_SERIES)]])   ! the energy parts: zero
         end do
         if (with_counters) then
-            call w%attr_int('steps', 120)
-            call w%attr_real('wall_seconds', 1.25_dp)
+            call w%attr('steps', 120)
+            call w%attr('wall_seconds', 1.25_dp)
         end if
         call w%finish(status)
     end subroutine write_file

@@ -8,7 +8,7 @@ module fsys_m
     use iso_c_binding, only: c_char, c_int, c_long_long, c_ptr, c_size_t, c_null_char, c_associated, &
                              c_f_pointer
     use iso_fortran_env, only: int64
-    use strings_m, only: from_c_chars
+    use strings_m, only: from_c_string
     implicit none
     private
     public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
@@ -67,11 +67,6 @@ module fsys_m
             type(c_ptr) :: text
         end function c_strerror
 
-        function c_strlen(text) bind(C, name='strlen') result(n)
-            import :: c_ptr, c_size_t
-            type(c_ptr), value, intent(in) :: text
-            integer(c_size_t) :: n
-        end function c_strlen
 
         function c_errno_location() bind(C, name='__errno_location') result(p)
             import :: c_ptr
@@ -296,18 +291,7 @@ contains
         integer, intent(in) :: err
         character(len=:), allocatable :: text
 
-        type(c_ptr) :: cp
-        character(kind=c_char), pointer :: chars(:)
-        integer :: n
-
-        cp = c_strerror(int(err, c_int))
-        if (c_associated(cp)) then
-            n = int(c_strlen(cp))
-            call c_f_pointer(cp, chars, [n])
-            text = from_c_chars(chars)
-        else
-            text = 'unknown error'
-        end if
+        text = from_c_string(c_strerror(int(err, c_int)), 'unknown error')
     end function strerror
 
 end module fsys_m

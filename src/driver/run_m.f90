@@ -144,10 +144,10 @@ contains
         call record_inputs(run%writer, cfg)
         call record_provenance(run%writer, PROGRAM_VERSION, SOURCE_VERSION)
         if (cfg%material%present) call record_scales(run%writer, cfg)
-        if (.not. cfg%time%adaptive) call run%writer%attr_int('steps_planned', run%n_steps)
+        if (.not. cfg%time%adaptive) call run%writer%attr('steps_planned', run%n_steps)
         if (cfg%time%restart_from /= '') then
             call copy_history(run%writer, trim(cfg%time%restart_from), run%state%t)
-            call run%writer%attr_int('restart_step', run%state%step)
+            call run%writer%attr('restart_step', run%state%step)
         else
             call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, initial=.true.)
             call snapshot(run, cfg)

@@ -8,11 +8,11 @@
 !> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) comes back as
 !> values(s+1, n_snap), i.e. values(:, k) is snapshot k.
 module h5_read_m
-    use iso_c_binding, only: c_ptr, c_char, c_int, c_size_t, c_loc, c_f_pointer, c_associated
+    use iso_c_binding, only: c_ptr, c_char, c_int, c_loc, c_associated
     use kinds_m, only: dp
     use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists
-    use strings_m, only: from_c_chars
+    use strings_m, only: from_c_chars, from_c_string
     use h5_swmr_m, only: open_swmr_read
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
@@ -40,11 +40,6 @@ module h5_read_m
             integer(c_int) :: rc
         end function c_h5free_memory
 
-        function c_strlen(text) bind(C, name='strlen') result(n)
-            import :: c_ptr, c_size_t
-            type(c_ptr), value, intent(in) :: text
-            integer(c_size_t) :: n
-        end function c_strlen
     end interface
 
 contains
@@ -72,69 +67,57 @@ contains
 
     !> Whole 1D float dataset `dset` (e.g. '/series/t') of `file`.
     subroutine read_real_1d(file, dset, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
+        character(len=*), intent(in) :: file, dset
         real(dp), allocatable, intent(out) :: values(:)
-
-        integer(hid_t) :: file_id, dset_id
         integer(hsize_t) :: dims(1)
-        integer :: hdferr
-        integer :: stat
-        character(len=256) :: message
 
-        call open_dataset(file, dset, 1, file_id, dset_id, dims)
-        allocate (values(dims(1)), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
-        if (dims(1) > 0) then
-            call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
-            if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
-        end if
-        call close_dataset(file, dset, file_id, dset_id)
+        call read_flat(file, dset, values, dims)
     end subroutine read_real_1d
 
     !> Whole 2D float dataset: values(s+1, n_snap) for what h5py shows as (n_snap, s+1).
     subroutine read_real_2d(file, dset, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
+        character(len=*), intent(in) :: file, dset
         real(dp), allocatable, intent(out) :: values(:, :)
-
-        integer(hid_t) :: file_id, dset_id
+        real(dp), allocatable :: flat(:)
         integer(hsize_t) :: dims(2)
-        integer :: hdferr
-        integer :: stat
+
+        call read_flat(file, dset, flat, dims)
+        values = reshape(flat, dims)
+    end subroutine read_real_2d
+
+    !> Whole 1D integer dataset (e.g. '/series/iterations'), converted to default integer
+    !> (read as float64, which holds every int32 exactly).
+    subroutine read_int_1d(file, dset, values)
+        character(len=*), intent(in) :: file, dset
+        integer, allocatable, intent(out) :: values(:)
+        real(dp), allocatable :: flat(:)
+        integer(hsize_t) :: dims(1)
+
+        call read_flat(file, dset, flat, dims)
+        values = nint(flat)
+    end subroutine read_int_1d
+
+    !> Whole dataset `dset` of rank size(dims) as float64 (HDF5 converts the stored type),
+    !> its elements in Fortran order; dims its Fortran shape.
+    subroutine read_flat(file, dset, values, dims)
+        character(len=*), intent(in) :: file, dset
+        real(dp), allocatable, intent(out) :: values(:)
+        integer(hsize_t), intent(out) :: dims(:)
+        integer(hid_t) :: file_id, dset_id
+        integer :: hdferr, stat
         character(len=256) :: message
 
-        call open_dataset(file, dset, 2, file_id, dset_id, dims)
-        allocate (values(dims(1), dims(2)), stat=stat, errmsg=message)
+        call open_dataset(file, dset, size(dims), file_id, dset_id, dims)
+        allocate (values(product(dims)), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         if (size(values) > 0) then
             call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
             if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
         end if
-        call close_dataset(file, dset, file_id, dset_id)
-    end subroutine read_real_2d
-
-    !> Whole 1D integer dataset (e.g. '/series/iterations'), converted to default integer.
-    subroutine read_int_1d(file, dset, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
-        integer, allocatable, intent(out) :: values(:)
-
-        integer(hid_t) :: file_id, dset_id
-        integer(hsize_t) :: dims(1)
-        integer :: hdferr
-        integer :: stat
-        character(len=256) :: message
-
-        call open_dataset(file, dset, 1, file_id, dset_id, dims)
-        allocate (values(dims(1)), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
-        if (dims(1) > 0) then
-            call h5dread_f(dset_id, H5T_NATIVE_INTEGER, values, dims, hdferr)
-            if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
-        end if
-        call close_dataset(file, dset, file_id, dset_id)
-    end subroutine read_int_1d
+        call h5dclose_f(dset_id, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5dclose_f failed')
+        call close_file(file, dset, file_id)
+    end subroutine read_flat
 
     !> True when `file` exists, can be read and is an HDF5 file (h5fis_hdf5_f): the test to
     !> make before any other routine here, which stop with exit 4 on a file they cannot open.
@@ -208,18 +191,17 @@ contains
 
         character(len=:), allocatable :: what
         integer(hid_t) :: file_id, attr_id, file_type, mem_type
+        integer(hsize_t) :: npoints
         integer(size_t) :: type_size
-        integer :: hdferr, type_class, n
-        integer :: stat
+        integer :: hdferr, type_class, stat
         character(len=256) :: message
         logical :: is_variable
         type(c_ptr), target :: vl_ptr(1)
-        type(c_ptr) :: buf_ptr   ! h5aread_f wants a variable, not an expression
+        type(c_ptr) :: buf   ! h5aread_f wants a variable, not an expression
         character(kind=c_char), allocatable, target :: fixed(:)
-        character(kind=c_char), pointer :: chars(:)
 
         what = 'attribute '//name
-        call open_attr(file, name, 1_hsize_t, file_id, attr_id)
+        call open_attr(file, name, 1_hsize_t, file_id, attr_id, npoints)
         call h5aget_type_f(attr_id, file_type, hdferr)
         if (hdferr < 0) call fail(file, what, 'h5aget_type_f failed')
         call h5tget_class_f(file_type, type_class, hdferr)
@@ -233,16 +215,12 @@ contains
         if (hdferr < 0) call fail(file, what, 'h5tcopy_f failed')
 
         if (is_variable) then
-            buf_ptr = c_loc(vl_ptr)
-            call h5aread_f(attr_id, mem_type, buf_ptr, hdferr)
+            buf = c_loc(vl_ptr)
+            call h5aread_f(attr_id, mem_type, buf, hdferr)
             if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
+            value = from_c_string(vl_ptr(1), '')
             if (c_associated(vl_ptr(1))) then
-                n = int(c_strlen(vl_ptr(1)))
-                call c_f_pointer(vl_ptr(1), chars, [n])
-                value = from_c_chars(chars)
                 if (c_h5free_memory(vl_ptr(1)) < 0) call fail(file, what, 'H5free_memory failed')
-            else
-                value = ''
             end if
         else
             call h5tget_size_f(file_type, type_size, hdferr)
@@ -250,8 +228,8 @@ contains
             allocate (fixed(max(1_size_t, type_size)), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
             fixed = c_char_' '
-            buf_ptr = c_loc(fixed)
-            call h5aread_f(attr_id, mem_type, buf_ptr, hdferr)
+            buf = c_loc(fixed)
+            call h5aread_f(attr_id, mem_type, buf, hdferr)
             if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
             ! null-terminated, null-padded or space-padded: stop at the first NUL, drop
             ! trailing blanks
@@ -267,66 +245,52 @@ contains
 
     !> Scalar float root attribute `name`.
     subroutine read_attr_real(file, name, value)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: file, name
         real(dp), intent(out) :: value
+        real(dp), allocatable :: values(:)
 
-        integer(hid_t) :: file_id, attr_id
-        integer(hsize_t) :: dims(1)
-        integer :: hdferr
-
-        call open_attr(file, name, 1_hsize_t, file_id, attr_id)
-        dims = 1
-        call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, value, dims, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
-        call close_attr(file, name, file_id, attr_id)
+        call read_attr_values(file, name, 1_hsize_t, values)
+        value = values(1)
     end subroutine read_attr_real
 
-    !> Scalar integer root attribute `name` (also the 0/1 of a logical attribute).
+    !> Scalar integer root attribute `name` (also the 0/1 of a logical attribute), read as
+    !> float64, which holds every int32 exactly.
     subroutine read_attr_int(file, name, value)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: file, name
         integer, intent(out) :: value
+        real(dp), allocatable :: values(:)
 
-        integer(hid_t) :: file_id, attr_id
-        integer(hsize_t) :: dims(1)
-        integer :: hdferr
-
-        call open_attr(file, name, 1_hsize_t, file_id, attr_id)
-        dims = 1
-        call h5aread_f(attr_id, H5T_NATIVE_INTEGER, value, dims, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
-        call close_attr(file, name, file_id, attr_id)
+        call read_attr_values(file, name, 1_hsize_t, values)
+        value = nint(values(1))
     end subroutine read_attr_int
 
     !> Float-array root attribute `name` (any number of elements).
     subroutine read_attr_real_1d(file, name, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: file, name
         real(dp), allocatable, intent(out) :: values(:)
 
-        integer(hid_t) :: file_id, attr_id, space_id
-        integer(hsize_t) :: dims(1), npoints
-        integer :: hdferr
-        integer :: stat
+        call read_attr_values(file, name, -1_hsize_t, values)
+    end subroutine read_attr_real_1d
+
+    !> Root attribute `name` as float64 values; npoints_wanted >= 0: it must have that many.
+    subroutine read_attr_values(file, name, npoints_wanted, values)
+        character(len=*), intent(in) :: file, name
+        integer(hsize_t), intent(in) :: npoints_wanted
+        real(dp), allocatable, intent(out) :: values(:)
+        integer(hid_t) :: file_id, attr_id
+        integer(hsize_t) :: npoints
+        integer :: hdferr, stat
         character(len=256) :: message
 
-        call open_attr(file, name, -1_hsize_t, file_id, attr_id)
-        call h5aget_space_f(attr_id, space_id, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aget_space_f failed')
-        call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sget_simple_extent_npoints_f failed')
-        call h5sclose_f(space_id, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sclose_f failed')
+        call open_attr(file, name, npoints_wanted, file_id, attr_id, npoints)
         allocate (values(npoints), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         if (npoints > 0) then
-            dims = npoints
-            call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
+            call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, [npoints], hdferr)
             if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
         end if
         call close_attr(file, name, file_id, attr_id)
-    end subroutine read_attr_real_1d
+    end subroutine read_attr_values
 
     ! ---------------------------------------------------------------- private helpers
 
@@ -402,29 +366,14 @@ contains
         if (hdferr < 0) call fail(file, dset, 'h5sclose_f failed')
     end subroutine open_dataset
 
-    subroutine close_dataset(file, dset, file_id, dset_id)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
-        integer(hid_t), intent(in) :: file_id
-        integer(hid_t), intent(in) :: dset_id
-
-        integer :: hdferr
-
-        call h5dclose_f(dset_id, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'h5dclose_f failed')
-        call close_file(file, dset, file_id)
-    end subroutine close_dataset
-
-    !> Open `file` and root attribute `name`; when npoints_wanted >= 0 check its size.
-    subroutine open_attr(file, name, npoints_wanted, file_id, attr_id)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: name
+    !> Open `file` and root attribute `name`, with its number of elements; when
+    !> npoints_wanted >= 0 it must be that.
+    subroutine open_attr(file, name, npoints_wanted, file_id, attr_id, npoints)
+        character(len=*), intent(in) :: file, name
         integer(hsize_t), intent(in) :: npoints_wanted
-        integer(hid_t), intent(out) :: file_id
-        integer(hid_t), intent(out) :: attr_id
-
+        integer(hid_t), intent(out) :: file_id, attr_id
+        integer(hsize_t), intent(out) :: npoints
         integer(hid_t) :: space_id
-        integer(hsize_t) :: npoints
         integer :: hdferr
         logical :: exists
         character(len=:), allocatable :: what
@@ -436,15 +385,13 @@ contains
         if (.not. exists) call fail(file, what, 'no such root attribute')
         call h5aopen_f(file_id, name, attr_id, hdferr)
         if (hdferr < 0) call fail(file, what, 'h5aopen_f failed')
-        if (npoints_wanted >= 0) then
-            call h5aget_space_f(attr_id, space_id, hdferr)
-            if (hdferr < 0) call fail(file, what, 'h5aget_space_f failed')
-            call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
-            if (hdferr < 0) call fail(file, what, 'h5sget_simple_extent_npoints_f failed')
-            call h5sclose_f(space_id, hdferr)
-            if (hdferr < 0) call fail(file, what, 'h5sclose_f failed')
-            if (npoints /= npoints_wanted) call fail(file, what, 'attribute is not a scalar')
-        end if
+        call h5aget_space_f(attr_id, space_id, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5aget_space_f failed')
+        call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5sget_simple_extent_npoints_f failed')
+        call h5sclose_f(space_id, hdferr)
+        if (hdferr < 0) call fail(file, what, 'h5sclose_f failed')
+        if (npoints_wanted >= 0 .and. npoints /= npoints_wanted) call fail(file, what, 'attribute is not a scalar')
     end subroutine open_attr
 
     subroutine close_attr(file, name, file_id, attr_id)

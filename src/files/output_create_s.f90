@@ -69,7 +69,7 @@ contains
         call create_datasets(w, x)
         allocate (w%buf(SERIES_BUFFER_SIZE, N_SERIES), stat=hdferr)
         if (hdferr /= 0) call w%fail('cannot allocate the series buffer')
-        call w%attr_str('status', 'incomplete')
+        call w%attr('status', 'incomplete')
         w%creating = .false.
     end subroutine writer_create
 

@@ -26,8 +26,8 @@ contains
         character(len=*), intent(in) :: what, long_name, units
 
         if (dset_id < 0) call w%fail('internal error: no dataset '//what)
-        call w%attr_str('long_name', trim(long_name), on=dset_id)
-        call w%attr_str('units', trim(units), on=dset_id)
+        call w%attr('long_name', trim(long_name), on=dset_id)
+        call w%attr('units', trim(units), on=dset_id)
     end subroutine writer_describe
 
     !> Attributes si_factor and si_units on every dataset whose quantity has fields_m's
@@ -45,21 +45,21 @@ contains
         w%si_units(w%n_si) = si_units
         do k = 1, N_SERIES
             if (SERIES(k)%scale /= scale) cycle
-            call w%attr_real('si_factor', factor, on=w%series_ids(k))
-            call w%attr_str('si_units', si_units, on=w%series_ids(k))
+            call w%attr('si_factor', factor, on=w%series_ids(k))
+            call w%attr('si_units', si_units, on=w%series_ids(k))
         end do
         if (SERIES(S_T)%scale == scale) then
-            call w%attr_real('si_factor', factor, on=w%snap_t_id)
-            call w%attr_str('si_units', si_units, on=w%snap_t_id)
+            call w%attr('si_factor', factor, on=w%snap_t_id)
+            call w%attr('si_units', si_units, on=w%snap_t_id)
         end if
         do k = 1, N_SNAPSHOT_FIELDS
             if (SNAPSHOTS(k)%scale /= scale) cycle
-            call w%attr_real('si_factor', factor, on=w%snap_field_ids(k))
-            call w%attr_str('si_units', si_units, on=w%snap_field_ids(k))
+            call w%attr('si_factor', factor, on=w%snap_field_ids(k))
+            call w%attr('si_units', si_units, on=w%snap_field_ids(k))
         end do
         if (scale == 'position') then
-            call w%attr_real('si_factor', factor, on=w%mesh_x_id)
-            call w%attr_str('si_units', si_units, on=w%mesh_x_id)
+            call w%attr('si_factor', factor, on=w%mesh_x_id)
+            call w%attr('si_units', si_units, on=w%mesh_x_id)
         end if
     end subroutine writer_describe_si
 
@@ -99,8 +99,8 @@ contains
 
         do k = 1, w%n_si
             if (w%si_names(k) /= scale) cycle
-            call w%attr_real('si_factor', w%si_factors(k), on=dset_id)
-            call w%attr_str('si_units', trim(w%si_units(k)), on=dset_id)
+            call w%attr('si_factor', w%si_factors(k), on=dset_id)
+            call w%attr('si_units', trim(w%si_units(k)), on=dset_id)
         end do
     end subroutine writer_describe_si_of
 

@@ -137,8 +137,8 @@ contains
         w%closing = .true.
         call tidy(w)
         call w%flush_series()
-        call w%attr_str('status', status)
-        call w%attr_str('logical_attributes', w%logical_names)
+        call w%attr('status', status)
+        call w%attr('logical_attributes', w%logical_names)
         call w%flush()   ! with its space reserved; closing then writes nothing new
 
         call h5dclose_f(w%mesh_x_id, hdferr)

@@ -25,7 +25,7 @@ module output_m
                       write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
     use fields_m, only: FIELDS, OUTPUT_ORDER, SNAPSHOTS, N_SNAPSHOT_FIELDS, N_OUTPUT_FIELDS, SERIES, N_SERIES, S_T
-    use h5_attr_m, only: put_attr_real, put_attr_int, put_attr_str, put_attr_real_array
+    use h5_attr_m, only: put_attr
     use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
                     h5pset_cache_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
@@ -53,7 +53,7 @@ module output_m
     integer, parameter :: MAX_SI_SCALES = 16
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
-    !> append_snapshot / attr_* / flush, then finish (or abandon on an output failure).
+    !> append_snapshot / attr / flush, then finish (or abandon on an output failure).
     type :: h5_writer_t
         private
         logical :: opened = .false.
@@ -100,11 +100,9 @@ module output_m
         procedure :: append_snapshot => writer_append_snapshot
         procedure :: append_native => writer_append_native
         procedure :: append_estimate => writer_append_estimate
-        procedure :: attr_real => writer_attr_real
-        procedure :: attr_int => writer_attr_int
-        procedure :: attr_str => writer_attr_str
-        procedure :: attr_logical => writer_attr_logical
-        procedure :: attr_real_array => writer_attr_real_array
+        procedure, private :: attr_scalar => writer_attr_scalar
+        procedure, private :: attr_array => writer_attr_array
+        generic :: attr => attr_scalar, attr_array
         procedure :: describe_si => writer_describe_si
         procedure :: flush => writer_flush
         procedure :: write_checkpoint => writer_write_checkpoint
@@ -316,66 +314,42 @@ contains
         w%n_snap = w%n_snap + 1
     end subroutine writer_append_snapshot
 
-    !> Scalar float64 attribute of the root group (or of dataset `on`); replaced if present.
-    subroutine writer_attr_real(w, name, value, on)
+    !> Scalar attribute of the root group (or of dataset `on`), replaced if present: float64,
+    !> int32, a variable-length UTF-8 string (h5py: str), or a logical, stored as int32 1
+    !> (.true.) / 0 (.false.): numeric, so scripts can test it directly (`if
+    !> f.attrs['output.quiet']:`), unlike 'false' strings, which are true in Python. What
+    !> makes it unambiguous: finish() lists every logical attribute in the root attribute
+    !> `logical_attributes` (docs/output.md).
+    subroutine writer_attr_scalar(w, name, value, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
-        real(dp), intent(in) :: value
-        integer(hid_t), intent(in), optional :: on
-        character(len=:), allocatable :: failed
-
-        call put_attr_real(w%attr_target(name, on), name, value, failed)
-        if (failed /= '') call w%fail(failed//' failed')
-    end subroutine writer_attr_real
-
-    !> Scalar int32 root attribute; replaced if present.
-    subroutine writer_attr_int(w, name, value)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        integer, intent(in) :: value
-        character(len=:), allocatable :: failed
-
-        call put_attr_int(w%attr_target(name), name, value, failed)
-        if (failed /= '') call w%fail(failed//' failed')
-    end subroutine writer_attr_int
-
-    !> Logical root attribute, stored as int32 1 (.true.) / 0 (.false.): numeric, so
-    !> scripts can test it directly (`if f.attrs['output.quiet']:`), unlike 'false' strings,
-    !> which are true in Python. What makes it unambiguous: finish() lists every logical
-    !> attribute in the root attribute `logical_attributes` (docs/output.md).
-    subroutine writer_attr_logical(w, name, value)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        logical, intent(in) :: value
-
-        call w%attr_int(name, merge(1, 0, value))
-        if (index(' '//w%logical_names//' ', ' '//name//' ') == 0) w%logical_names = trim(adjustl(w%logical_names//' '//name))
-    end subroutine writer_attr_logical
-
-    !> Float64 array root attribute (e.g. polynomial coefficients); replaced if present.
-    !> An empty array is stored with a null dataspace (h5py: h5py.Empty).
-    subroutine writer_attr_real_array(w, name, values)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        real(dp), intent(in) :: values(:)
-        character(len=:), allocatable :: failed
-
-        call put_attr_real_array(w%attr_target(name), name, values, failed)
-        if (failed /= '') call w%fail(failed//' failed')
-    end subroutine writer_attr_real_array
-
-    !> String attribute of the root group (or of dataset `on`), a variable-length UTF-8
-    !> string (h5py: str); replaced if present.
-    subroutine writer_attr_str(w, name, value, on)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        character(len=*), intent(in) :: value
+        class(*), intent(in) :: value
         integer(hid_t), intent(in), optional :: on   !< a dataset (default: the root group)
         character(len=:), allocatable :: failed
 
-        call put_attr_str(w%attr_target(name, on), name, value, failed)
+        select type (value)
+        type is (logical)
+            call put_attr(w%attr_target(name, on), name, merge(1, 0, value), failed)
+            if (index(' '//w%logical_names//' ', ' '//name//' ') == 0) &
+                w%logical_names = trim(adjustl(w%logical_names//' '//name))
+        class default
+            call put_attr(w%attr_target(name, on), name, value, failed)
+        end select
         if (failed /= '') call w%fail(failed//' failed')
-    end subroutine writer_attr_str
+    end subroutine writer_attr_scalar
+
+    !> Float64 array attribute (e.g. polynomial coefficients); replaced if present. An empty
+    !> array is stored with a null dataspace (h5py: h5py.Empty).
+    subroutine writer_attr_array(w, name, values, on)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: values(:)
+        integer(hid_t), intent(in), optional :: on
+        character(len=:), allocatable :: failed
+
+        call put_attr(w%attr_target(name, on), name, values, failed)
+        if (failed /= '') call w%fail(failed//' failed')
+    end subroutine writer_attr_array
 
     !> The object an attribute goes on: dataset `on`, else the root group.
     function writer_attr_target(w, name, on) result(obj_id)

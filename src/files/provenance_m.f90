@@ -37,13 +37,13 @@ contains
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: program_version, source_version
 
-        call writer%attr_str('version', program_version)
-        call writer%attr_str('created', utc_now())
-        call writer%attr_str('source_version', source_version)
-        call writer%attr_str('host', host_name())
-        call writer%attr_str('command_line', command_line())
-        call writer%attr_str('hdf5_version', hdf5_version())
-        call writer%attr_str('compiler_version', fortran_compiler())
+        call writer%attr('version', program_version)
+        call writer%attr('created', utc_now())
+        call writer%attr('source_version', source_version)
+        call writer%attr('host', host_name())
+        call writer%attr('command_line', command_line())
+        call writer%attr('hdf5_version', hdf5_version())
+        call writer%attr('compiler_version', fortran_compiler())
     end subroutine record_provenance
 
     !> The current time in UTC, ISO 8601: '2026-11-23T07:30:00Z' ('unknown' if the clock fails).

@@ -45,15 +45,15 @@ contains
             associate (item => items(k))
                 select case (item%kind)
                 case (KIND_REAL)
-                    call writer%attr_real(item%name, item%reals(1))
+                    call writer%attr(item%name, item%reals(1))
                 case (KIND_INTEGER)
-                    call writer%attr_int(item%name, item%int)
+                    call writer%attr(item%name, item%int)
                 case (KIND_STRING)
-                    call writer%attr_str(item%name, item%text)
+                    call writer%attr(item%name, item%text)
                 case (KIND_LOGICAL)
-                    call writer%attr_logical(item%name, item%flag)
+                    call writer%attr(item%name, item%flag)
                 case default   ! polynomial coefficients, (amplitude, x_end)
-                    call writer%attr_real_array(item%name, item%reals)
+                    call writer%attr(item%name, item%reals)
                 end select
             end associate
         end do
@@ -70,20 +70,20 @@ contains
         integer :: k
 
         nd = nondim_groups(cfg%material)
-        call writer%attr_real('derived.beta1', nd%beta1)
-        call writer%attr_real('derived.beta2', nd%beta2)
-        call writer%attr_real('derived.omega', nd%omega)
-        call writer%attr_real('derived.delta', nd%delta)
-        call writer%attr_real('derived.varsigma', nd%varsigma)
-        call writer%attr_real('derived.zeta', nd%zeta)
-        call writer%attr_real('derived.a_check', nd%a_check)
-        call writer%attr_real('derived.alpha1', nd%alpha1)
-        call writer%attr_real('derived.alpha2', nd%alpha2)
-        call writer%attr_real('derived.alpha3', nd%alpha3)
+        call writer%attr('derived.beta1', nd%beta1)
+        call writer%attr('derived.beta2', nd%beta2)
+        call writer%attr('derived.omega', nd%omega)
+        call writer%attr('derived.delta', nd%delta)
+        call writer%attr('derived.varsigma', nd%varsigma)
+        call writer%attr('derived.zeta', nd%zeta)
+        call writer%attr('derived.a_check', nd%a_check)
+        call writer%attr('derived.alpha1', nd%alpha1)
+        call writer%attr('derived.alpha2', nd%alpha2)
+        call writer%attr('derived.alpha3', nd%alpha3)
         scales = si_scales(cfg%material)
         do k = 1, size(scales)
-            call writer%attr_real('scale.'//trim(scales(k)%name), scales(k)%factor)
-            call writer%attr_str('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
+            call writer%attr('scale.'//trim(scales(k)%name), scales(k)%factor)
+            call writer%attr('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
             call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
         end do
         ! the counts (fields_m's scale ''): SI factor 1, so that every dataset converts
@@ -111,24 +111,24 @@ contains
 
         events = driver%events_log()
         call writer%write_events(events%times(), events%kinds())
-        call writer%attr_int('steps', state%step)
-        call writer%attr_real('t_final', state%t)
-        call writer%attr_real('wall_seconds', wall_seconds)
+        call writer%attr('steps', state%step)
+        call writer%attr('t_final', state%t)
+        call writer%attr('wall_seconds', wall_seconds)
         call monitor%rises(max_rise, max_rise_step_change)
-        call writer%attr_real('energy_max_relative_rise', max_rise)
+        call writer%attr('energy_max_relative_rise', max_rise)
         scheme_law = stepper%scheme%energy_law()
         if (scheme_law%constant_steps .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
-            call writer%attr_real('energy_max_relative_rise_step_change', max_rise_step_change)
-        call writer%attr_str('energy_law', trim(scheme_law%text))
-        call writer%attr_int('solver.linear_solves', int(stepper%n_solves))
-        call writer%attr_int('solver.contact_steps', int(stepper%n_contact_steps))
-        call writer%attr_logical('solver.block_solver', stepper%uses_block_solver())
+            call writer%attr('energy_max_relative_rise_step_change', max_rise_step_change)
+        call writer%attr('energy_law', trim(scheme_law%text))
+        call writer%attr('solver.linear_solves', int(stepper%n_solves))
+        call writer%attr('solver.contact_steps', int(stepper%n_contact_steps))
+        call writer%attr('solver.block_solver', stepper%uses_block_solver())
         if (cfg%time%adaptive) call record_step_control(writer, driver%controller())
         call record_error_estimate(writer, companions)
         if (cfg%mesh%adaptive) then
-            call writer%attr_int('mesh.remeshes', state%mesh%n_remeshes())
-            call writer%attr_int('mesh.n_elements_max', n_elements_max)
-            call writer%attr_real('energy_max_relative_rise_remesh', state%mesh%max_rise_remesh())
+            call writer%attr('mesh.remeshes', state%mesh%n_remeshes())
+            call writer%attr('mesh.n_elements_max', n_elements_max)
+            call writer%attr('energy_max_relative_rise_remesh', state%mesh%max_rise_remesh())
         end if
     end subroutine record_results
 
@@ -143,11 +143,11 @@ contains
         integer :: n_estimated, n_rejected, n_forced
 
         call control%counts(error_sum, scale, n_estimated, n_rejected, n_forced)
-        call writer%attr_real('step_control_error_sum', error_sum)
-        call writer%attr_real('step_control_error_sum_relative', error_sum / max(scale, tiny(1.0_dp)))
-        call writer%attr_int('time_steps_estimated', n_estimated)
-        call writer%attr_int('time_steps_rejected', n_rejected)
-        call writer%attr_int('time_steps_at_dt_min', n_forced)
+        call writer%attr('step_control_error_sum', error_sum)
+        call writer%attr('step_control_error_sum_relative', error_sum / max(scale, tiny(1.0_dp)))
+        call writer%attr('time_steps_estimated', n_estimated)
+        call writer%attr('time_steps_rejected', n_rejected)
+        call writer%attr('time_steps_at_dt_min', n_forced)
     end subroutine record_step_control
 
     !> The run's error estimate (root attributes): without &output error_estimate, the
@@ -162,15 +162,15 @@ contains
         integer :: k, part
 
         if (.not. companions%on) then
-            call writer%attr_str('error_estimate', ERROR_ESTIMATE_NONE)
+            call writer%attr('error_estimate', ERROR_ESTIMATE_NONE)
             return
         end if
-        call writer%attr_str('error_estimate', 'companion solutions at (2 dt, 2 h), (4 dt, 4 h), (8 dt, 4 h); '// &
+        call writer%attr('error_estimate', 'companion solutions at (2 dt, 2 h), (4 dt, 4 h), (8 dt, 4 h); '// &
                              'Richardson with observed orders (docs/scheme.md)')
-        if (companions%failure /= '') call writer%attr_str('error_estimate_failure', trim(companions%failure))
+        if (companions%failure /= '') call writer%attr('error_estimate_failure', trim(companions%failure))
         do part = 1, N_ESTIMATE_PARTS
             do k = 1, N_OUTPUT_FIELDS
-                call writer%attr_real(trim(PART_NAMES(part))//'.'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
+                call writer%attr(trim(PART_NAMES(part))//'.'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
                                       companions%last(k, part))
             end do
         end do

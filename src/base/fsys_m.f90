@@ -8,11 +8,11 @@ module fsys_m
     use iso_c_binding, only: c_char, c_int, c_long_long, c_ptr, c_size_t, c_null_char, c_associated, &
                              c_f_pointer
     use iso_fortran_env, only: int64
-    use strings_m, only: from_c_string
+    use strings_m, only: from_c_chars
     implicit none
     private
     public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
-              parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size
+              parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size, from_c_string
 
     integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
     integer(c_int), parameter :: MODE_0755 = 493_c_int   !< octal 0755 = rwxr-xr-x
@@ -67,6 +67,11 @@ module fsys_m
             type(c_ptr) :: text
         end function c_strerror
 
+        function c_strlen(text) bind(C, name='strlen') result(n)
+            import :: c_ptr, c_size_t
+            type(c_ptr), value, intent(in) :: text
+            integer(c_size_t) :: n
+        end function c_strlen
 
         function c_errno_location() bind(C, name='__errno_location') result(p)
             import :: c_ptr
@@ -293,5 +298,18 @@ contains
 
         text = from_c_string(c_strerror(int(err, c_int)), 'unknown error')
     end function strerror
+
+    !> The NUL-terminated C string at `text` as a Fortran string (`null` for a null pointer).
+    function from_c_string(text, null) result(string)
+        type(c_ptr), intent(in) :: text
+        character(len=*), intent(in) :: null
+        character(len=:), allocatable :: string
+        character(kind=c_char), pointer :: chars(:)
+
+        string = null
+        if (.not. c_associated(text)) return
+        call c_f_pointer(text, chars, [c_strlen(text)])
+        string = from_c_chars(chars)
+    end function from_c_string
 
 end module fsys_m

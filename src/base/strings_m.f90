@@ -2,21 +2,13 @@
 !> blanks, quoting, Fortran names, and plain forms of numbers for messages.
 module strings_m
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
-    use, intrinsic :: iso_c_binding, only: c_char, c_null_char, c_ptr, c_size_t, c_associated, c_f_pointer
+    use, intrinsic :: iso_c_binding, only: c_char, c_null_char
     use kinds_m, only: dp
     implicit none
     private
     public :: lower, keyword, squeeze, excerpt, quoted, quoted_string, doubled_quotes
     public :: identifier_at, is_name_char
-    public :: int_str, format_real, from_c_chars, from_c_string
-
-    interface
-        function c_strlen(text) bind(C, name='strlen') result(n)
-            import :: c_ptr, c_size_t
-            type(c_ptr), value, intent(in) :: text
-            integer(c_size_t) :: n
-        end function c_strlen
-    end interface
+    public :: int_str, format_real, from_c_chars
 
 contains
 
@@ -195,18 +187,5 @@ contains
             text(k:k) = chars(k)
         end do
     end function from_c_chars
-
-    !> The NUL-terminated C string at `text` as a Fortran string (`null` for a null pointer).
-    function from_c_string(text, null) result(string)
-        type(c_ptr), intent(in) :: text
-        character(len=*), intent(in) :: null
-        character(len=:), allocatable :: string
-        character(kind=c_char), pointer :: chars(:)
-
-        string = null
-        if (.not. c_associated(text)) return
-        call c_f_pointer(text, chars, [c_strlen(text)])
-        string = from_c_chars(chars)
-    end function from_c_string
 
 end module strings_m

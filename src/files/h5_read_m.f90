@@ -11,9 +11,9 @@ module h5_read_m
     use iso_c_binding, only: c_ptr, c_char, c_int, c_loc, c_associated
     use kinds_m, only: dp
     use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
-    use fsys_m, only: file_exists
-    use strings_m, only: from_c_chars, from_c_string
-    use h5_swmr_m, only: open_swmr_read
+    use fsys_m, only: file_exists, from_c_string
+    use strings_m, only: from_c_chars
+    use h5_swmr_m, only: open_swmr_read, h5_free
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
                     h5sclose_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
@@ -31,16 +31,6 @@ module h5_read_m
 
     !> The HDF5 library is started once per process; this flag is the only module state.
     logical, save :: library_open = .false.
-
-    interface
-        ! frees the strings HDF5 allocated when reading a variable-length string
-        function c_h5free_memory(mem) bind(C, name='H5free_memory') result(rc)
-            import :: c_ptr, c_int
-            type(c_ptr), value, intent(in) :: mem
-            integer(c_int) :: rc
-        end function c_h5free_memory
-
-    end interface
 
 contains
 
@@ -67,7 +57,8 @@ contains
 
     !> Whole 1D float dataset `dset` (e.g. '/series/t') of `file`.
     subroutine read_real_1d(file, dset, values)
-        character(len=*), intent(in) :: file, dset
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
         real(dp), allocatable, intent(out) :: values(:)
         integer(hsize_t) :: dims(1)
 
@@ -76,7 +67,8 @@ contains
 
     !> Whole 2D float dataset: values(s+1, n_snap) for what h5py shows as (n_snap, s+1).
     subroutine read_real_2d(file, dset, values)
-        character(len=*), intent(in) :: file, dset
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
         real(dp), allocatable, intent(out) :: values(:, :)
         real(dp), allocatable :: flat(:)
         integer(hsize_t) :: dims(2)
@@ -88,7 +80,8 @@ contains
     !> Whole 1D integer dataset (e.g. '/series/iterations'), converted to default integer
     !> (read as float64, which holds every int32 exactly).
     subroutine read_int_1d(file, dset, values)
-        character(len=*), intent(in) :: file, dset
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
         integer, allocatable, intent(out) :: values(:)
         real(dp), allocatable :: flat(:)
         integer(hsize_t) :: dims(1)
@@ -100,7 +93,8 @@ contains
     !> Whole dataset `dset` of rank size(dims) as float64 (HDF5 converts the stored type),
     !> its elements in Fortran order; dims its Fortran shape.
     subroutine read_flat(file, dset, values, dims)
-        character(len=*), intent(in) :: file, dset
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
         real(dp), allocatable, intent(out) :: values(:)
         integer(hsize_t), intent(out) :: dims(:)
         integer(hid_t) :: file_id, dset_id
@@ -219,9 +213,7 @@ contains
             call h5aread_f(attr_id, mem_type, buf, hdferr)
             if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
             value = from_c_string(vl_ptr(1), '')
-            if (c_associated(vl_ptr(1))) then
-                if (c_h5free_memory(vl_ptr(1)) < 0) call fail(file, what, 'H5free_memory failed')
-            end if
+            if (.not. h5_free(vl_ptr(1))) call fail(file, what, 'H5free_memory failed')
         else
             call h5tget_size_f(file_type, type_size, hdferr)
             if (hdferr < 0) call fail(file, what, 'h5tget_size_f failed')
@@ -245,7 +237,8 @@ contains
 
     !> Scalar float root attribute `name`.
     subroutine read_attr_real(file, name, value)
-        character(len=*), intent(in) :: file, name
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
         real(dp), intent(out) :: value
         real(dp), allocatable :: values(:)
 
@@ -256,7 +249,8 @@ contains
     !> Scalar integer root attribute `name` (also the 0/1 of a logical attribute), read as
     !> float64, which holds every int32 exactly.
     subroutine read_attr_int(file, name, value)
-        character(len=*), intent(in) :: file, name
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
         integer, intent(out) :: value
         real(dp), allocatable :: values(:)
 
@@ -266,7 +260,8 @@ contains
 
     !> Float-array root attribute `name` (any number of elements).
     subroutine read_attr_real_1d(file, name, values)
-        character(len=*), intent(in) :: file, name
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
         real(dp), allocatable, intent(out) :: values(:)
 
         call read_attr_values(file, name, -1_hsize_t, values)
@@ -274,7 +269,8 @@ contains
 
     !> Root attribute `name` as float64 values; npoints_wanted >= 0: it must have that many.
     subroutine read_attr_values(file, name, npoints_wanted, values)
-        character(len=*), intent(in) :: file, name
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
         integer(hsize_t), intent(in) :: npoints_wanted
         real(dp), allocatable, intent(out) :: values(:)
         integer(hid_t) :: file_id, attr_id
@@ -369,9 +365,11 @@ contains
     !> Open `file` and root attribute `name`, with its number of elements; when
     !> npoints_wanted >= 0 it must be that.
     subroutine open_attr(file, name, npoints_wanted, file_id, attr_id, npoints)
-        character(len=*), intent(in) :: file, name
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: name
         integer(hsize_t), intent(in) :: npoints_wanted
-        integer(hid_t), intent(out) :: file_id, attr_id
+        integer(hid_t), intent(out) :: file_id
+        integer(hid_t), intent(out) :: attr_id
         integer(hsize_t), intent(out) :: npoints
         integer(hid_t) :: space_id
         integer :: hdferr

@@ -1,5 +1,5 @@
-!> HDF5's single-writer/multiple-reader (SWMR) mode, which HDF5 1.10's Fortran API lacks
-!> (h5_swmr_c.c). The writer (output_m) runs in SWMR write mode between its structural
+!> What HDF5 1.10's Fortran API lacks: its single-writer/multiple-reader (SWMR) mode
+!> (h5_swmr_c.c), and H5free_memory for the strings HDF5 allocates (h5_free). The writer (output_m) runs in SWMR write mode between its structural
 !> changes: HDF5 then writes a flush's metadata children before their parents (chunk index
 !> nodes before the nodes and object headers pointing to them), so a run killed at any
 !> moment leaves its last flush readable. Without it a kill inside a flush can leave an index
@@ -8,11 +8,11 @@
 !> killed SWMR writer is still marked as open for writing: only a SWMR reader opens it
 !> (h5_read_m, and h5py.File(path, 'r', swmr=True)).
 module h5_swmr_m
-    use iso_c_binding, only: c_int, c_char, c_null_char, c_int64_t
+    use iso_c_binding, only: c_int, c_char, c_null_char, c_int64_t, c_ptr, c_associated
     use hdf5, only: hid_t
     implicit none
     private
-    public :: start_swmr_write, open_swmr_read
+    public :: start_swmr_write, open_swmr_read, h5_free
 
     interface
         function c_start_swmr_write(file_id) bind(C, name='rc_h5_start_swmr_write') result(rc)
@@ -26,6 +26,12 @@ module h5_swmr_m
             character(kind=c_char), intent(in) :: path(*)
             integer(c_int64_t) :: file_id
         end function c_open_swmr_read
+
+        function c_h5free_memory(mem) bind(C, name='H5free_memory') result(rc)
+            import :: c_ptr, c_int
+            type(c_ptr), value, intent(in) :: mem
+            integer(c_int) :: rc
+        end function c_h5free_memory
     end interface
 
 contains
@@ -48,5 +54,14 @@ contains
 
         file_id = int(c_open_swmr_read(trim(path)//c_null_char), hid_t)
     end function open_swmr_read
+
+    !> Free `mem`, memory HDF5 allocated (the string of a variable-length string read):
+    !> false when H5free_memory fails. A null pointer is nothing to free.
+    logical function h5_free(mem)
+        type(c_ptr), intent(in) :: mem
+
+        h5_free = .true.
+        if (c_associated(mem)) h5_free = c_h5free_memory(mem) >= 0
+    end function h5_free
 
 end module h5_swmr_m

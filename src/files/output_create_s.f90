@@ -1,8 +1,14 @@
 !> Creating the writer's file (output_m's create): <prefix>.h5.part with /mesh/x and the
-!> empty extendible /series and /snapshots datasets. A submodule of output_m, so that it
-!> sets up the writer's private state.
+!> empty extendible /series and /snapshots datasets; /events at the end of the run; the
+!> groups and datasets of the other parts (make_group, create_extendible); and their
+!> self-description: long_name and units (CF style; '1' is nondimensional, and long_name
+!> names the scale of (2.10)), with &material the factor to SI units, and the HDF5 dimension
+!> scales (H5DS) that name each dataset's dimensions and coordinates as netCDF-4 does
+!> (docs/output.md, "netCDF"). A submodule of output_m, so that it sets up the writer's
+!> private state.
 submodule (output_m) output_create_s
     use hdf5, only: h5lcreate_hard_f
+    use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
 contains
@@ -24,28 +30,17 @@ contains
         if (w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: create() on a writer that is &
                                  &already writing '"//w%part_path//"'")
         call h5_library_init()
+        call reset(w)
         w%final_path = trim(prefix)//'.h5'
         w%part_path = trim(prefix)//'.h5.part'
         w%creating = .true.
         if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
         w%n_nodes = size(x)
-        w%compression = 0
         if (present(compression)) w%compression = compression
         if (w%compression < 0 .or. w%compression > MAX_COMPRESSION) &
             call w%fail('internal error: compression level outside 0 .. 9')
-        w%n_series_written = 0
-        w%n_snap = 0
-        w%n_native_snap = 0
-        w%n_native_values = 0
-        w%n_si = 0
-        w%n_buf = 0
         w%logical_names = ''
         w%checkpoint_note = ''
-        w%swmr = .false.
-        w%closing = .false.
-        w%native_created = .false.
-        w%n_checkpoints = 0
-        w%n_slot_events = 0
 
         dir = parent_dir(prefix)
         if (len(dir) > 0) then
@@ -73,79 +68,59 @@ contains
         w%creating = .false.
     end subroutine writer_create
 
-    !> /mesh/x with the nodes x(0:s), and the empty extendible /series and /snapshots datasets.
+    !> Every component of the writer at its default (intent(out): default initialisation).
+    subroutine reset(w)
+        type(h5_writer_t), intent(out) :: w
+    end subroutine reset
+
+    !> /mesh/x with the nodes x(0:s), and the empty extendible /series and /snapshots datasets:
+    !> the series 1D, chunks of SERIES_CHUNK entries written SERIES_BUFFER_SIZE at a time;
+    !> /snapshots/t 1D, the fields (s+1, n_snap) growing by one row per snapshot, one row per
+    !> chunk, so that each append writes whole chunks (see h5pset_cache_f).
     subroutine create_datasets(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
-        integer(hid_t) :: group_id, space_id, dset_id
-        integer(hsize_t) :: dims(1), dims2(2), chunk_rows
-        integer :: hdferr, k
+        integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)], EMPTY(1) = [0_hsize_t]
+        integer(hsize_t) :: row(2)
+        integer :: k
 
-        ! /mesh/x
-        call h5gcreate_f(w%file_id, 'mesh', group_id, hdferr)
-        call w%check(hdferr, 'h5gcreate_f /mesh')
-        dims = int(w%n_nodes, hsize_t)
-        call h5screate_simple_f(1, dims, space_id, hdferr)
-        call w%check(hdferr, 'h5screate_simple_f /mesh/x')
-        call h5dcreate_f(group_id, 'x', H5T_IEEE_F64LE, space_id, dset_id, hdferr)
-        call w%check(hdferr, 'h5dcreate_f /mesh/x')
-        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, x, dims, hdferr)
-        call w%check(hdferr, 'h5dwrite_f /mesh/x')
-        w%mesh_x_id = dset_id   ! closed by finish(), after describe_si
-        call w%describe(dset_id, '/mesh/x', 'position x along the rod (nondimensional, scale: position)', '1')
-        call h5sclose_f(space_id, hdferr)
-        call w%check(hdferr, 'h5sclose_f /mesh/x')
-        call h5gclose_f(group_id, hdferr)
-        call w%check(hdferr, 'h5gclose_f /mesh')
-
-        ! /series/*: 1D, chunks of SERIES_CHUNK entries, written SERIES_BUFFER_SIZE at a time
-        call h5gcreate_f(w%file_id, 'series', group_id, hdferr)
-        call w%check(hdferr, 'h5gcreate_f /series')
-        dims = 0
+        call w%make_group('/mesh')
+        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id)   ! closed by finish(), after describe_si
+        call w%describe(w%mesh_x_id, '/mesh/x', 'position x along the rod (nondimensional, scale: position)', '1')
+        call w%make_group('/series')
         do k = 1, N_SERIES
-            call w%create_extendible(group_id, '/series/', trim(SERIES(k)%name), &
-                                     merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
-                                     dims, [int(SERIES_CHUNK, hsize_t)], w%series_ids(k))
-            call w%describe(w%series_ids(k), '/series/'//trim(SERIES(k)%name), &
-                            described(SERIES(k)%long_name, SERIES(k)%scale), SERIES(k)%units)
-        end do
-        call h5gclose_f(group_id, hdferr)
-        call w%check(hdferr, 'h5gclose_f /series')
-
-        ! /snapshots/*: t is 1D, the fields are (s+1, n_snap) growing by one row per snapshot
-        call h5gcreate_f(w%file_id, 'snapshots', group_id, hdferr)
-        call w%check(hdferr, 'h5gcreate_f /snapshots')
-        chunk_rows = 1   ! one row per chunk: each append writes whole chunks (see h5pset_cache_f)
-        call w%create_extendible(group_id, '/snapshots/', 't', H5T_IEEE_F64LE, dims, &
-                                 [int(SERIES_CHUNK, hsize_t)], w%snap_t_id)
-        call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
-                        SERIES(S_T)%units)
-        dims2 = [int(w%n_nodes, hsize_t), 0_hsize_t]
-        do k = 1, N_SNAPSHOT_FIELDS
-            associate (field => SNAPSHOTS(k))
-                call w%create_extendible(group_id, '/snapshots/', trim(field%name), H5T_IEEE_F64LE, &
-                                         dims2, [int(w%n_nodes, hsize_t), chunk_rows], w%snap_field_ids(k), &
-                                         compress=.true.)
-                call w%describe(w%snap_field_ids(k), '/snapshots/'//trim(field%name), &
-                                described(field%long_name, field%scale), field%units)
+            associate (path => '/series/'//trim(SERIES(k)%name))
+                call w%create_extendible(path, merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
+                                         EMPTY, CHUNK, w%series_ids(k))
+                call w%describe(w%series_ids(k), path, described(SERIES(k)%long_name, SERIES(k)%scale), &
+                                SERIES(k)%units)
             end associate
         end do
-        call name_dimensions(w, group_id)
-        call h5gclose_f(group_id, hdferr)
-        call w%check(hdferr, 'h5gclose_f /snapshots')
+        call w%make_group('/snapshots')
+        call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, w%snap_t_id)
+        call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
+                        SERIES(S_T)%units)
+        row = [int(w%n_nodes, hsize_t), 1_hsize_t]
+        do k = 1, N_SNAPSHOT_FIELDS
+            associate (field => SNAPSHOTS(k), path => '/snapshots/'//trim(SNAPSHOTS(k)%name))
+                call w%create_extendible(path, H5T_IEEE_F64LE, [row(1), 0_hsize_t], row, w%snap_field_ids(k), &
+                                         compress=.true.)
+                call w%describe(w%snap_field_ids(k), path, described(field%long_name, field%scale), field%units)
+            end associate
+        end do
+        call name_dimensions(w)
     end subroutine create_datasets
 
     !> The dimension scales (netCDF-4 dimensions and coordinates, docs/output.md): /series/t
     !> of every /series dataset; /snapshots/t and x of every /snapshots field, where
     !> /snapshots/x is /mesh/x itself (a second link to it: netCDF and xarray look for a
-    !> dimension's coordinate in the group of the variable or above). snap_group_id: /snapshots.
-    subroutine name_dimensions(w, snap_group_id)
+    !> dimension's coordinate in the group of the variable or above).
+    subroutine name_dimensions(w)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: snap_group_id
         integer :: hdferr, k
 
         call w%make_scale(w%mesh_x_id, 'x', '/mesh/x')
-        call h5lcreate_hard_f(w%file_id, '/mesh/x', snap_group_id, 'x', hdferr)
+        call h5lcreate_hard_f(w%file_id, '/mesh/x', w%file_id, '/snapshots/x', hdferr)
         call w%check(hdferr, 'h5lcreate_hard_f /snapshots/x')
         call w%make_scale(w%series_ids(S_T), 't', '/series/t')
         do k = 1, N_SERIES
@@ -159,21 +134,18 @@ contains
         end do
     end subroutine name_dimensions
 
-    !> Create an empty dataset `name` in group_id whose last dimension is unlimited.
+    !> Create an empty dataset at `path` whose last dimension is unlimited.
     !> dims gives the initial size (last entry 0), chunk the chunk shape.
     !> With compress (the snapshot fields only) and compression > 0: shuffle and deflate.
     !> Only datasets whose chunks are written once, whole, are compressed: rewriting a
     !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
     !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
     !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
-    module subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id, compress)
+    module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, compress)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: group_id
-        character(len=*), intent(in) :: group_path
-        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: path
         integer(hid_t), intent(in) :: file_type
-        integer(hsize_t), intent(in) :: dims(:)
-        integer(hsize_t), intent(in) :: chunk(:)
+        integer(hsize_t), intent(in) :: dims(:), chunk(:)
         integer(hid_t), intent(out) :: dset_id
         logical, intent(in), optional :: compress
 
@@ -181,35 +153,183 @@ contains
         integer(hid_t) :: space_id, dcpl_id
         integer(hsize_t) :: maxdims(size(dims))
         integer :: hdferr, rank
-        character(len=:), allocatable :: what
 
-        what = group_path//name
         rank = size(dims)
         maxdims = dims
         maxdims(rank) = H5S_UNLIMITED_F
         call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
-        call w%check(hdferr, 'h5screate_simple_f '//what)
+        call w%check(hdferr, 'h5screate_simple_f '//path)
         call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
-        call w%check(hdferr, 'h5pcreate_f (dataset creation) '//what)
+        call w%check(hdferr, 'h5pcreate_f (dataset creation) '//path)
         call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
-        call w%check(hdferr, 'h5pset_chunk_f '//what)
+        call w%check(hdferr, 'h5pset_chunk_f '//path)
         filtered = .false.
         if (present(compress)) filtered = compress .and. w%compression > 0
         if (filtered) then
             ! shuffle first: grouping the bytes of each float by significance lets deflate
             ! find the repeated exponent and sign bytes (docs/performance.md, "Output")
             call h5pset_shuffle_f(dcpl_id, hdferr)
-            call w%check(hdferr, 'h5pset_shuffle_f '//what)
+            call w%check(hdferr, 'h5pset_shuffle_f '//path)
             call h5pset_deflate_f(dcpl_id, w%compression, hdferr)
-            call w%check(hdferr, 'h5pset_deflate_f '//what)
+            call w%check(hdferr, 'h5pset_deflate_f '//path)
         end if
-        call h5dcreate_f(group_id, name, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
-        call w%check(hdferr, 'h5dcreate_f '//what)
+        call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
+        call w%check(hdferr, 'h5dcreate_f '//path)
         call h5pclose_f(dcpl_id, hdferr)
-        call w%check(hdferr, 'h5pclose_f (dataset creation) '//what)
+        call w%check(hdferr, 'h5pclose_f (dataset creation) '//path)
         call h5sclose_f(space_id, hdferr)
-        call w%check(hdferr, 'h5sclose_f '//what)
+        call w%check(hdferr, 'h5sclose_f '//path)
     end subroutine writer_create_extendible
 
+    !> Create the group at `path` (its parent exists).
+    module subroutine writer_make_group(w, path)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: path
+        integer(hid_t) :: group_id
+        integer :: hdferr
+
+        call h5gcreate_f(w%file_id, path, group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f '//path)
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f '//path)
+    end subroutine writer_make_group
+
+    !> A 1D dataset at `path` of type file_type (HDF5 converts the float64 values, whole
+    !> numbers for an integer type), written once and whole: dset_id, open.
+    subroutine create_fixed(w, path, file_type, values, dset_id)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: path
+        integer(hid_t), intent(in) :: file_type
+        real(dp), intent(in) :: values(:)
+        integer(hid_t), intent(out) :: dset_id
+        integer(hid_t) :: space_id
+        integer :: hdferr
+
+        call h5screate_simple_f(1, [int(size(values), hsize_t)], space_id, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f '//path)
+        call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr)
+        call w%check(hdferr, 'h5dcreate_f '//path)
+        if (size(values) > 0) then
+            call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values, [int(size(values), hsize_t)], hdferr)
+            call w%check(hdferr, 'h5dwrite_f '//path)
+        end if
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f '//path)
+    end subroutine create_fixed
+
+    !> /events/t (float64) and /events/kind (int32, +1 onset, -1 release), n_events long
+    !> (possibly 0), written once at the end of the run; t is the coordinate of kind
+    !> (docs/output.md, "netCDF").
+    module subroutine writer_write_events(w, t, kind)
+        class(h5_writer_t), intent(inout) :: w
+        real(dp), intent(in) :: t(:)
+        integer, intent(in) :: kind(:)
+        integer(hid_t) :: t_id, kind_id
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_events() on a closed writer')
+        call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
+        call w%make_group('/events')
+        call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id)
+        call w%describe(t_id, '/events/t', described(SERIES(S_T)%long_name//' of a change of the '// &
+                        'contact state (interpolated in the step that crosses it)', SERIES(S_T)%scale), &
+                        SERIES(S_T)%units, si=SERIES(S_T)%scale)
+        call w%make_scale(t_id, 't', '/events/t')
+        call create_fixed(w, '/events/kind', H5T_STD_I32LE, real(kind, dp), kind_id)
+        call w%describe(kind_id, '/events/kind', 'contact event: +1 onset (the rod end reaches the obstacle), '// &
+                        '-1 release', '1', si='')
+        call w%attach_scale(kind_id, t_id, 0, '/events/kind')
+        call w%close_dataset(kind_id, '/events/kind')
+        call w%close_dataset(t_id, '/events/t')
+    end subroutine writer_write_events
+
+    !> A dataset's long_name: the table's, and for a nondimensional quantity the scale of
+    !> (2.10) it is measured in (root attribute scale.<scale> with &material).
+    pure module function described(long_name, scale) result(text)
+        character(len=*), intent(in) :: long_name, scale
+        character(len=:), allocatable :: text
+
+        text = trim(long_name)
+        if (scale /= '') text = text//' (nondimensional, scale: '//trim(scale)//')'
+    end function described
+
+    !> The CF-style attributes of a dataset: long_name and units ('1': nondimensional), and
+    !> for one created after describe_si (/snapshots/native, /events) whose quantity has
+    !> fields_m's scale `si`, si_factor and si_units (none without &material).
+    module subroutine writer_describe(w, dset_id, what, long_name, units, si)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: what, long_name, units
+        character(len=*), intent(in), optional :: si
+        integer :: k
+
+        if (dset_id < 0) call w%fail('internal error: no dataset '//what)
+        call w%attr('long_name', trim(long_name), on=dset_id)
+        call w%attr('units', trim(units), on=dset_id)
+        if (.not. present(si)) return
+        do k = 1, w%n_si
+            if (w%si_names(k) /= si) cycle
+            call w%attr('si_factor', w%si_factors(k), on=dset_id)
+            call w%attr('si_units', trim(w%si_units(k)), on=dset_id)
+        end do
+    end subroutine writer_describe
+
+    !> Attributes si_factor and si_units on every dataset whose quantity has fields_m's
+    !> scale `scale`: its value in SI units is si_factor times the stored value.
+    module subroutine writer_describe_si(w, scale, factor, si_units)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: scale, si_units
+        real(dp), intent(in) :: factor
+        integer :: k
+
+        if (w%n_si == size(w%si_names)) call w%fail('internal error: more SI scales than MAX_SI_SCALES')
+        w%n_si = w%n_si + 1
+        w%si_names(w%n_si) = scale
+        w%si_factors(w%n_si) = factor
+        w%si_units(w%n_si) = si_units
+        do k = 1, N_SERIES
+            if (SERIES(k)%scale /= scale) cycle
+            call w%attr('si_factor', factor, on=w%series_ids(k))
+            call w%attr('si_units', si_units, on=w%series_ids(k))
+        end do
+        if (SERIES(S_T)%scale == scale) then
+            call w%attr('si_factor', factor, on=w%snap_t_id)
+            call w%attr('si_units', si_units, on=w%snap_t_id)
+        end if
+        do k = 1, N_SNAPSHOT_FIELDS
+            if (SNAPSHOTS(k)%scale /= scale) cycle
+            call w%attr('si_factor', factor, on=w%snap_field_ids(k))
+            call w%attr('si_units', si_units, on=w%snap_field_ids(k))
+        end do
+        if (scale == 'position') then
+            call w%attr('si_factor', factor, on=w%mesh_x_id)
+            call w%attr('si_units', si_units, on=w%mesh_x_id)
+        end if
+    end subroutine writer_describe_si
+
+    !> Make dataset dset_id (1D) a dimension scale: the coordinate of the dimension `name`
+    !> (netCDF-4: a coordinate variable, named as the dataset).
+    module subroutine writer_make_scale(w, dset_id, name, what)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: name, what
+        integer :: hdferr
+
+        call h5dsset_scale_f(dset_id, hdferr, name)
+        call w%check(hdferr, 'h5dsset_scale_f '//what)
+    end subroutine writer_make_scale
+
+    !> Attach dimension scale scale_id to dimension `dim` of dataset dset_id, counted as h5py
+    !> and C count them (0: the first, the slowest-varying; Fortran sees it last). The
+    !> Fortran API takes that index plus 1 (measured with h5py: 0 fails, 1 is C's 0).
+    module subroutine writer_attach_scale(w, dset_id, scale_id, dim, what)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id, scale_id
+        integer, intent(in) :: dim
+        character(len=*), intent(in) :: what
+        integer :: hdferr
+
+        call h5dsattach_scale_f(dset_id, scale_id, dim + 1, hdferr)
+        call w%check(hdferr, 'h5dsattach_scale_f '//what)
+    end subroutine writer_attach_scale
 
 end submodule output_create_s

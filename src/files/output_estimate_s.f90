@@ -45,71 +45,38 @@ contains
     !> Write the buffered estimates (flush()).
     module subroutine writer_flush_estimate(w)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t) :: file_space, mem_space
         integer(hsize_t) :: n
-        integer :: hdferr, k, part
-        character(len=:), allocatable :: path
-        real(dp) :: column(SERIES_CHUNK)
+        integer :: k, part
 
         if (w%n_estimate_buf == 0) return
         n = int(w%n_estimate_buf, hsize_t)
         do part = 1, size(GROUPS)
             do k = 1, N_OUTPUT_FIELDS
-                path = trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
-                column(1:n) = w%estimate_buf(k, part, 1:n)
-                call w%select_append(w%estimate_ids(k, part), path, [n], w%n_estimate_snap, file_space, mem_space)
-                call h5dwrite_f(w%estimate_ids(k, part), H5T_NATIVE_DOUBLE, column(1:n), [n], hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-                call w%check(hdferr, 'h5dwrite_f '//path)
-                call w%close_spaces(path, file_space, mem_space)
+                call w%append_rows(w%estimate_ids(k, part), trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
+                                   w%n_estimate_snap, [n], w%estimate_buf(k, part, 1:n))
             end do
         end do
         w%n_estimate_snap = w%n_estimate_snap + n
         w%n_estimate_buf = 0
     end subroutine writer_flush_estimate
 
-    !> Close the datasets (finish(), after its flush()).
-    module subroutine writer_close_estimate(w)
-        class(h5_writer_t), intent(inout) :: w
-        integer :: hdferr, k, part
-
-        if (allocated(w%estimate_buf)) deallocate (w%estimate_buf)
-        do part = 1, size(GROUPS)
-            do k = 1, N_OUTPUT_FIELDS
-                if (w%estimate_ids(k, part) < 0) cycle
-                call h5dclose_f(w%estimate_ids(k, part), hdferr)
-                call w%check(hdferr, 'h5dclose_f '//trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
-                w%estimate_ids(k, part) = -1
-            end do
-        end do
-    end subroutine writer_close_estimate
-
     !> The groups and their datasets: created by the first append of the file (a restart's
     !> copy of the history included), kept open.
     subroutine open_estimate(w)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t) :: group_id
-        integer(hsize_t) :: dims(1)
-        integer :: hdferr, k, part
-        character(len=:), allocatable :: group
+        integer :: k, part
 
         call w%leave_swmr()   ! new groups: not in SWMR writing (output_file_s)
-        dims = 0
         do part = 1, size(GROUPS)
-            group = trim(GROUPS(part))
-            call h5gcreate_f(w%file_id, group, group_id, hdferr)
-            call w%check(hdferr, 'h5gcreate_f '//group)
+            call w%make_group(trim(GROUPS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                associate (field => FIELDS(OUTPUT_ORDER(k)))
-                    call w%create_extendible(group_id, group//'/', trim(field%name), H5T_IEEE_F64LE, dims, &
-                                             [int(SERIES_CHUNK, hsize_t)], w%estimate_ids(k, part))
-                    call w%describe(w%estimate_ids(k, part), group//'/'//trim(field%name), &
-                                    'estimated relative L2 error of '//trim(field%long_name)//' at each snapshot '// &
-                                    trim(WHAT(part)), '1')
+                associate (field => FIELDS(OUTPUT_ORDER(k)), path => trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
+                    call w%create_extendible(path, H5T_IEEE_F64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], &
+                                             w%estimate_ids(k, part))
+                    call w%describe(w%estimate_ids(k, part), path, 'estimated relative L2 error of '// &
+                                    trim(field%long_name)//' at each snapshot '//trim(WHAT(part)), '1')
                 end associate
             end do
-            call h5gclose_f(group_id, hdferr)
-            call w%check(hdferr, 'h5gclose_f '//group)
         end do
     end subroutine open_estimate
 

@@ -1,6 +1,7 @@
 !> The writer's file itself (output_m): opening it with HDF5's 1.10 format, its
-!> single-writer/multiple-reader (SWMR) write mode, and closing it (finish, abandon). A
-!> submodule of output_m, so that it reaches the writer's private state.
+!> single-writer/multiple-reader (SWMR) write mode, room for its flushes (reserve), failing
+!> (fail) and closing it (finish, abandon). A submodule of output_m, so that it reaches the
+!> writer's private state.
 !>
 !> Crash safety (docs/output.md, "A killed run"). Between structural changes the file is in
 !> SWMR write mode (h5_swmr_m), in which a flush writes metadata children before their
@@ -102,11 +103,7 @@ contains
             call h5dopen_f(w%file_id, trim(names(k)), ids(k), hdferr)
             call w%check(hdferr, 'h5dopen_f '//trim(names(k)))
         end do
-        w%mesh_x_id = ids(1)
-        w%series_ids = ids(2:1 + N_SERIES)
-        w%snap_t_id = ids(2 + N_SERIES)
-        w%snap_field_ids = ids(3 + N_SERIES:2 + N_SERIES + N_SNAPSHOT_FIELDS)
-        w%estimate_ids = reshape(ids(3 + N_SERIES + N_SNAPSHOT_FIELDS:), shape(w%estimate_ids))
+        call hold_ids(w, ids)
     end subroutine writer_leave_swmr
 
     !> Every dataset identifier the writer holds, in the order leave_swmr stores them back
@@ -118,6 +115,18 @@ contains
         ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
     end function held_ids
 
+    !> The writer's dataset identifiers from ids, in held_ids' order.
+    subroutine hold_ids(w, ids)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: ids(MAX_OPEN)
+
+        w%mesh_x_id = ids(1)
+        w%series_ids = ids(2:1 + N_SERIES)
+        w%snap_t_id = ids(2 + N_SERIES)
+        w%snap_field_ids = ids(3 + N_SERIES:2 + N_SERIES + N_SNAPSHOT_FIELDS)
+        w%estimate_ids = reshape(ids(3 + N_SERIES + N_SNAPSHOT_FIELDS:), shape(w%estimate_ids))
+    end subroutine hold_ids
+
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
     !> `<prefix>.h5`, replacing an older file of that name.
@@ -128,6 +137,7 @@ contains
         !> continued by restart_from), not renamed
         logical, intent(in), optional :: keep_part
 
+        integer(hid_t) :: ids(MAX_OPEN)
         integer :: hdferr, k
         logical :: ok
         character(len=:), allocatable :: message
@@ -141,30 +151,18 @@ contains
         call w%attr('logical_attributes', w%logical_names)
         call w%flush()   ! with its space reserved; closing then writes nothing new
 
-        call h5dclose_f(w%mesh_x_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /mesh/x')
-        w%mesh_x_id = -1
-
-        do k = 1, N_SERIES
-            call h5dclose_f(w%series_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /series/'//trim(SERIES(k)%name))
-            w%series_ids(k) = -1
+        ids = held_ids(w)
+        do k = 1, MAX_OPEN
+            if (ids(k) >= 0) call w%close_dataset(ids(k), '(a dataset the writer holds open)')
         end do
-        call h5dclose_f(w%snap_t_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f /snapshots/t')
-        w%snap_t_id = -1
-        do k = 1, N_SNAPSHOT_FIELDS
-            call h5dclose_f(w%snap_field_ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f /snapshots/'//trim(SNAPSHOTS(k)%name))
-            w%snap_field_ids(k) = -1
-        end do
-        call writer_close_estimate(w)
+        call hold_ids(w, ids)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
         w%file_id = -1
         w%opened = .false.
         w%swmr = .false.
         deallocate (w%buf)
+        if (allocated(w%estimate_buf)) deallocate (w%estimate_buf)
 
         if (present(keep_part)) then
             if (keep_part) return
@@ -188,16 +186,83 @@ contains
         ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
         if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
         w%file_id = -1
-        w%series_ids = -1
-        w%mesh_x_id = -1
-        w%snap_t_id = -1
-        w%snap_field_ids = -1
-        w%estimate_ids = -1
+        call hold_ids(w, spread(-1_hid_t, 1, MAX_OPEN))
         w%n_estimate_buf = 0
         w%n_buf = 0
         if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)
     end subroutine writer_abandon
+
+    !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
+    !> flush writes the metadata that lies there. A flush that fails half-way (disk full, file
+    !> size limit) would write the superblock with the new end of the file but not all that
+    !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
+    !> leaves the file as the previous flush wrote it, with its checkpoint.
+    module subroutine writer_reserve(w)
+        class(h5_writer_t), intent(inout) :: w
+
+        integer(hsize_t) :: bytes
+        integer :: hdferr
+        logical :: ok
+        character(len=:), allocatable :: message
+
+        call h5fget_filesize_f(w%file_id, bytes, hdferr)
+        call w%check(hdferr, 'h5fget_filesize_f')
+        call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
+        if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
+    end subroutine writer_reserve
+
+    !> Abandon the file and stop with a message naming the file and the reason. During
+    !> create() the fault is the &output prefix; later it is a write failure.
+    module subroutine writer_fail(w, reason)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: reason
+
+        character(len=:), allocatable :: path, system, keep
+
+        system = write_failure_reason()   ! first: errno of the failed write, before any other call
+        if (allocated(w%part_path)) then
+            path = w%part_path
+        else
+            path = '(no file)'
+        end if
+        if (w%creating) then
+            ! abandon() only acts on an open writer; the empty .part may exist already
+            call w%abandon()
+            call remove_file(path)
+            call fatal(EXIT_OUTPUT, 'output.prefix', "cannot create '"//path//"': "//reason// &
+                       '; &output prefix must name a file in a directory that exists or can be created, '// &
+                       'and that this user may write to')
+        else
+            ! A failed write (disk full, file size limit, I/O error): the file on disk is as
+            ! the last flush left it (every checkpoint flushes), plus raw data past its end.
+            ! Closing it, or HDF5's own shutdown at exit, would flush the caches half-way
+            ! and could leave a file that no longer opens; so it is left as it is, like the
+            ! .part of a killed run, and the process ends at once (fatal_now).
+            if (system /= '') system = ' ('//system//')'
+            if (w%checkpoint_note /= '') then
+                keep = '; the file is left as its last flush wrote it, with the checkpoint of '// &
+                       w%checkpoint_note//": free space, then continue with --set time.restart_from='"// &
+                       path//"' and another output.prefix"
+            else
+                keep = "; the file is left as its last flush wrote it; it holds no checkpoint (&output "// &
+                       'checkpoint_every > 0 makes a long run restartable after such a failure)'
+            end if
+            call fatal_now(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason//system//keep)
+        end if
+    end subroutine writer_fail
+
+    !> Close dataset dset_id (`what`, for the message) and mark it closed (-1).
+    module subroutine writer_close_dataset(w, dset_id, what)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(inout) :: dset_id
+        character(len=*), intent(in) :: what
+        integer :: hdferr
+
+        call h5dclose_f(dset_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f '//what)
+        dset_id = -1
+    end subroutine writer_close_dataset
 
     !> Remove what SWMR writing made the run create in advance and it never used, so that
     !> the finished file holds what it held before SWMR: the second checkpoint slot of a run
@@ -229,8 +294,7 @@ contains
         call w%check(hdferr, 'h5dopen_f '//name)
         call h5dsdetach_scale_f(dset_id, w%snap_t_id, 1, hdferr)
         call w%check(hdferr, 'h5dsdetach_scale_f '//name)
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f '//name)
+        call w%close_dataset(dset_id, name)
     end subroutine detach
 
 end submodule output_file_s

@@ -116,19 +116,19 @@ module output_m
         procedure, private :: flush_series => writer_flush_series
         procedure, private :: reserve => writer_reserve
         procedure, private :: attr_target => writer_attr_target
+        procedure, private :: make_group => writer_make_group
         procedure, private :: create_extendible => writer_create_extendible
-        procedure, private :: select_append => writer_select_append
-        procedure, private :: close_spaces => writer_close_spaces
+        procedure, private :: append_rows => writer_append_rows
+        procedure, private :: close_dataset => writer_close_dataset
         procedure, private :: describe => writer_describe
-        procedure, private :: describe_si_of => writer_describe_si_of
         procedure, private :: make_scale => writer_make_scale
         procedure, private :: attach_scale => writer_attach_scale
         procedure, private :: leave_swmr => writer_leave_swmr
     end type h5_writer_t
 
-    interface   ! creating the file (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
-                ! dataset descriptions (src/files/output_describe_s.f90), the contact events (src/files/output_events_s.f90),
-                ! opening, SWMR writing and closing (src/files/output_file_s.f90)
+    interface   ! creating the file and its datasets, describing them, the contact events
+                ! (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
+                ! opening, SWMR writing, failing and closing (src/files/output_file_s.f90)
         module subroutine writer_create(w, prefix, x, compression)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix
@@ -149,6 +149,15 @@ module output_m
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_leave_swmr
 
+        module subroutine writer_reserve(w)
+            class(h5_writer_t), intent(inout) :: w
+        end subroutine writer_reserve
+
+        module subroutine writer_fail(w, reason)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: reason
+        end subroutine writer_fail
+
         module subroutine writer_finish(w, status, keep_part)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: status
@@ -159,19 +168,26 @@ module output_m
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_abandon
 
+        module subroutine writer_close_dataset(w, dset_id, what)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(inout) :: dset_id
+            character(len=*), intent(in) :: what
+        end subroutine writer_close_dataset
+
         module subroutine writer_create_native(w)
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_create_native
 
-        module subroutine writer_create_extendible(w, group_id, group_path, name, file_type, dims, chunk, dset_id, &
-                                                   compress)
+        module subroutine writer_make_group(w, path)
             class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(in) :: group_id
-            character(len=*), intent(in) :: group_path
-            character(len=*), intent(in) :: name
+            character(len=*), intent(in) :: path
+        end subroutine writer_make_group
+
+        module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, compress)
+            class(h5_writer_t), intent(inout) :: w
+            character(len=*), intent(in) :: path
             integer(hid_t), intent(in) :: file_type
-            integer(hsize_t), intent(in) :: dims(:)
-            integer(hsize_t), intent(in) :: chunk(:)
+            integer(hsize_t), intent(in) :: dims(:), chunk(:)
             integer(hid_t), intent(out) :: dset_id
             logical, intent(in), optional :: compress
         end subroutine writer_create_extendible
@@ -193,14 +209,9 @@ module output_m
             real(dp), intent(in) :: values(:, :)
         end subroutine writer_append_estimate
 
-        module subroutine writer_close_estimate(w)
-            class(h5_writer_t), intent(inout) :: w
-        end subroutine writer_close_estimate
-
         module subroutine writer_flush_estimate(w)
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_flush_estimate
-
         module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
                                                    companion_levels, companion_scalars)
             class(h5_writer_t), intent(inout) :: w
@@ -228,10 +239,11 @@ module output_m
             logical, intent(in), optional :: create_only
         end subroutine writer_put_real
 
-        module subroutine writer_describe(w, dset_id, what, long_name, units)
+        module subroutine writer_describe(w, dset_id, what, long_name, units, si)
             class(h5_writer_t), intent(inout) :: w
             integer(hid_t), intent(in) :: dset_id
             character(len=*), intent(in) :: what, long_name, units
+            character(len=*), intent(in), optional :: si
         end subroutine writer_describe
 
         module subroutine writer_describe_si(w, scale, factor, si_units)
@@ -253,12 +265,6 @@ module output_m
             character(len=*), intent(in) :: what
         end subroutine writer_attach_scale
 
-        module subroutine writer_describe_si_of(w, dset_id, scale)
-            class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(in) :: dset_id
-            character(len=*), intent(in) :: scale
-        end subroutine writer_describe_si_of
-
         pure module function described(long_name, scale) result(text)
             character(len=*), intent(in) :: long_name, scale
             character(len=:), allocatable :: text
@@ -266,7 +272,6 @@ module output_m
     end interface
 
 contains
-
     !> Add one series entry: values(k) of the dataset fields_m's SERIES(k) (integer ones
     !> hold whole numbers). Held in a fixed-size buffer and written SERIES_BUFFER_SIZE
     !> entries at a time: this is called every time step, so it must cost a few stores.
@@ -286,30 +291,15 @@ contains
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: t
         real(dp), intent(in) :: values(:, :)
-
-        integer(hid_t) :: file_space, mem_space
-        integer(hsize_t) :: row(2)
-        integer :: hdferr, k
-        character(len=:), allocatable :: what
+        integer :: k
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_snapshot() on a closed writer')
         if (any(shape(values) /= [w%n_nodes, N_SNAPSHOT_FIELDS])) &
             call w%fail('internal error: append_snapshot() given arrays whose size is not the number of mesh nodes')
-
-        call w%select_append(w%snap_t_id, '/snapshots/t', [1_hsize_t], w%n_snap, file_space, mem_space)
-        call h5dwrite_f(w%snap_t_id, H5T_NATIVE_DOUBLE, [t], [1_hsize_t], hdferr, &
-                        mem_space_id=mem_space, file_space_id=file_space)
-        call w%check(hdferr, 'h5dwrite_f /snapshots/t')
-        call w%close_spaces('/snapshots/t', file_space, mem_space)
-
-        row = [int(w%n_nodes, hsize_t), 1_hsize_t]
+        call w%append_rows(w%snap_t_id, '/snapshots/t', w%n_snap, [1_hsize_t], [t])
         do k = 1, N_SNAPSHOT_FIELDS
-            what = '/snapshots/'//trim(SNAPSHOTS(k)%name)
-            call w%select_append(w%snap_field_ids(k), what, row, w%n_snap, file_space, mem_space)
-            call h5dwrite_f(w%snap_field_ids(k), H5T_NATIVE_DOUBLE, values(:, k), row, hdferr, &
-                            mem_space_id=mem_space, file_space_id=file_space)
-            call w%check(hdferr, 'h5dwrite_f '//what)
-            call w%close_spaces(what, file_space, mem_space)
+            call w%append_rows(w%snap_field_ids(k), '/snapshots/'//trim(SNAPSHOTS(k)%name), w%n_snap, &
+                               [int(w%n_nodes, hsize_t), 1_hsize_t], values(:, k))
         end do
         w%n_snap = w%n_snap + 1
     end subroutine writer_append_snapshot
@@ -387,25 +377,6 @@ contains
         if (.not. w%swmr .and. .not. w%closing) call writer_start_swmr(w)
     end subroutine writer_flush
 
-    !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
-    !> flush writes the metadata that lies there. A flush that fails half-way (disk full, file
-    !> size limit) would write the superblock with the new end of the file but not all that
-    !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
-    !> leaves the file as the previous flush wrote it, with its checkpoint.
-    subroutine writer_reserve(w)
-        class(h5_writer_t), intent(inout) :: w
-
-        integer(hsize_t) :: bytes
-        integer :: hdferr
-        logical :: ok
-        character(len=:), allocatable :: message
-
-        call h5fget_filesize_f(w%file_id, bytes, hdferr)
-        call w%check(hdferr, 'h5fget_filesize_f')
-        call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
-        if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
-    end subroutine writer_reserve
-
     ! ---------------------------------------------------------------- private helpers
 
     !> On a negative HDF5 error flag: abandon the file and stop (exit status 4).
@@ -418,87 +389,32 @@ contains
         call w%fail(what//' failed')
     end subroutine writer_check
 
-    !> Abandon the file and stop with a message naming the file and the reason. During
-    !> create() the fault is the &output prefix; later it is a write failure.
-    subroutine writer_fail(w, reason)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: reason
-
-        character(len=:), allocatable :: path, system, keep
-
-        system = write_failure_reason()   ! first: errno of the failed write, before any other call
-        if (allocated(w%part_path)) then
-            path = w%part_path
-        else
-            path = '(no file)'
-        end if
-        if (w%creating) then
-            ! abandon() only acts on an open writer; the empty .part may exist already
-            call w%abandon()
-            call remove_file(path)
-            call fatal(EXIT_OUTPUT, 'output.prefix', "cannot create '"//path//"': "//reason// &
-                       '; &output prefix must name a file in a directory that exists or can be created, '// &
-                       'and that this user may write to')
-        else
-            ! A failed write (disk full, file size limit, I/O error): the file on disk is as
-            ! the last flush left it (every checkpoint flushes), plus raw data past its end.
-            ! Closing it, or HDF5's own shutdown at exit, would flush the caches half-way
-            ! and could leave a file that no longer opens; so it is left as it is, like the
-            ! .part of a killed run, and the process ends at once (fatal_now).
-            if (system /= '') system = ' ('//system//')'
-            if (w%checkpoint_note /= '') then
-                keep = '; the file is left as its last flush wrote it, with the checkpoint of '// &
-                       w%checkpoint_note//": free space, then continue with --set time.restart_from='"// &
-                       path//"' and another output.prefix"
-            else
-                keep = "; the file is left as its last flush wrote it; it holds no checkpoint (&output "// &
-                       'checkpoint_every > 0 makes a long run restartable after such a failure)'
-            end if
-            call fatal_now(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason//system//keep)
-        end if
-    end subroutine writer_fail
-
-    !> Append the buffered series entries to the /series datasets.
+    !> Append the buffered series entries to the /series datasets (an integer one converted
+    !> by HDF5 from the whole numbers of the buffer).
     subroutine writer_flush_series(w)
         class(h5_writer_t), intent(inout) :: w
-
-        integer(hid_t) :: file_space, mem_space
-        integer(hsize_t) :: n(1)
-        integer :: hdferr, k
-        character(len=:), allocatable :: what
+        integer :: k
 
         if (w%n_buf == 0) return
-        n = int(w%n_buf, hsize_t)
         do k = 1, N_SERIES
-            what = '/series/'//trim(SERIES(k)%name)
-            call w%select_append(w%series_ids(k), what, n, w%n_series_written, file_space, mem_space)
-            if (SERIES(k)%is_integer) then
-                call h5dwrite_f(w%series_ids(k), H5T_NATIVE_INTEGER, nint(w%buf(1:w%n_buf, k)), n, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            else
-                call h5dwrite_f(w%series_ids(k), H5T_NATIVE_DOUBLE, w%buf(1:w%n_buf, k), n, hdferr, &
-                                mem_space_id=mem_space, file_space_id=file_space)
-            end if
-            call w%check(hdferr, 'h5dwrite_f '//what)
-            call w%close_spaces(what, file_space, mem_space)
+            call w%append_rows(w%series_ids(k), '/series/'//trim(SERIES(k)%name), w%n_series_written, &
+                               [int(w%n_buf, hsize_t)], w%buf(1:w%n_buf, k))
         end do
-        w%n_series_written = w%n_series_written + n(1)
+        w%n_series_written = w%n_series_written + w%n_buf
         w%n_buf = 0
     end subroutine writer_flush_series
 
-    !> Grow dataset dset_id along its last dimension from `offset` to offset + block(rank)
-    !> and return the file dataspace with the new block selected and a matching memory
-    !> dataspace; the caller writes, then calls close_spaces.
-    subroutine writer_select_append(w, dset_id, what, block, offset, file_space, mem_space)
+    !> Grow extendible dataset dset_id (`what`) along its last dimension from `offset` to
+    !> offset + block(rank), and write values, block's elements in Fortran order, there.
+    subroutine writer_append_rows(w, dset_id, what, offset, block, values)
         class(h5_writer_t), intent(inout) :: w
         integer(hid_t), intent(in) :: dset_id
         character(len=*), intent(in) :: what
-        integer(hsize_t), intent(in) :: block(:)
         integer(hsize_t), intent(in) :: offset
-        integer(hid_t), intent(out) :: file_space
-        integer(hid_t), intent(out) :: mem_space
-
+        integer(hsize_t), intent(in) :: block(:)
+        real(dp), intent(in) :: values(*)
         integer(hsize_t) :: new_dims(size(block)), start(size(block))
+        integer(hid_t) :: file_space, mem_space
         integer :: hdferr, rank
 
         rank = size(block)
@@ -514,20 +430,13 @@ contains
         call w%check(hdferr, 'h5sselect_hyperslab_f '//what)
         call h5screate_simple_f(rank, block, mem_space, hdferr)
         call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
-    end subroutine writer_select_append
-
-    subroutine writer_close_spaces(w, what, file_space, mem_space)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: what
-        integer(hid_t), intent(in) :: file_space
-        integer(hid_t), intent(in) :: mem_space
-
-        integer :: hdferr
-
+        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values(1:product(block)), block, hdferr, &
+                        mem_space_id=mem_space, file_space_id=file_space)
+        call w%check(hdferr, 'h5dwrite_f '//what)
         call h5sclose_f(mem_space, hdferr)
         call w%check(hdferr, 'h5sclose_f (memory) '//what)
         call h5sclose_f(file_space, hdferr)
         call w%check(hdferr, 'h5sclose_f '//what)
-    end subroutine writer_close_spaces
+    end subroutine writer_append_rows
 
 end module output_m

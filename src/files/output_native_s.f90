@@ -23,7 +23,7 @@ contains
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(:)
         real(dp), intent(in) :: values(:, :)
-        integer(hsize_t) :: n
+        integer(hsize_t) :: n, at
         integer :: k
 
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_native() on a closed writer')
@@ -31,12 +31,14 @@ contains
             call w%fail('internal error: append_native() given fields that do not match the nodes')
         if (.not. w%native_created) call writer_create_native(w)
         n = int(size(x), hsize_t)
-        call append_real(w, 'x', x, n)
+        at = int(w%n_native_values, hsize_t)
+        call append(w, 'x', at, x)
         do k = 1, N_SNAPSHOT_FIELDS
-            call append_real(w, trim(SNAPSHOTS(k)%name), values(:, k), n)
+            call append(w, trim(SNAPSHOTS(k)%name), at, values(:, k))
         end do
-        call append_int(w, 'offset', w%n_native_values)
-        call append_int(w, 'count', int(n, int64))
+        ! int64, written from a double (exact below 2^53)
+        call append(w, 'offset', w%n_native_snap, [real(w%n_native_values, dp)])
+        call append(w, 'count', w%n_native_snap, [real(n, dp)])
         w%n_native_values = w%n_native_values + int(n, int64)
         w%n_native_snap = w%n_native_snap + 1
     end subroutine writer_append_native
@@ -48,95 +50,56 @@ contains
     !> writing need not end for it later (output_file_s).
     module subroutine writer_create_native(w)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t) :: group_id, dset_id, x_id
-        integer(hsize_t) :: dims(1)
-        integer :: hdferr, k
+        integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t]
+        integer(hid_t) :: dset_id, x_id
+        integer :: k
 
         call w%leave_swmr()
-        call h5gcreate_f(w%file_id, GROUP, group_id, hdferr)
-        call w%check(hdferr, 'h5gcreate_f '//GROUP)
+        call w%make_group(GROUP)
         w%native_created = .true.
-        dims = 0
-        call w%create_extendible(group_id, GROUP//'/', 'x', H5T_IEEE_F64LE, dims, [int(VALUES_CHUNK, hsize_t)], x_id)
-        call w%describe(x_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', '1')
-        call w%describe_si_of(x_id, 'position')
+        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, EMPTY, [int(VALUES_CHUNK, hsize_t)], x_id)
+        call w%describe(x_id, GROUP//'/x', 'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
+                        '1', si='position')
         call w%make_scale(x_id, 'x', GROUP//'/x')
         do k = 1, N_SNAPSHOT_FIELDS
-            associate (field => SNAPSHOTS(k))
-                call w%create_extendible(group_id, GROUP//'/', trim(field%name), H5T_IEEE_F64LE, dims, &
-                                         [int(VALUES_CHUNK, hsize_t)], dset_id)
-                call w%describe(dset_id, GROUP//'/'//trim(field%name), described(trim(field%long_name)// &
-                                ' at the nodes of its own mesh (native/x)', field%scale), field%units)
-                call w%describe_si_of(dset_id, field%scale)
-                call w%attach_scale(dset_id, x_id, 0, GROUP//'/'//trim(field%name))
-                call close_dataset(w, dset_id, trim(field%name))
+            associate (field => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
+                call w%create_extendible(path, H5T_IEEE_F64LE, EMPTY, [int(VALUES_CHUNK, hsize_t)], dset_id)
+                call w%describe(dset_id, path, described(trim(field%long_name)// &
+                                ' at the nodes of its own mesh (native/x)', field%scale), field%units, si=field%scale)
+                call w%attach_scale(dset_id, x_id, 0, path)
+                call w%close_dataset(dset_id, path)
             end associate
         end do
-        call close_dataset(w, x_id, 'x')
-        call w%create_extendible(group_id, GROUP//'/', 'offset', H5T_STD_I64LE, dims, [int(SERIES_CHUNK, hsize_t)], &
-                                 dset_id)
-        call w%describe(dset_id, GROUP//'/offset', 'first entry of each snapshot in native/x and the fields', '1')
-        call w%describe_si_of(dset_id, '')
-        call w%attach_scale(dset_id, w%snap_t_id, 0, GROUP//'/offset')
-        call close_dataset(w, dset_id, 'offset')
-        call w%create_extendible(group_id, GROUP//'/', 'count', H5T_STD_I64LE, dims, [int(SERIES_CHUNK, hsize_t)], &
-                                 dset_id)
-        call w%describe(dset_id, GROUP//'/count', 'number of nodes of each snapshot''s mesh', '1')
-        call w%describe_si_of(dset_id, '')
-        call w%attach_scale(dset_id, w%snap_t_id, 0, GROUP//'/count')
-        call close_dataset(w, dset_id, 'count')
-        call h5gclose_f(group_id, hdferr)
-        call w%check(hdferr, 'h5gclose_f '//GROUP)
+        call w%close_dataset(x_id, GROUP//'/x')
+        call create_index(w, 'offset', 'first entry of each snapshot in native/x and the fields')
+        call create_index(w, 'count', 'number of nodes of each snapshot''s mesh')
     end subroutine writer_create_native
 
-    subroutine close_dataset(w, dset_id, name)
+    !> GROUP/name, int64, one entry per snapshot: its coordinate is /snapshots/t.
+    subroutine create_index(w, name, long_name)
         class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id
-        character(len=*), intent(in) :: name
-        integer :: hdferr
+        character(len=*), intent(in) :: name, long_name
+        integer(hid_t) :: dset_id
 
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f '//GROUP//'/'//name)
-    end subroutine close_dataset
+        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], dset_id)
+        call w%describe(dset_id, GROUP//'/'//name, long_name, '1', si='')
+        call w%attach_scale(dset_id, w%snap_t_id, 0, GROUP//'/'//name)
+        call w%close_dataset(dset_id, GROUP//'/'//name)
+    end subroutine create_index
 
-    !> Append n float64 values to GROUP/name (which holds w%n_native_values).
-    subroutine append_real(w, name, values, n)
+    !> Append values to GROUP/name from entry `at` (every append opens and closes it).
+    subroutine append(w, name, at, values)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
+        integer(hsize_t), intent(in) :: at
         real(dp), intent(in) :: values(:)
-        integer(hsize_t), intent(in) :: n
-        integer(hid_t) :: dset_id, file_space, mem_space
+        integer(hid_t) :: dset_id
         integer :: hdferr
 
         call h5dopen_f(w%file_id, GROUP//'/'//name, dset_id, hdferr)
         call w%check(hdferr, 'h5dopen_f '//GROUP//'/'//name)
-        call w%select_append(dset_id, GROUP//'/'//name, [n], int(w%n_native_values, hsize_t), file_space, mem_space)
-        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values, [n], hdferr, mem_space_id=mem_space, &
-                        file_space_id=file_space)
-        call w%check(hdferr, 'h5dwrite_f '//GROUP//'/'//name)
-        call w%close_spaces(GROUP//'/'//name, file_space, mem_space)
-        call close_dataset(w, dset_id, name)
-    end subroutine append_real
-
-    !> Append one int64 value to GROUP/name (which holds w%n_native_snap).
-    subroutine append_int(w, name, value)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        integer(int64), intent(in) :: value
-        integer(hid_t) :: dset_id, file_space, mem_space
-        integer :: hdferr
-        real(dp) :: as_real(1)
-
-        call h5dopen_f(w%file_id, GROUP//'/'//name, dset_id, hdferr)
-        call w%check(hdferr, 'h5dopen_f '//GROUP//'/'//name)
-        call w%select_append(dset_id, GROUP//'/'//name, [1_hsize_t], w%n_native_snap, file_space, mem_space)
-        ! written from a double (exact below 2^53): the HDF5 Fortran API converts to int64
-        as_real = real(value, dp)
-        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, as_real, [1_hsize_t], hdferr, mem_space_id=mem_space, &
-                        file_space_id=file_space)
-        call w%check(hdferr, 'h5dwrite_f '//GROUP//'/'//name)
-        call w%close_spaces(GROUP//'/'//name, file_space, mem_space)
-        call close_dataset(w, dset_id, name)
-    end subroutine append_int
+        call w%append_rows(dset_id, GROUP//'/'//name, at, [int(size(values), hsize_t)], values)
+        call w%close_dataset(dset_id, GROUP//'/'//name)
+    end subroutine append
 
 end submodule output_native_s

@@ -12,7 +12,8 @@ module fsys_m
     implicit none
     private
     public :: mkdir_p, rename_file, remove_file, file_exists, dir_exists, &
-              parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size, from_c_string
+              parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size, &
+              from_c_string
 
     integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
     integer(c_int), parameter :: MODE_0755 = 493_c_int   !< octal 0755 = rwxr-xr-x

@@ -53,7 +53,8 @@ contains
         character(len=:), allocatable, intent(out) :: failed
 
         failed = ''
-        call put_values(obj_id, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, size(values), c_loc(values), failed)
+        call put_values(obj_id, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, size(values), &
+                        c_loc(values), failed)
     end subroutine put_attr_array
 
     !> A string: a variable-length string is written as a pointer to a NUL-terminated C string.

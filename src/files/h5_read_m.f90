@@ -368,8 +368,7 @@ contains
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
         integer(hsize_t), intent(in) :: npoints_wanted
-        integer(hid_t), intent(out) :: file_id
-        integer(hid_t), intent(out) :: attr_id
+        integer(hid_t), intent(out) :: file_id, attr_id
         integer(hsize_t), intent(out) :: npoints
         integer(hid_t) :: space_id
         integer :: hdferr
@@ -389,7 +388,8 @@ contains
         if (hdferr < 0) call fail(file, what, 'h5sget_simple_extent_npoints_f failed')
         call h5sclose_f(space_id, hdferr)
         if (hdferr < 0) call fail(file, what, 'h5sclose_f failed')
-        if (npoints_wanted >= 0 .and. npoints /= npoints_wanted) call fail(file, what, 'attribute is not a scalar')
+        if (npoints_wanted >= 0 .and. npoints /= npoints_wanted) &
+            call fail(file, what, 'attribute is not a scalar')
     end subroutine open_attr
 
     subroutine close_attr(file, name, file_id, attr_id)

@@ -1,6 +1,6 @@
 !> What HDF5 1.10's Fortran API lacks: its single-writer/multiple-reader (SWMR) mode
-!> (h5_swmr_c.c), and H5free_memory for the strings HDF5 allocates (h5_free). The writer (output_m) runs in SWMR write mode between its structural
-!> changes: HDF5 then writes a flush's metadata children before their parents (chunk index
+!> (h5_swmr_c.c), and H5free_memory for the strings HDF5 allocates (h5_free).
+!> The writer (output_m) runs in SWMR write mode between its structural changes: HDF5 then writes a flush's metadata children before their parents (chunk index
 !> nodes before the nodes and object headers pointing to them), so a run killed at any
 !> moment leaves its last flush readable. Without it a kill inside a flush can leave an index
 !> node pointing past the space the superblock records, or at a child not yet written,

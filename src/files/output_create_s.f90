@@ -80,17 +80,21 @@ contains
     subroutine create_datasets(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
-        integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)], EMPTY(1) = [0_hsize_t]
+        integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+        integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t]
         integer(hsize_t) :: row(2)
         integer :: k
 
         call w%make_group('/mesh')
-        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id)   ! closed by finish(), after describe_si
-        call w%describe(w%mesh_x_id, '/mesh/x', 'position x along the rod (nondimensional, scale: position)', '1')
+        ! /mesh/x stays open until finish(), for describe_si
+        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id)
+        call w%describe(w%mesh_x_id, '/mesh/x', &
+                        'position x along the rod (nondimensional, scale: position)', '1')
         call w%make_group('/series')
         do k = 1, N_SERIES
             associate (path => '/series/'//trim(SERIES(k)%name))
-                call w%create_extendible(path, merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
+                call w%create_extendible(path, &
+                                         merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
                                          EMPTY, CHUNK, w%series_ids(k))
                 call w%describe(w%series_ids(k), path, described(SERIES(k)%long_name, SERIES(k)%scale), &
                                 SERIES(k)%units)
@@ -98,14 +102,15 @@ contains
         end do
         call w%make_group('/snapshots')
         call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, w%snap_t_id)
-        call w%describe(w%snap_t_id, '/snapshots/t', described(SERIES(S_T)%long_name, SERIES(S_T)%scale), &
-                        SERIES(S_T)%units)
+        call w%describe(w%snap_t_id, '/snapshots/t', &
+                        described(SERIES(S_T)%long_name, SERIES(S_T)%scale), SERIES(S_T)%units)
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
         do k = 1, N_SNAPSHOT_FIELDS
             associate (field => SNAPSHOTS(k), path => '/snapshots/'//trim(SNAPSHOTS(k)%name))
-                call w%create_extendible(path, H5T_IEEE_F64LE, [row(1), 0_hsize_t], row, w%snap_field_ids(k), &
-                                         compress=.true.)
-                call w%describe(w%snap_field_ids(k), path, described(field%long_name, field%scale), field%units)
+                call w%create_extendible(path, H5T_IEEE_F64LE, [row(1), 0_hsize_t], row, &
+                                         w%snap_field_ids(k), compress=.true.)
+                call w%describe(w%snap_field_ids(k), path, &
+                                described(field%long_name, field%scale), field%units)
             end associate
         end do
         call name_dimensions(w)
@@ -129,8 +134,10 @@ contains
         end do
         call w%make_scale(w%snap_t_id, 't', '/snapshots/t')
         do k = 1, N_SNAPSHOT_FIELDS
-            call w%attach_scale(w%snap_field_ids(k), w%snap_t_id, 0, '/snapshots/'//trim(SNAPSHOTS(k)%name))
-            call w%attach_scale(w%snap_field_ids(k), w%mesh_x_id, 1, '/snapshots/'//trim(SNAPSHOTS(k)%name))
+            associate (path => '/snapshots/'//trim(SNAPSHOTS(k)%name))
+                call w%attach_scale(w%snap_field_ids(k), w%snap_t_id, 0, path)
+                call w%attach_scale(w%snap_field_ids(k), w%mesh_x_id, 1, path)
+            end associate
         end do
     end subroutine name_dimensions
 
@@ -141,14 +148,8 @@ contains
     !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
     !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
     !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
-    module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, compress)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: path
-        integer(hid_t), intent(in) :: file_type
-        integer(hsize_t), intent(in) :: dims(:), chunk(:)
-        integer(hid_t), intent(out) :: dset_id
-        logical, intent(in), optional :: compress
-
+    !> Arguments (w, path, file_type, dims, chunk, dset_id, compress): output_m's interface.
+    module procedure writer_create_extendible
         logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
         integer(hsize_t) :: maxdims(size(dims))
@@ -179,7 +180,7 @@ contains
         call w%check(hdferr, 'h5pclose_f (dataset creation) '//path)
         call h5sclose_f(space_id, hdferr)
         call w%check(hdferr, 'h5sclose_f '//path)
-    end subroutine writer_create_extendible
+    end procedure writer_create_extendible
 
     !> Create the group at `path` (its parent exists).
     module subroutine writer_make_group(w, path)
@@ -226,7 +227,7 @@ contains
         integer, intent(in) :: kind(:)
         integer(hid_t) :: t_id, kind_id
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_events() on a closed writer')
+        call w%need_open('write_events()')
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call w%make_group('/events')
         call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id)
@@ -235,8 +236,9 @@ contains
                         SERIES(S_T)%units, si=SERIES(S_T)%scale)
         call w%make_scale(t_id, 't', '/events/t')
         call create_fixed(w, '/events/kind', H5T_STD_I32LE, real(kind, dp), kind_id)
-        call w%describe(kind_id, '/events/kind', 'contact event: +1 onset (the rod end reaches the obstacle), '// &
-                        '-1 release', '1', si='')
+        call w%describe(kind_id, '/events/kind', &
+                        'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
+                        '1', si='')
         call w%attach_scale(kind_id, t_id, 0, '/events/kind')
         call w%close_dataset(kind_id, '/events/kind')
         call w%close_dataset(t_id, '/events/t')

@@ -29,7 +29,7 @@ contains
         integer :: stat
         character(len=256) :: message
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_estimate() on a closed writer')
+        call w%need_open('append_estimate()')
         if (size(values, 1) /= N_OUTPUT_FIELDS .or. size(values, 2) /= size(GROUPS)) &
             call w%fail('internal error: append_estimate() given the wrong number of values')
         if (w%estimate_ids(1, 1) < 0) then
@@ -52,8 +52,8 @@ contains
         n = int(w%n_estimate_buf, hsize_t)
         do part = 1, size(GROUPS)
             do k = 1, N_OUTPUT_FIELDS
-                call w%append_rows(w%estimate_ids(k, part), trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
-                                   w%n_estimate_snap, [n], w%estimate_buf(k, part, 1:n))
+                call w%append_rows(w%estimate_ids(k, part), path_of(part, k), w%n_estimate_snap, [n], &
+                                   w%estimate_buf(k, part, 1:n))
             end do
         end do
         w%n_estimate_snap = w%n_estimate_snap + n
@@ -70,14 +70,22 @@ contains
         do part = 1, size(GROUPS)
             call w%make_group(trim(GROUPS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                associate (field => FIELDS(OUTPUT_ORDER(k)), path => trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name))
-                    call w%create_extendible(path, H5T_IEEE_F64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], &
-                                             w%estimate_ids(k, part))
-                    call w%describe(w%estimate_ids(k, part), path, 'estimated relative L2 error of '// &
-                                    trim(field%long_name)//' at each snapshot '//trim(WHAT(part)), '1')
-                end associate
+                call w%create_extendible(path_of(part, k), H5T_IEEE_F64LE, [0_hsize_t], &
+                                         [int(SERIES_CHUNK, hsize_t)], w%estimate_ids(k, part))
+                call w%describe(w%estimate_ids(k, part), path_of(part, k), &
+                                'estimated relative L2 error of '// &
+                                trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
+                                ' at each snapshot '//trim(WHAT(part)), '1')
             end do
         end do
     end subroutine open_estimate
+
+    !> The dataset of field OUTPUT_ORDER(k) in group GROUPS(part).
+    function path_of(part, k) result(path)
+        integer, intent(in) :: part, k
+        character(len=:), allocatable :: path
+
+        path = trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
+    end function path_of
 
 end submodule output_estimate_s

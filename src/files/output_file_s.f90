@@ -112,7 +112,8 @@ contains
         class(h5_writer_t), intent(in) :: w
         integer(hid_t) :: ids(MAX_OPEN)
 
-        ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
+        ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, &
+               reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
     end function held_ids
 
     !> The writer's dataset identifiers from ids, in held_ids' order.
@@ -142,7 +143,7 @@ contains
         logical :: ok
         character(len=:), allocatable :: message
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: finish() on a closed writer')
+        call w%need_open('finish()')
         call w%leave_swmr()
         w%closing = .true.
         call tidy(w)
@@ -277,24 +278,29 @@ contains
             if (w%n_slot_events(slot) == 0) call w%drop('/checkpoint/slot'//int_str(slot)//'/events')
         end do
         if (w%native_created .and. w%n_native_snap == 0) then
-            call detach(w, '/snapshots/native/offset')
-            call detach(w, '/snapshots/native/count')
+            call detach_native(w)
             call w%drop('/snapshots/native')
         end if
     end subroutine tidy
 
-    !> Detach dataset `name` from its dimension scale /snapshots/t (before deleting it).
-    subroutine detach(w, name)
+    !> Detach /snapshots/native/offset and count from their dimension scale /snapshots/t
+    !> (before deleting them).
+    subroutine detach_native(w)
         class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
+        character(len=*), parameter :: NAMES(2) = [character(len=24) :: &
+            '/snapshots/native/offset', '/snapshots/native/count']
         integer(hid_t) :: dset_id
-        integer :: hdferr
+        integer :: hdferr, k
 
-        call h5dopen_f(w%file_id, name, dset_id, hdferr)
-        call w%check(hdferr, 'h5dopen_f '//name)
-        call h5dsdetach_scale_f(dset_id, w%snap_t_id, 1, hdferr)
-        call w%check(hdferr, 'h5dsdetach_scale_f '//name)
-        call w%close_dataset(dset_id, name)
-    end subroutine detach
+        do k = 1, size(NAMES)
+            associate (name => trim(NAMES(k)))
+                call h5dopen_f(w%file_id, name, dset_id, hdferr)
+                call w%check(hdferr, 'h5dopen_f '//name)
+                call h5dsdetach_scale_f(dset_id, w%snap_t_id, 1, hdferr)
+                call w%check(hdferr, 'h5dsdetach_scale_f '//name)
+                call w%close_dataset(dset_id, name)
+            end associate
+        end do
+    end subroutine detach_native
 
 end submodule output_file_s

@@ -110,6 +110,7 @@ module output_m
         procedure :: finish => writer_finish
         procedure :: abandon => writer_abandon
         procedure, private :: check => writer_check
+        procedure, private :: need_open => writer_need_open
         procedure, private :: put_real => writer_put_real
         procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
@@ -279,7 +280,7 @@ contains
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: values(N_SERIES)
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_series() on a closed writer')
+        call w%need_open('append_series()')
         w%n_buf = w%n_buf + 1
         w%buf(w%n_buf, :) = values
         if (w%n_buf == SERIES_BUFFER_SIZE) call w%flush_series()
@@ -293,7 +294,7 @@ contains
         real(dp), intent(in) :: values(:, :)
         integer :: k
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: append_snapshot() on a closed writer')
+        call w%need_open('append_snapshot()')
         if (any(shape(values) /= [w%n_nodes, N_SNAPSHOT_FIELDS])) &
             call w%fail('internal error: append_snapshot() given arrays whose size is not the number of mesh nodes')
         call w%append_rows(w%snap_t_id, '/snapshots/t', w%n_snap, [1_hsize_t], [t])
@@ -348,8 +349,7 @@ contains
         integer(hid_t), intent(in), optional :: on
         integer(hid_t) :: obj_id
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: attribute '"//name// &
-                                       "' written on a closed writer")
+        call w%need_open("attribute '"//name//"' written")
         if (w%swmr) then
             ! held dataset identifiers change when SWMR writing ends: none may be the target
             if (present(on)) call w%fail("internal error: attribute '"//name//"' of a dataset in SWMR mode")
@@ -367,7 +367,7 @@ contains
 
         integer :: hdferr
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: flush() on a closed writer')
+        call w%need_open('flush()')
         call w%flush_series()
         call writer_flush_estimate(w)
         call w%reserve()
@@ -388,6 +388,14 @@ contains
         if (hdferr >= 0) return
         call w%fail(what//' failed')
     end subroutine writer_check
+
+    !> Stop (exit 4) when the writer is not open: `what` came out of order.
+    subroutine writer_need_open(w, what)
+        class(h5_writer_t), intent(in) :: w
+        character(len=*), intent(in) :: what
+
+        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: '//what//' on a closed writer')
+    end subroutine writer_need_open
 
     !> Append the buffered series entries to the /series datasets (an integer one converted
     !> by HDF5 from the whole numbers of the buffer).

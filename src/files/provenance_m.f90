@@ -13,21 +13,19 @@ module provenance_m
     private
     public :: record_provenance, utc_now, host_name, command_line, hdf5_version, fortran_compiler
 
-    interface
-        function c_utc_now(buf, n) bind(C, name='rc_utc_now') result(rc)
+    abstract interface
+        !> A helper of provenance_c.c: writes a NUL-terminated string of at most n characters
+        !> into buf, returns 0 (non-zero: it failed).
+        function c_helper(buf, n) bind(C) result(rc)
             import :: c_char, c_int
             character(kind=c_char), intent(out) :: buf(*)
             integer(c_int), value :: n
             integer(c_int) :: rc
-        end function c_utc_now
-
-        function c_hostname(buf, n) bind(C, name='rc_hostname') result(rc)
-            import :: c_char, c_int
-            character(kind=c_char), intent(out) :: buf(*)
-            integer(c_int), value :: n
-            integer(c_int) :: rc
-        end function c_hostname
+        end function c_helper
     end interface
+
+    procedure(c_helper), bind(C, name='rc_utc_now') :: c_utc_now
+    procedure(c_helper), bind(C, name='rc_hostname') :: c_hostname
 
 contains
 
@@ -49,26 +47,26 @@ contains
     !> The current time in UTC, ISO 8601: '2026-11-23T07:30:00Z' ('unknown' if the clock fails).
     function utc_now() result(text)
         character(len=:), allocatable :: text
-        character(kind=c_char) :: buf(32)
 
-        if (c_utc_now(buf, size(buf, kind=c_int)) == 0) then
-            text = from_c_chars(buf)
-        else
-            text = 'unknown'
-        end if
+        text = c_text(c_utc_now)
     end function utc_now
 
     !> The host name (gethostname(2)); 'unknown' if it fails.
     function host_name() result(text)
         character(len=:), allocatable :: text
+
+        text = c_text(c_hostname)
+    end function host_name
+
+    !> What the C helper `helper` writes, or 'unknown' when it fails.
+    function c_text(helper) result(text)
+        procedure(c_helper) :: helper
+        character(len=:), allocatable :: text
         character(kind=c_char) :: buf(256)
 
-        if (c_hostname(buf, size(buf, kind=c_int)) == 0) then
-            text = from_c_chars(buf)
-        else
-            text = 'unknown'
-        end if
-    end function host_name
+        text = 'unknown'
+        if (helper(buf, size(buf, kind=c_int)) == 0) text = from_c_chars(buf)
+    end function c_text
 
     !> The command that started this run, as the shell passed it (arguments joined by ' ').
     function command_line() result(text)

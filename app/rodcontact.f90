@@ -16,7 +16,7 @@ program rodcontact
     use run_m, only: run_simulation
     use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, write_event_rows
     use errors_m, only: fatal, EXIT_INPUT
-    use version_m, only: PROGRAM_VERSION
+    use version_m, only: PROGRAM_VERSION, VERSION_LINE
     implicit none
     type(config_t) :: cfg
     character(len=:), allocatable :: source, file, problem
@@ -83,7 +83,7 @@ contains
                 call print_help()
                 stop
             case ('-V', '--version')
-                write (output_unit, '(a)') 'rodcontact '//PROGRAM_VERSION
+                write (output_unit, '(a)') VERSION_LINE
                 stop
             case ('--summary-header')
                 write (output_unit, '(a)') summary_header()

@@ -24,7 +24,8 @@
 #          --ratio R       refinement ratio, > 1 (default 2)
 #          --out DIR       where the levels and the results go (default out/converge_<input>)
 #          -j J            runs at once (default: the number of cores)
-#          --exe PATH      the rodcontact executable (default: $RODCONTACT, else build/rodcontact)
+#          --exe PATH      the rodcontact executable (default: $RODCONTACT, else build/rodcontact
+#                          in a source tree, PREFIX/bin/rodcontact installed: scripts/lib/find_rodcontact.sh)
 # Each level is a one-point scan of scripts/scan.sh in DIR/level_<k>/ (its file
 # point_0000.h5); a rerun of the same command reuses the levels that are complete.
 # Writes DIR/converge.csv (quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status)
@@ -52,7 +53,7 @@ jobs=""
 refine=both
 levels=3
 ratio=2
-exe="${RODCONTACT:-$repo_root/build/rodcontact}"
+exe=$("$repo_root/scripts/lib/find_rodcontact.sh")
 user_sets=()
 while (($# > 0)); do
     case $1 in

@@ -33,7 +33,8 @@
 #                            --task: $SLURM_CPUS_PER_TASK, else 1)
 #          --batch B         points per task of --task and --array (default 1): task T runs
 #                            points T*B .. T*B+B-1
-#          --exe PATH        the rodcontact executable (default: $RODCONTACT, else build/rodcontact)
+#          --exe PATH        the rodcontact executable (default: $RODCONTACT, else build/rodcontact
+#                            in a source tree, PREFIX/bin/rodcontact installed: scripts/lib/find_rodcontact.sh)
 # The points run under GNU parallel (Debian package 'parallel'); DIR/joblog is its job log
 # of the latest run. A rerun of the same command skips the points whose .h5 has status
 # 'complete' and runs the others (failed, never run, or interrupted); an interrupted point
@@ -213,7 +214,7 @@ input=""
 out=""
 jobs=""
 batch=1
-exe="${RODCONTACT:-$repo_root/build/rodcontact}"
+exe=$("$repo_root/scripts/lib/find_rodcontact.sh")
 mode=run
 task=""
 specs=()

@@ -35,6 +35,8 @@ REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
 
 # poppler-utils: pdftotext, with which tests/test_plot.sh reads the title of a figure
 REQUIRED_PACKAGES+=(poppler-utils)
+# python3-yaml: tests/test_version.sh reads CITATION.cff
+REQUIRED_PACKAGES+=(python3-yaml)
 
 build_only=0
 case "${1:-}" in

@@ -9,7 +9,7 @@
 # nodes times steps are a fixed share of the run's (A: (s/2 + 1)/(s + 1)/2, C and D:
 # (s/4 + 1)/(s + 1)/4 and /8, 0.345 at s = 500), so the ratio stays near that share of the
 # run's stepping while a companion's step costs per node nearly what the run's does (less the
-# finiteness test, and on a uniform mesh the scatter and gather: stepper_m's packed_levels).
+# finiteness test).
 # Another binary (e.g. the one before a change): BUILD_DIR=<its directory> WP_SKIP_BUILD=1.
 # With --cpu N: also CPU time (user + sys) to t = 10, N runs without and N with, alternated,
 # their medians and the load average (noisy on a loaded machine; the instruction counts are not).

@@ -32,7 +32,7 @@ module scheme_m
     private
     public :: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
     public :: element_block, band_width, assemble_matrix, assemble_blocks, active_fields, slots_of
-    public :: old_state_rhs, old_state_rhs_packed, add_lagged_coupling, gather_fields, scatter_fields, initial_data_present
+    public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields, initial_data_present
 
     ! Field order within a node (fields_m's F_*). The coupling graph (q-theta, theta-v,
     ! theta-P, v-P, P-eta) is a triangle theta-v-P with q and eta hanging off theta and P;
@@ -315,107 +315,49 @@ contains
         end do
     end subroutine assemble_blocks
 
-    !> Right-hand side of (6.1) from the previous time level (module header), field-major:
-    !> b(:, f) is the right-hand side of the equation of field f. Dirichlet rows are zero.
-    !> The contact term is not included. No allocation: called every time step. Fields with
-    !> active(f) = .false. (left out of the system, always zero) are skipped. mesh: the mesh
-    !> of the level (its mass and stiffness matrices).
-    subroutine old_state_rhs(model, dt, u_old, w_old, b, work, active, mesh)
+    !> Right-hand side of (6.1) from the previous time level (module header), into the system
+    !> vector b of the fields with slots(f) > 0 (b(slots(f), i): the right-hand side of field
+    !> f's equation at node i, assemble_matrix's order): each equation's terms are formed as a
+    !> column of y (contiguous, so they vectorise) and the columns are interleaved into b
+    !> (scatter_fields). Dirichlet rows are zero. The contact term is not included. No
+    !> allocation: called every time step. mesh: the mesh of the level (its mass and stiffness
+    !> matrices).
+    subroutine old_state_rhs(model, dt, u_old, w_old, slots, b, y, mesh)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt
         real(dp), intent(in) :: u_old(0:)          !< u^{n-1}
         real(dp), intent(in) :: w_old(0:, :)       !< fields at t_{n-1}, w_old(:, f)
-        real(dp), intent(out) :: b(0:, :)
-        real(dp), intent(inout) :: work(0:)        !< scratch of size s+1
-        logical, intent(in) :: active(N_FIELDS)
+        integer, intent(in) :: slots(N_FIELDS)
+        real(dp), intent(out), contiguous :: b(:)
+        !> scratch: y(:, f) the right-hand side of field f's equation, y(:, 0) work
+        real(dp), intent(out) :: y(0:ubound(u_old, 1), 0:N_FIELDS)
         type(mesh_t), intent(in) :: mesh
-        integer :: f
 
-        do f = 1, N_FIELDS
-            if (.not. active(f)) b(:, f) = 0.0_dp
-        end do
         ! (6.1)_1: rho Me v^{n-1} - dt alpha Ke u^{n-1}
-        call mesh%apply_mass(w_old(:, F_V), b(:, F_V))
+        call mesh%apply_mass(w_old(:, F_V), y(:, F_V))
         if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) &
-            call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w_old(:, F_V), b(:, F_V))
-        call mesh%apply_stiffness(u_old, work)
-        b(:, F_V) = model%rho * b(:, F_V) - dt * model%alpha * work
-        if (active(F_THETA)) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})
-            work = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
-            call mesh%apply_mass(work, b(:, F_THETA))
+            call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w_old(:, F_V), y(:, F_V))
+        call mesh%apply_stiffness(u_old, y(:, 0))
+        y(:, F_V) = model%rho * y(:, F_V) - dt * model%alpha * y(:, 0)
+        if (slots(F_THETA) > 0) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})
+            y(:, 0) = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
+            call mesh%apply_mass(y(:, 0), y(:, F_THETA))
         end if
-        if (active(F_Q)) then       ! (6.1)_3: tau0 Me q^{n-1}
-            call mesh%apply_mass(w_old(:, F_Q), b(:, F_Q))
-            b(:, F_Q) = model%tau0 * b(:, F_Q)
+        if (slots(F_Q) > 0) then       ! (6.1)_3: tau0 Me q^{n-1}
+            call mesh%apply_mass(w_old(:, F_Q), y(:, F_Q))
+            y(:, F_Q) = model%tau0 * y(:, F_Q)
         end if
-        if (active(F_P)) then       ! (6.1)_4: Me (d theta^{n-1} + r P^{n-1})
-            work = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
-            call mesh%apply_mass(work, b(:, F_P))
+        if (slots(F_P) > 0) then       ! (6.1)_4: Me (d theta^{n-1} + r P^{n-1})
+            y(:, 0) = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
+            call mesh%apply_mass(y(:, 0), y(:, F_P))
         end if
-        if (active(F_ETA)) then     ! (6.1)_5 times hbar: hbar tau Me eta^{n-1}
-            call mesh%apply_mass(w_old(:, F_ETA), b(:, F_ETA))
-            b(:, F_ETA) = model%hbar * model%tau * b(:, F_ETA)
+        if (slots(F_ETA) > 0) then     ! (6.1)_5 times hbar: hbar tau Me eta^{n-1}
+            call mesh%apply_mass(w_old(:, F_ETA), y(:, F_ETA))
+            y(:, F_ETA) = model%hbar * model%tau * y(:, F_ETA)
         end if
-        call zero_dirichlet_rows(b)
+        call zero_dirichlet_rows(y(:, 1:))
+        call scatter_fields(slots, y(:, 1:), b)
     end subroutine old_state_rhs
-
-    !> old_state_rhs on a uniform mesh with every field in the system and no inertia
-    !> difference (model's mass_lumped = 0, mass_end_moved false), from and into the system's node-major layout
-    !> (scatter_fields): w_old(slots(f), i) is field f at node i and b(slots(f), i) the
-    !> right-hand side of its equation there, written in place of the system vector (no
-    !> scatter). y first holds what the mass matrix acts on in each equation (v, c theta +
-    !> d P, q, d theta + r P, eta); then one pass applies the mass matrix to the five at
-    !> once, node by node, and scales each equation (rho, 1, tau0, 1, hbar tau: a factor 1
-    !> is exact), and the stiffness term enters the v rows. Each entry takes the operations
-    !> of old_state_rhs (mesh_m's apply_mass and apply_stiffness: fe_m's apply_assembled, row
-    !> by row): the values are the same bit for bit. Used by the error estimate's companions (stepper_m's
-    !> packed_levels).
-    subroutine old_state_rhs_packed(model, dt, u_old, slots, w_old, b, y, mesh)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in) :: dt
-        real(dp), intent(in) :: u_old(0:)          !< u^{n-1}
-        integer, intent(in) :: slots(N_FIELDS)     !< every field in the system
-        real(dp), intent(in) :: w_old(N_FIELDS, 0:ubound(u_old, 1))
-        real(dp), intent(out) :: b(N_FIELDS, 0:ubound(u_old, 1))
-        real(dp), intent(out) :: y(N_FIELDS, 0:ubound(u_old, 1))   !< scratch
-        type(mesh_t), intent(in) :: mesh           !< uniform
-        real(dp) :: m(2, 2), k(2, 2), m_mid, k_mid, dt_alpha, scale(N_FIELDS)
-        integer :: i, s, f, sv, st, sp
-
-        s = ubound(u_old, 1)
-        sv = slots(F_V)
-        st = slots(F_THETA)
-        sp = slots(F_P)
-        dt_alpha = dt * model%alpha
-        scale = 1.0_dp
-        scale(sv) = model%rho
-        scale(slots(F_Q)) = model%tau0
-        scale(slots(F_ETA)) = model%hbar * model%tau
-        y = w_old
-        do i = 0, s
-            y(st, i) = model%c * w_old(st, i) + model%d * w_old(sp, i)
-            y(sp, i) = model%d * w_old(st, i) + model%r * w_old(sp, i)
-        end do
-        ! fe_m's apply_assembled, row by row
-        m = element_mass(mesh%h(1))
-        k = element_stiffness(mesh%h(1))
-        m_mid = m(2, 2) + m(1, 1)
-        k_mid = k(2, 2) + k(1, 1)
-        b(:, 0) = scale * (m(1, 1) * y(:, 0) + m(1, 2) * y(:, 1))
-        b(sv, 0) = b(sv, 0) - dt_alpha * (k(1, 1) * u_old(0) + k(1, 2) * u_old(1))
-        do i = 1, s - 1
-            b(:, i) = scale * (m(2, 1) * y(:, i - 1) + m_mid * y(:, i) + m(1, 2) * y(:, i + 1))
-        end do
-        do i = 1, s - 1
-            b(sv, i) = b(sv, i) - dt_alpha * (k(2, 1) * u_old(i - 1) + k_mid * u_old(i) + k(1, 2) * u_old(i + 1))
-        end do
-        b(:, s) = scale * (m(2, 1) * y(:, s - 1) + m(2, 2) * y(:, s))
-        b(sv, s) = b(sv, s) - dt_alpha * (k(2, 1) * u_old(s - 1) + k(2, 2) * u_old(s))
-        do f = 1, N_FIELDS
-            if (is_dirichlet(f, 0, s)) b(slots(f), 0) = 0.0_dp
-            if (is_dirichlet(f, s, s)) b(slots(f), s) = 0.0_dp
-        end do
-    end subroutine old_state_rhs_packed
 
     !> b(:, row) -= (block (row, col) of (6.1)) * w(:, col) for every coupling from a field
     !> in the system (slots > 0) to one outside it (slots == 0): the lagged terms of the

@@ -8,11 +8,11 @@ module state_m
     use initial_data_m, only: profile
     use errors_m, only: check_allocation
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
-    use checkpoint_m, only: checkpoint_t
+    use checkpoint_m, only: checkpoint_t, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR
     implicit none
     private
     public :: state_t, initial_state, set_mesh, field_values, advance_time, accept_step, land_on, &
-              copy_state, keep_copy, keep_vector, sized_vector, sized_level
+              copy_state, keep_copy
 
     type :: state_t
         integer :: s = 0                !< number of elements (mesh%s())
@@ -27,12 +27,6 @@ module state_m
         real(dp), allocatable :: w(:, :)    !< w(i, f): field f (fields_m's F_*) at node i
         real(dp), allocatable :: u_prev(:), w_prev(:, :)  !< the level before (multistep schemes
                                                           !< only; allocated by the stepper)
-        !> packed: the fields of the level (and of the level before) are wp (wp_prev), in the
-        !> stepper's node-major system layout, and w (w_prev) are stale (a stepper with
-        !> packed_levels: error_companion_m's companions between snapshots; stepper_m's
-        !> unpack_level brings them back)
-        logical :: packed = .false.
-        real(dp), allocatable :: wp(:), wp_prev(:)
         type(mesh_t) :: mesh            !< the nodes x_i and element sizes h_e (set_mesh)
     contains
         procedure :: save_checkpoint => state_save_checkpoint
@@ -153,9 +147,7 @@ contains
 
     !> copy = state, reusing copy's arrays (a rejected adaptive step restores from it; the
     !> intrinsic assignment would allocate every step). level = .false.: all but the level
-    !> (u, w), which the caller keeps elsewhere (default .true.); of a packed level
-    !> (stepper_m's keep_levels_packed) that leaves wp uncopied, so the caller that keeps the
-    !> level must keep wp too (today only the run's own state, never packed, is copied so).
+    !> (u, w), which the caller keeps elsewhere (default .true.).
     subroutine copy_state(state, copy, level)
         type(state_t), intent(in) :: state
         type(state_t), intent(inout) :: copy
@@ -177,22 +169,7 @@ contains
         else if (allocated(copy%u_prev)) then
             deallocate (copy%u_prev, copy%w_prev)
         end if
-        copy%packed = state%packed
-        if (.not. state%packed) return
-        if (with_level) call keep_vector(state%wp, copy%wp, 'the saved state')
-        if (allocated(state%wp_prev)) call keep_vector(state%wp_prev, copy%wp_prev, 'the saved state')
     end subroutine copy_state
-
-    !> copy = x, allocated with its size when it has another (what: for the message if the
-    !> allocation fails).
-    subroutine keep_vector(x, copy, what)
-        real(dp), intent(in) :: x(:)
-        real(dp), allocatable, intent(inout) :: copy(:)
-        character(len=*), intent(in) :: what
-
-        call sized_vector(copy, size(x), what)
-        copy = x
-    end subroutine keep_vector
 
     !> (u_copy, w_copy) = (u, w), allocated with their bounds on the first call (what: for
     !> the message if the allocation fails).
@@ -205,23 +182,6 @@ contains
         u_copy = u
         w_copy = w
     end subroutine keep_copy
-
-    !> x allocated with n entries: kept when it has them, else allocated anew (its values not
-    !> kept; what: for the message if the allocation fails).
-    subroutine sized_vector(x, n, what)
-        real(dp), allocatable, intent(inout) :: x(:)
-        integer, intent(in) :: n
-        character(len=*), intent(in) :: what
-        integer :: stat
-        character(len=256) :: message
-
-        if (allocated(x)) then
-            if (size(x) == n) return
-            deallocate (x)
-        end if
-        allocate (x(n), stat=stat, errmsg=message)
-        call check_allocation(stat, message, what)
-    end subroutine sized_vector
 
     !> A level's arrays u(0:last), w(0:last, n_fields): kept when u has last + 1 entries (the
     !> mesh is the same), else allocated anew and zero (what: for the message if the
@@ -245,19 +205,18 @@ contains
         w = 0.0_dp
     end subroutine sized_level
 
-    !> The level, the level before (multistep schemes) and the time counters into a
-    !> checkpoint: state/level and state/previous (s+1, 1+N_FIELDS; pack_level), state/step, t, ...
+    !> The level, the level before (multistep schemes) and the time counters into a checkpoint.
     subroutine state_save_checkpoint(self, ckpt)
         class(state_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call ckpt%put('state/level', pack_level(self%u, self%w))
-        if (allocated(self%u_prev)) call ckpt%put('state/previous', pack_level(self%u_prev, self%w_prev))
-        call ckpt%put('state/step', self%step)
-        call ckpt%put('state/t', self%t)
-        call ckpt%put('state/dt_last', self%dt_last)
-        call ckpt%put('state/t_anchor', self%t_anchor)
-        call ckpt%put('state/step_anchor', self%step_anchor)
+        ckpt%state = pack_level(self%u, self%w)
+        if (allocated(self%u_prev)) ckpt%previous = pack_level(self%u_prev, self%w_prev)
+        ckpt%counters(COUNTER_STEP) = real(self%step, dp)
+        ckpt%counters(COUNTER_T) = self%t
+        ckpt%counters(COUNTER_DT_LAST) = self%dt_last
+        ckpt%counters(COUNTER_T_ANCHOR) = self%t_anchor
+        ckpt%counters(COUNTER_STEP_ANCHOR) = real(self%step_anchor, dp)
         call self%mesh%save_checkpoint(ckpt)
     end subroutine state_save_checkpoint
 
@@ -266,34 +225,30 @@ contains
     subroutine state_restore_checkpoint(self, ckpt)
         class(state_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
-        real(dp), allocatable :: level(:, :)
         integer :: s, stat
         character(len=256) :: message
 
-        call ckpt%get('state/level', level)
-        s = size(level, 1) - 1
+        s = size(ckpt%state, 1) - 1
         if (size(self%u) /= s + 1) then
             deallocate (self%u, self%w)
             allocate (self%u(0:s), self%w(0:s, N_FIELDS), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the state')
             self%s = s
         end if
-        self%u = level(:, 1)
-        self%w = level(:, 2:)
-        self%packed = .false.
-        if (ckpt%has('state/previous')) then
-            call ckpt%get('state/previous', level)
+        self%u = ckpt%state(:, 1)
+        self%w = ckpt%state(:, 2:)
+        if (allocated(ckpt%previous)) then
             if (allocated(self%u_prev)) deallocate (self%u_prev, self%w_prev)
             allocate (self%u_prev(0:s), self%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the previous level')
-            self%u_prev = level(:, 1)
-            self%w_prev = level(:, 2:)
+            self%u_prev = ckpt%previous(:, 1)
+            self%w_prev = ckpt%previous(:, 2:)
         end if
-        call ckpt%get('state/step', self%step)
-        call ckpt%get('state/t', self%t)
-        call ckpt%get('state/dt_last', self%dt_last)
-        call ckpt%get('state/t_anchor', self%t_anchor)
-        call ckpt%get('state/step_anchor', self%step_anchor)
+        self%step = nint(ckpt%counters(COUNTER_STEP))
+        self%t = ckpt%counters(COUNTER_T)
+        self%dt_last = ckpt%counters(COUNTER_DT_LAST)
+        self%t_anchor = ckpt%counters(COUNTER_T_ANCHOR)
+        self%step_anchor = nint(ckpt%counters(COUNTER_STEP_ANCHOR))
         call self%mesh%restore_checkpoint(ckpt)
     end subroutine state_restore_checkpoint
 

@@ -25,15 +25,15 @@ module stepper_m
     use system_cache_m, only: monolithic_system_t, system_cache_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
     use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
-                        assemble_matrix, assemble_blocks, old_state_rhs, old_state_rhs_packed, add_lagged_coupling, &
+                        assemble_matrix, assemble_blocks, old_state_rhs, add_lagged_coupling, &
                         scatter_fields, gather_fields, initial_data_present
     use block_tridiagonal_m, only: NB_MAX
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
-    use state_m, only: state_t, advance_time, accept_step, keep_copy, keep_vector, sized_vector, sized_level
+    use state_m, only: state_t, advance_time, accept_step, keep_copy
     use mesh_m, only: mesh_t, copy_mesh
     use sources_m, only: source_t, add_source_terms
-    use checkpoint_m, only: checkpoint_t
+    use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
     use massless_end_m, only: settle_end
     implicit none
     private
@@ -74,11 +74,6 @@ module stepper_m
         !> a non-finite solution fails the step (error_companion_m's companions test their
         !> levels once per snapshot instead)
         logical :: check_finite = .true.
-        !> the levels it steps stay in the system's node-major layout between steps (state_t's
-        !> packed: no scatter of the right-hand side, no gather of the solution; the caller
-        !> unpacks a level before it reads its fields: unpack_level). A uniform mesh, every
-        !> field in the system, no source terms: keep_levels_packed
-        logical :: packed_levels = .false.
         integer :: slots(N_FIELDS) = MONOLITHIC_SLOTS
         class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
         !> the factored systems of (6.1), by dt_eff and mesh (system_cache_m)
@@ -87,11 +82,8 @@ module stepper_m
         type(band_t) :: thermal        !< paper: (q, theta, P, eta) block, factored
         type(band_t) :: mechanical     !< paper: v block, factored
         ! work arrays, allocated once
-        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
+        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:, :), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
-        !> packed_levels: the fields of u_star packed, and old_state_rhs_packed's scratch (of
-        !> the system's size, allocated by the first step that needs them)
-        real(dp), allocatable :: wp_star(:), wp_work(:)
         !> the node blocks E_i, F_i of a system before its block LU (setup_monolithic; D_i are
         !> assembled into the factors' storage)
         real(dp), allocatable :: e_blocks(:, :, :), f_blocks(:, :, :)
@@ -104,9 +96,6 @@ module stepper_m
         procedure :: n_unknowns_per_node => stepper_n_unknowns_per_node
         procedure :: remesh => stepper_remesh
         procedure :: take_back => stepper_take_back
-        procedure :: keep_levels_packed => stepper_keep_levels_packed
-        procedure :: unpack_level => stepper_unpack_level
-        procedure :: level_fields => stepper_level_fields
         procedure :: save_checkpoint => stepper_save_checkpoint
         procedure :: restore_checkpoint => stepper_restore_checkpoint
     end type stepper_t
@@ -164,11 +153,10 @@ contains
         if (allocated(self%b)) deallocate (self%b, self%b_old, self%w_lag, self%w_new, self%u_lag, self%work, &
                                            self%u_star, self%w_star)
         allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
-                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%u_star(0:s), &
+                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s, 0:N_FIELDS), self%u_star(0:s), &
                   self%w_star(0:s, N_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the work arrays')
         self%w_new = 0.0_dp
-        if (self%method /= METHOD_MONOLITHIC) return
         if (allocated(self%x)) deallocate (self%x)
         allocate (self%x(count(self%active) * (s + 1)), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the system')
@@ -185,8 +173,6 @@ contains
         self%s = self%mesh%s()
         call allocate_work(self)
         call self%cache%invalidate()
-        ! a graded mesh: levels are no longer kept packed (the caller has unpacked them)
-        self%packed_levels = self%packed_levels .and. self%mesh%is_uniform()
     end subroutine stepper_remesh
 
     !> The paper's Section 7 blocks for step dt, factored.
@@ -205,7 +191,7 @@ contains
         call self%mechanical%factor(info)
         if (info /= 0) call fail(result, 'mechanical block: '//lapack_info_message('dgbtrf', info))
         if (.not. allocated(self%xt)) then
-            allocate (self%xt(self%thermal%n), self%x(self%mechanical%n), stat=stat, errmsg=message)
+            allocate (self%xt(self%thermal%n), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the paper iteration''s work arrays')
         end if
     end subroutine setup_paper
@@ -353,15 +339,14 @@ contains
             if (.not. equal(step_size, self%paper_dt)) call setup_paper(self, step_size, result)
             if (.not. result%ok) return
             call start_rhs(self, self%model, step_size, t_new, state%u, state%w)
+            call gather_fields(self%slots, self%x, self%b_old)
             call advance_paper(self, state, step_size, result)
         case default
             plan = self%scheme%plan(step_size, state%dt_last, allocated(state%u_prev), state%step)
             t_source = t_new - plan%source_back * step_size
             call find_system(self, plan%dt_eff, k, result)
             if (.not. result%ok) return
-            if (self%packed_levels) then
-                call advance_packed(self, plan, self%cache%systems(k), state, result)
-            else if (plan%from_history) then
+            if (plan%from_history) then
                 ! the level the step starts from, e.g. (4 X^{n-1} - X^{n-2}) / 3 (BDF2)
                 self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
                 self%w_star = (plan%a * state%w - plan%b * state%w_prev) / plan%d
@@ -383,51 +368,19 @@ contains
     end subroutine stepper_advance
 
     !> Right-hand side of (6.1) for `model` with step dt_eff from the level (u_from, w_from),
-    !> plus the sources at t_source.
+    !> plus the sources at t_source, in the system vector x (node by node).
     subroutine start_rhs(self, model, dt_eff, t_source, u_from, w_from)
         type(stepper_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(model, dt_eff, u_from, w_from, self%b_old, self%work, self%active, self%mesh)
-        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%b_old, self%mesh)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%x, self%work, self%mesh)
+        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%x, self%mesh)
     end subroutine start_rhs
 
-    !> stepper_advance's monolithic step for a stepper with packed_levels: the level packed
-    !> (once, then it stays so), the right-hand side formed in the system vector from it
-    !> (no source terms: keep_levels_packed).
-    subroutine advance_packed(self, plan, sys, state, result)
-        type(stepper_t), intent(inout) :: self
-        type(step_plan_t), intent(in) :: plan
-        type(monolithic_system_t), intent(in) :: sys
-        type(state_t), intent(inout) :: state
-        type(step_result_t), intent(inout) :: result
-
-        call pack_level(self, state)
-        call sized_vector(self%wp_work, size(self%x), 'the packed level')
-        if (plan%from_history) then
-            call sized_vector(self%wp_star, size(self%x), 'the packed level')
-            self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
-            self%wp_star = (plan%a * state%wp - plan%b * state%wp_prev) / plan%d
-            call old_state_rhs_packed(self%step_model, plan%dt_eff, self%u_star, self%slots, self%wp_star, &
-                                      self%x, self%wp_work, self%mesh)
-            call advance_monolithic(self, sys, state, .true., result)
-        else
-            call old_state_rhs_packed(self%step_model, plan%dt_eff, state%u, self%slots, state%wp, self%x, &
-                                      self%wp_work, self%mesh)
-            if (plan%midpoint) then
-                call advance_midpoint(self, sys, state, result)
-            else
-                call advance_monolithic(self, sys, state, .false., result)
-            end if
-        end if
-    end subroutine advance_packed
-
     !> One monolithic step from the state itself (from_star = .false.) or from the level
-    !> u_star, w_star (from_star = .true., multistep schemes). A packed level (state_t's
-    !> packed): the right-hand side is already in the system vector, and the solution
-    !> becomes the level's packed fields.
+    !> u_star, w_star (from_star = .true., multistep schemes); the right-hand side is in x.
     subroutine advance_monolithic(self, sys, state, from_star, result)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys
@@ -436,7 +389,7 @@ contains
         type(step_result_t), intent(inout) :: result
         real(dp) :: gap, impulse, u_end_from
 
-        call solve_trial(self, sys, state%packed)
+        call solve_trial(self, sys)
         result%iterations = 1
         ! The trial gap without contact force decides the contact state; the contact row
         ! carries dt*lambda, so x = y - dt*lambda*z (contact_law_m's implicit_impulse).
@@ -452,24 +405,12 @@ contains
         result%trial_gap = gap
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
-        if (state%packed) then
-            if (self%scheme%keeps_previous_level()) call keep_previous_packed(state)
-            call take_solution(self, state)
-            associate (v => state%wp(self%slots(F_V)::N_FIELDS))
-                if (from_star) then
-                    state%u = self%u_star + sys%dt_eff * v
-                else
-                    state%u = state%u + sys%dt_eff * v
-                end if
-            end associate
+        if (self%scheme%keeps_previous_level()) call keep_previous_level(state)
+        call gather_fields(self%slots, self%x, state%w)
+        if (from_star) then
+            state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
         else
-            if (self%scheme%keeps_previous_level()) call keep_previous_level(state)
-            call gather_fields(self%slots, self%x, state%w)
-            if (from_star) then
-                state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
-            else
-                state%u = state%u + sys%dt_eff * state%w(:, F_V)
-            end if
+            state%u = state%u + sys%dt_eff * state%w(:, F_V)
         end if
         call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u)
     end subroutine advance_monolithic
@@ -478,8 +419,7 @@ contains
     !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
     !> force (contact_law_m's midpoint_impulse); then X^n = 2 Y - X^{n-1}, except for the
     !> algebraic fields (X^n = Y), and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new (whose
-    !> columns of fields left out of the system stay zero from set-up), or, with packed
-    !> levels (keep_levels_packed), in the solver's vector.
+    !> columns of fields left out of the system stay zero from set-up).
     subroutine advance_midpoint(self, sys, state, result)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys
@@ -488,7 +428,7 @@ contains
         real(dp) :: impulse
         integer :: f
 
-        call solve_trial(self, sys, state%packed)
+        call solve_trial(self, sys)
         result%iterations = 1
         associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), u_old => state%u(self%s))
             impulse = self%law%midpoint_impulse(u_old + dt * self%x(sys%contact_dof), u_old, dt, z_s)
@@ -496,10 +436,6 @@ contains
         end associate
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
-        if (state%packed) then
-            call midpoint_packed(self, sys, state, result)
-            return
-        end if
         call gather_fields(self%slots, self%x, self%w_new)
         do f = 1, N_FIELDS
             if (self%algebraic(f)) then
@@ -512,29 +448,6 @@ contains
         call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u, &
                         state%w(:, F_V), self%w_new(self%s, F_V))
     end subroutine advance_midpoint
-
-    !> advance_midpoint's new level from Y in the system vector (a packed level): the same
-    !> operations on each field's entries (w_new is not set).
-    subroutine midpoint_packed(self, sys, state, result)
-        type(stepper_t), intent(inout) :: self
-        type(monolithic_system_t), intent(in) :: sys
-        type(state_t), intent(inout) :: state
-        type(step_result_t), intent(in) :: result
-        integer :: f, k, sv
-
-        do f = 1, N_FIELDS
-            k = self%slots(f)
-            if (self%algebraic(f)) then
-                state%wp(k::N_FIELDS) = self%x(k::N_FIELDS)
-            else
-                state%wp(k::N_FIELDS) = 2.0_dp * self%x(k::N_FIELDS) - state%wp(k::N_FIELDS)
-            end if
-        end do
-        sv = self%slots(F_V)
-        state%u = state%u + 2.0_dp * sys%dt_eff * self%x(sv::N_FIELDS)
-        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u, &
-                        state%wp(sv::N_FIELDS), self%x(N_FIELDS * self%s + sv))
-    end subroutine midpoint_packed
 
     !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.
     !> A non-finite solution fails the step (unless check_finite is off).
@@ -566,14 +479,12 @@ contains
         all_finite = n_bad == 0
     end function all_finite
 
-    !> x = A^{-1} b_old: the step's solution without contact force (in_place: the right-hand
-    !> side is already in x, old_state_rhs_packed).
-    subroutine solve_trial(self, sys, in_place)
+    !> x = A^{-1} x: the step's solution without contact force, from its right-hand side
+    !> (start_rhs).
+    subroutine solve_trial(self, sys)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys
-        logical, intent(in) :: in_place
 
-        if (.not. in_place) call scatter_fields(self%slots, self%b_old, self%x)
         if (sys%use_blocks) then
             call sys%blocks%solve(self%x)
         else
@@ -597,17 +508,17 @@ contains
         do l = 1, self%max_iter
             ! thermal block with the lagged velocity
             self%b = self%b_old
-            call add_lagged_coupling(self%model, dt, THERMAL_SLOTS, self%w_lag, self%b, self%work)
+            call add_lagged_coupling(self%model, dt, THERMAL_SLOTS, self%w_lag, self%b, self%work(:, 0))
             call scatter_fields(THERMAL_SLOTS, self%b, self%xt)
             call self%thermal%solve(self%xt)
             call gather_fields(THERMAL_SLOTS, self%xt, self%w_new)
             ! mechanical block with the new theta, P and the lagged penalty
             self%b(:, F_V) = self%b_old(:, F_V)
-            call add_lagged_coupling(self%model, dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work)
+            call add_lagged_coupling(self%model, dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work(:, 0))
             self%b(s, F_V) = self%b(s, F_V) - self%law%lagged_impulse(dt, self%u_lag(s))
-            self%x = self%b(:, F_V)
-            call self%mechanical%solve(self%x)
-            self%w_new(:, F_V) = self%x
+            self%x(1:s + 1) = self%b(:, F_V)
+            call self%mechanical%solve(self%x(1:s + 1))
+            self%w_new(:, F_V) = self%x(1:s + 1)
             result%iterations = l
             if (.not. all(ieee_is_finite(self%w_new))) then
                 call fail(result, 'non-finite value in the solution')
@@ -643,88 +554,6 @@ contains
 
         call keep_copy(state%u, state%w, state%u_prev, state%w_prev, 'the previous level')
     end subroutine keep_previous_level
-
-    !> The level's fields (and the level before's) into the packed layout, if they are not
-    !> there yet (the arrays take the system's size).
-    subroutine pack_level(self, state)
-        type(stepper_t), intent(inout) :: self
-        type(state_t), intent(inout) :: state
-
-        if (state%packed) return
-        call sized_vector(state%wp, size(self%x), 'the packed level')
-        call scatter_fields(self%slots, state%w, state%wp)
-        if (allocated(state%u_prev)) then
-            call sized_vector(state%wp_prev, size(self%x), 'the packed level')
-            call scatter_fields(self%slots, state%w_prev, state%wp_prev)
-        end if
-        state%packed = .true.
-    end subroutine pack_level
-
-    !> keep_previous_level for a packed level: u and the packed fields (w_prev, allocated
-    !> with u_prev, is stale until unpack_level).
-    subroutine keep_previous_packed(state)
-        type(state_t), intent(inout) :: state
-
-        call sized_level(state%u_prev, state%w_prev, state%s, N_FIELDS, 'the previous level')
-        state%u_prev = state%u
-        call keep_vector(state%wp, state%wp_prev, 'the previous level')
-    end subroutine keep_previous_packed
-
-    !> The step's solution (x) becomes the packed level's fields: the arrays trade places
-    !> (x is work space: every step writes it whole before it reads it).
-    subroutine take_solution(self, state)
-        type(stepper_t), intent(inout) :: self
-        type(state_t), intent(inout) :: state
-        real(dp), allocatable :: held(:)
-
-        call move_alloc(state%wp, held)
-        call move_alloc(self%x, state%wp)
-        call move_alloc(held, self%x)
-    end subroutine take_solution
-
-    !> Levels this stepper advances stay packed between steps (packed_levels) when its mesh
-    !> is uniform, every field is in the monolithic system, and there are no source terms
-    !> and no inertia difference (scheme_m's old_state_rhs_packed); otherwise nothing
-    !> changes. (On a graded mesh the node-major right-hand side, written out, cost more
-    !> than the scatter and gather it saves: docs/scheme.md.)
-    subroutine stepper_keep_levels_packed(self)
-        class(stepper_t), intent(inout) :: self
-
-        self%packed_levels = self%method == METHOD_MONOLITHIC .and. self%mesh%is_uniform() .and. &
-                             all(self%active) .and. .not. allocated(self%source) .and. &
-                             .not. self%step_model%mass_end_moved .and. .not. self%step_model%mass_lumped > 0.0_dp
-    end subroutine stepper_keep_levels_packed
-
-    !> A packed level's fields (and the level before's) back into w (w_prev): readable again.
-    subroutine stepper_unpack_level(self, state)
-        class(stepper_t), intent(in) :: self
-        type(state_t), intent(inout) :: state
-
-        if (.not. state%packed) return
-        call gather_fields(self%slots, state%wp, state%w)
-        if (allocated(state%u_prev)) call gather_fields(self%slots, state%wp_prev, state%w_prev)
-        state%packed = .false.
-    end subroutine stepper_unpack_level
-
-    !> The fields of a level (previous: of the level before), packed or not.
-    function stepper_level_fields(self, state, previous) result(w)
-        class(stepper_t), intent(in) :: self
-        type(state_t), intent(in) :: state
-        logical, intent(in) :: previous
-        real(dp) :: w(0:state%s, N_FIELDS)
-
-        if (state%packed) then
-            if (previous) then
-                call gather_fields(self%slots, state%wp_prev, w)
-            else
-                call gather_fields(self%slots, state%wp, w)
-            end if
-        else if (previous) then
-            w = state%w_prev
-        else
-            w = state%w
-        end if
-    end function stepper_level_fields
 
     !> The block LU has no pivoting across nodes; use it only if it solves as well as the
     !> band LU with partial pivoting: on the unit contact force and on a smooth right-hand
@@ -781,17 +610,18 @@ contains
         class(stepper_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call ckpt%put('stepper/n_solves', self%n_solves)
-        call ckpt%put('stepper/n_contact_steps', self%n_contact_steps)
+        ckpt%counters(COUNTER_SOLVES) = real(self%n_solves, dp)
+        ckpt%counters(COUNTER_CONTACT_STEPS) = real(self%n_contact_steps, dp)
     end subroutine stepper_save_checkpoint
 
     !> The inverse of save_checkpoint.
     subroutine stepper_restore_checkpoint(self, ckpt)
+        use iso_fortran_env, only: int64
         class(stepper_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
 
-        call ckpt%get('stepper/n_solves', self%n_solves)
-        call ckpt%get('stepper/n_contact_steps', self%n_contact_steps)
+        self%n_solves = nint(ckpt%counters(COUNTER_SOLVES), int64)
+        self%n_contact_steps = nint(ckpt%counters(COUNTER_CONTACT_STEPS), int64)
     end subroutine stepper_restore_checkpoint
 
 end module stepper_m

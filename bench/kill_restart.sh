@@ -42,11 +42,11 @@ for ((i = 1; i <= kills; i++)); do
 import h5py
 f = h5py.File('kill.h5.part', 'r', swmr=True)
 g = f['checkpoint/slot%d' % int(f['checkpoint/current'][0])]
-for name in g: g[name][()]
+g.visititems(lambda name, item: item[()] if isinstance(item, h5py.Dataset) else None)
 for group in ('series', 'snapshots'):
     for name in f[group]:
         if isinstance(f[group][name], h5py.Dataset): f[group][name][()]
-print(int(g['counters'][0]))" 2> read.err); then
+print(int(g['state/step'][()]))" 2> read.err); then
         unreadable=$((unreadable + 1))
         echo "kill $i at $wait_s s: unreadable: $(tail -n 1 read.err)"
         cp kill.h5.part "unreadable_$i.h5.part" 2> /dev/null

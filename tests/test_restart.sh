@@ -8,8 +8,9 @@
 #     before it readable (as a SWMR reader) and restartable, the restart leaves it as it was,
 #     and the restarted run equals the uninterrupted one bit for bit;
 #  3. bad restarts exit 2, write nothing and leave the source as it was: missing file, no
-#     checkpoint, any input that changes the history changed (named with both values and
-#     what may change), t_end before the checkpoint, the output being the source itself;
+#     checkpoint, a damaged one, one in the positional layout of earlier versions, any input
+#     that changes the history changed (named with both values and what may change), t_end
+#     before the checkpoint, the output being the source itself;
 #  4. a restart that changes only t_end and &output settings runs.
 # Usage: bash test_restart.sh <rodcontact> <source dir> <scratch dir>
 set -u
@@ -100,8 +101,8 @@ step=$("$py" -c "
 import h5py
 f = h5py.File('long.h5.part', 'r', swmr=True)
 g = f['checkpoint/slot%d' % int(f['checkpoint/current'][0])]
-for name in g: g[name][()]
-n = int(g['counters'][0])
+g.visititems(lambda name, item: item[()] if isinstance(item, h5py.Dataset) else None)
+n = int(g['state/step'][()])
 for group in ('series', 'snapshots'):
     for name in f[group]:
         if isinstance(f[group][name], h5py.Dataset): f[group][name][()]
@@ -144,14 +145,20 @@ bad() {   # bad <what> <restart_from value> <sed expression or ''> [pattern the 
 bad "missing restart file" "does-not-exist.h5" ''
 make_input nock.nml nock 0.01 euler; sed -i 's/checkpoint_every=250/checkpoint_every=0/' nock.nml; "$exe" nock.nml
 bad "file without checkpoint" "nock.h5" ''
-# a damaged checkpoint (its state datasets removed): an input error, exit 2, naming the file
+# a damaged checkpoint (its state's level removed): an input error, exit 2, naming the file
 cp half_euler.h5 damaged.h5 && "$py" -c "
 import h5py
 with h5py.File('damaged.h5', 'r+') as f:
     for slot in ('slot0', 'slot1'):
-        if 'checkpoint/' + slot + '/state' in f:
-            del f['checkpoint/' + slot + '/state']"
-bad "damaged restart file" "damaged.h5" '' "damaged.h5" "/state" "no such dataset"
+        if 'checkpoint/' + slot + '/state/level' in f:
+            del f['checkpoint/' + slot + '/state/level']"
+bad "damaged restart file" "damaged.h5" '' "damaged.h5" "has no state/level"
+# a checkpoint in the positional layout of the versions before named entries (written by
+# 9efb09e with this test's make_input, t_end = 0.025, checkpoint_every = 250): refused, with
+# what to do instead
+gzip -dc "$src/tests/reference/checkpoint_positional.h5.gz" > positional.h5
+bad "checkpoint in the positional layout" "positional.h5" '' "positional.h5" "positional layout" \
+    "run again from the start" "restart with the version that wrote"
 bad "restart on another mesh" "half_euler.h5" 's/n_elements=100/n_elements=50/' mesh.n_elements "was 100" "has 50" "may change"
 bad "restart with another dt" "half_euler.h5" 's/dt=1e-4/dt=2e-4/' time.dt "was 0.0001" "has 0.0002"
 # every group that shapes the history, driven through --set-free edits of the input

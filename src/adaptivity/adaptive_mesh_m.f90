@@ -102,18 +102,21 @@ contains
         class(adaptive_mesh_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        ckpt%has_mesh = .true.
-        ckpt%mesh_scale = self%scale
-        ckpt%mesh_keys = self%k
+        call ckpt%put('adaptive_mesh/scale', self%scale)
+        call ckpt%put('adaptive_mesh/keys', self%k)
     end subroutine mesh_save_checkpoint
 
     !> The mesh of a checkpoint (save_checkpoint), on a mesh initialised for this run.
     subroutine mesh_restore_checkpoint(self, ckpt)
         class(adaptive_mesh_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
+        real(dp), allocatable :: scale(:)
+        integer(int64), allocatable :: keys(:)
 
-        self%scale = ckpt%mesh_scale
-        call self%set_keys(ckpt%mesh_keys)
+        call ckpt%get('adaptive_mesh/scale', scale)
+        call ckpt%get('adaptive_mesh/keys', keys)
+        self%scale = scale
+        call self%set_keys(keys)
     end subroutine mesh_restore_checkpoint
 
     !> Number of elements.

@@ -61,8 +61,7 @@ module error_companion_m
     use remesh_m, only: move_level
     implicit none
     private
-    public :: error_companions_t, N_ESTIMATE_PARTS, PART_TOTAL, PART_TIME, PART_SPACE, &
-              N_COMPANION_SCALARS
+    public :: error_companions_t, N_ESTIMATE_PARTS, PART_TOTAL, PART_TIME, PART_SPACE
 
     integer, parameter :: N_COMPANIONS = 3
     integer, parameter :: COMP_A = 1, COMP_C = 2, COMP_D = 3
@@ -80,14 +79,6 @@ module error_companion_m
     integer, parameter :: LAND_SPAN = 8
     !> the run's steps a companion holds at most (3 k: the module's header)
     integer, parameter :: QUEUE_MAX = 3 * maxval(STEPS_PER_STEP)
-    !> a companion's scalars in a checkpoint: step, t, dt_last, t_anchor, step_anchor,
-    !> n_queued, n_solves, whether it holds a previous level, then the queue's step sizes
-    !> and end times
-    integer, parameter :: SCALARS_HEAD = 8
-    integer, parameter :: SCALARS_PER_COMPANION = SCALARS_HEAD + 2 * QUEUE_MAX
-    !> ... then whether they failed, and the run's steps since the last snapshot
-    integer, parameter :: N_COMPANION_SCALARS = N_COMPANIONS * SCALARS_PER_COMPANION + 2
-
     !> One companion solution on its own mesh, with its own steps.
     type :: companion_t
         integer :: steps_per_step = 2      !< k: steps of the run per step of the companion
@@ -388,87 +379,87 @@ contains
         if (norm > 0.0_dp) relative = error / norm
     end function relative
 
-    !> The companions' levels (and the levels before, for a multistep scheme) and scalars
-    !> into a checkpoint: companion_levels (A's nodes: s/2+1 on a uniform mesh, (1+N_FIELDS) x 2
-    !> per companion: level, previous level or zeros; a companion on fewer nodes in the
-    !> leading rows; an adaptive mesh's companion meshes are rebuilt from the run's),
-    !> companion_scalars (SCALARS_PER_COMPANION per companion, then whether they failed).
+    !> The companions into a checkpoint, each in error_companions/<A|C|D>/: level and previous
+    !> (nodes x (1+N_FIELDS), u then fields_m's F_*; previous with no rows for a single-step
+    !> scheme; an adaptive mesh's companion meshes are rebuilt from the run's), its counters
+    !> and its queue of the run's steps (QUEUE_MAX, n_queued in use); then whether they
+    !> failed, the run's steps since the last snapshot.
     subroutine companions_save_checkpoint(self, ckpt)
         class(error_companions_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
-        integer :: j, col, width, n, stat
-        character(len=256) :: message
+        character(len=:), allocatable :: p
+        integer :: j
 
-        width = 1 + N_FIELDS
-        if (allocated(ckpt%companion_levels)) deallocate (ckpt%companion_levels)
-        if (allocated(ckpt%companion_scalars)) deallocate (ckpt%companion_scalars)
-        allocate (ckpt%companion_levels(self%pair(1)%state%s + 1, 2 * width * N_COMPANIONS), &
-                  ckpt%companion_scalars(N_COMPANION_SCALARS), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the checkpoint of the error estimate')
-        ckpt%companion_levels = 0.0_dp
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j), st => self%pair(j)%state)
-                col = (j - 1) * 2 * width
-                n = st%s + 1
-                ckpt%companion_levels(1:n, col + 1) = st%u
-                ckpt%companion_levels(1:n, col + 2:col + width) = st%w
+                p = 'error_companions/'//NAMES(j:j)//'/'
+                call ckpt%put(p//'level', reshape([st%u, st%w], [st%s + 1, 1 + N_FIELDS]))
                 if (allocated(st%u_prev)) then
-                    ckpt%companion_levels(1:n, col + width + 1) = st%u_prev
-                    ckpt%companion_levels(1:n, col + width + 2:col + 2 * width) = st%w_prev
+                    call ckpt%put(p//'previous', reshape([st%u_prev, st%w_prev], &
+                                                         [st%s + 1, 1 + N_FIELDS]))
+                else
+                    call ckpt%put(p//'previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
                 end if
-                ckpt%companion_scalars((j - 1) * SCALARS_PER_COMPANION + 1:j * SCALARS_PER_COMPANION) = &
-                    [real(st%step, dp), st%t, st%dt_last, st%t_anchor, real(st%step_anchor, dp), &
-                     real(c%n_queued, dp), real(c%stepper%n_solves, dp), &
-                     merge(1.0_dp, 0.0_dp, allocated(st%u_prev)), c%queue_dt, c%queue_t]
+                call ckpt%put(p//'step', st%step)
+                call ckpt%put(p//'t', st%t)
+                call ckpt%put(p//'dt_last', st%dt_last)
+                call ckpt%put(p//'t_anchor', st%t_anchor)
+                call ckpt%put(p//'step_anchor', st%step_anchor)
+                call ckpt%put(p//'n_solves', c%stepper%n_solves)
+                call ckpt%put(p//'n_queued', c%n_queued)
+                call ckpt%put(p//'queue_dt', c%queue_dt)
+                call ckpt%put(p//'queue_t', c%queue_t)
             end associate
         end do
-        ckpt%companion_scalars(N_COMPANION_SCALARS - 1) = merge(1.0_dp, 0.0_dp, self%failed)
-        ckpt%companion_scalars(N_COMPANION_SCALARS) = real(self%n_since, dp)
+        call ckpt%put('error_companions/failed', self%failed)
+        call ckpt%put('error_companions/n_since', self%n_since)
     end subroutine companions_save_checkpoint
 
     !> The inverse of save_checkpoint (on companions initialised for this run).
     subroutine companions_restore_checkpoint(self, ckpt)
         class(error_companions_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
-        integer :: j, col, width, n, stat
+        character(len=:), allocatable :: p
+        real(dp), allocatable :: level(:, :), previous(:, :), queue(:)
+        integer :: j, n, stat
         character(len=256) :: message
-        real(dp) :: scalars(SCALARS_PER_COMPANION)
+        logical :: failed
 
-        if (size(ckpt%companion_scalars) /= N_COMPANION_SCALARS) &
-            call fatal(EXIT_INPUT, 'restart', 'the checkpoint''s error-estimate companions are of another '// &
-                       'version of rodcontact (companion_scalars has the wrong length): restart without '// &
-                       'output.error_estimate, or from a checkpoint of this version')
-        width = 1 + N_FIELDS
         if (self%adaptive) call restore_graded(self, ckpt)
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j), st => self%pair(j)%state)
-                col = (j - 1) * 2 * width
-                scalars = ckpt%companion_scalars((j - 1) * SCALARS_PER_COMPANION + 1:j * SCALARS_PER_COMPANION)
+                p = 'error_companions/'//NAMES(j:j)//'/'
                 n = st%s + 1
-                st%u = ckpt%companion_levels(1:n, col + 1)
-                st%w = ckpt%companion_levels(1:n, col + 2:col + width)
-                if (scalars(8) > 0.0_dp) then
+                call ckpt%get(p//'level', level)
+                call ckpt%get(p//'previous', previous)
+                if (size(level, 1) /= n .or. all(size(previous, 1) /= [0, n])) call fatal(EXIT_INPUT, 'restart', &
+                    'the checkpoint''s error-estimate companion '//NAMES(j:j)//' does not fit its mesh')
+                st%u = level(:, 1)
+                st%w = level(:, 2:)
+                if (size(previous, 1) > 0) then
                     if (.not. allocated(st%u_prev)) then
                         allocate (st%u_prev(0:n - 1), st%w_prev(0:n - 1, N_FIELDS), stat=stat, errmsg=message)
                         call check_allocation(stat, message, 'the error estimate''s previous level')
                     end if
-                    st%u_prev = ckpt%companion_levels(1:n, col + width + 1)
-                    st%w_prev = ckpt%companion_levels(1:n, col + width + 2:col + 2 * width)
+                    st%u_prev = previous(:, 1)
+                    st%w_prev = previous(:, 2:)
                 end if
-                st%step = nint(scalars(1))
-                st%t = scalars(2)
-                st%dt_last = scalars(3)
-                st%t_anchor = scalars(4)
-                st%step_anchor = nint(scalars(5))
-                c%n_queued = nint(scalars(6))
-                c%stepper%n_solves = nint(scalars(7), kind(c%stepper%n_solves))
-                c%queue_dt = scalars(SCALARS_HEAD + 1:SCALARS_HEAD + QUEUE_MAX)
-                c%queue_t = scalars(SCALARS_HEAD + QUEUE_MAX + 1:)
+                call ckpt%get(p//'step', st%step)
+                call ckpt%get(p//'t', st%t)
+                call ckpt%get(p//'dt_last', st%dt_last)
+                call ckpt%get(p//'t_anchor', st%t_anchor)
+                call ckpt%get(p//'step_anchor', st%step_anchor)
+                call ckpt%get(p//'n_solves', c%stepper%n_solves)
+                call ckpt%get(p//'n_queued', c%n_queued)
+                call ckpt%get(p//'queue_dt', queue)
+                c%queue_dt = queue
+                call ckpt%get(p//'queue_t', queue)
+                c%queue_t = queue
             end associate
         end do
-        self%n_since = nint(ckpt%companion_scalars(N_COMPANION_SCALARS))
-        if (ckpt%companion_scalars(N_COMPANION_SCALARS - 1) > 0.0_dp) &
-            call stop_companions(self, 'failed before the checkpoint')
+        call ckpt%get('error_companions/n_since', self%n_since)
+        call ckpt%get('error_companions/failed', failed)
+        if (failed) call stop_companions(self, 'failed before the checkpoint')
     end subroutine companions_restore_checkpoint
 
     !> Companion j of an adaptive mesh (&mesh adaptive): on its mesh for the run's mesh with
@@ -523,7 +514,7 @@ contains
     end subroutine companions_remesh
 
     !> A restart on an adaptive mesh, before the companions' levels are read: each companion
-    !> on its mesh for the checkpoint's run mesh (ckpt%mesh_keys: the companions' meshes are a
+    !> on its mesh for the checkpoint's run mesh (adaptive_mesh/keys: the companions' meshes are a
     !> function of it), with level arrays of its size.
     subroutine restore_graded(self, ckpt)
         type(error_companions_t), intent(inout) :: self
@@ -531,7 +522,7 @@ contains
         integer :: j, s, stat
         character(len=256) :: message
 
-        self%k_run = ckpt%mesh_keys
+        call ckpt%get('adaptive_mesh/keys', self%k_run)
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 call companion_keys(self%k_run, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), c%k)
@@ -544,9 +535,6 @@ contains
                 call c%stepper%remesh(c%state)
             end associate
         end do
-        if (size(ckpt%companion_levels, 1) /= self%pair(COMP_A)%state%s + 1) &
-            call fatal(EXIT_INPUT, 'restart', 'the checkpoint''s error-estimate companions do not fit its '// &
-                       'adaptive mesh (companion_levels has the wrong shape)')
     end subroutine restore_graded
 
     !> companions_estimate on an adaptive mesh: the same extrapolation, the run X and A

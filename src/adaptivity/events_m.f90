@@ -2,7 +2,9 @@
 !> (release), as /events/t and /events/kind record them (docs/output.md).
 module events_m
     use kinds_m, only: dp
+    use iso_fortran_env, only: int64
     use errors_m, only: check_allocation
+    use checkpoint_m, only: checkpoint_t
     implicit none
     private
     public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
@@ -29,8 +31,8 @@ module events_m
         procedure :: add => log_add
         procedure :: times => log_times
         procedure :: kinds => log_kinds
-        procedure :: packed => log_packed
-        procedure :: restore => log_restore
+        procedure :: save_checkpoint => log_save_checkpoint
+        procedure :: restore_checkpoint => log_restore_checkpoint
     end type event_log_t
 
 contains
@@ -78,27 +80,30 @@ contains
         if (self%n > 0) kind = self%kind(:self%n)
     end function log_kinds
 
-    !> (n, 2): t and kind, for a checkpoint.
-    pure function log_packed(self) result(table)
+    !> The log into a checkpoint: events/t and events/kind (as the file's /events).
+    subroutine log_save_checkpoint(self, ckpt)
         class(event_log_t), intent(in) :: self
-        real(dp) :: table(self%n, 2)
+        type(checkpoint_t), intent(inout) :: ckpt
 
-        if (self%n == 0) return
-        table(:, 1) = self%t(:self%n)
-        table(:, 2) = real(self%kind(:self%n), dp)
-    end function log_packed
+        call ckpt%put('events/t', self%times())
+        call ckpt%put('events/kind', int(self%kinds(), int64))
+    end subroutine log_save_checkpoint
 
-    !> The log of a checkpoint's table (n, 2).
-    subroutine log_restore(self, table)
+    !> The inverse of save_checkpoint.
+    subroutine log_restore_checkpoint(self, ckpt)
         class(event_log_t), intent(inout) :: self
-        real(dp), intent(in) :: table(:, :)
+        type(checkpoint_t), intent(in) :: ckpt
+        real(dp), allocatable :: t(:)
+        integer(int64), allocatable :: kind(:)
         integer :: k
 
+        call ckpt%get('events/t', t)
+        call ckpt%get('events/kind', kind)
         self%n = 0
-        do k = 1, size(table, 1)
-            call self%add(table(k, 1), nint(table(k, 2)))
+        do k = 1, min(size(t), size(kind))
+            call self%add(t(k), int(kind(k)))
         end do
-    end subroutine log_restore
+    end subroutine log_restore_checkpoint
 
     !> The time in [t_start, t_start + dt] at which the contact state of a step changes: the
     !> trial gap u(1) - g (the gap the step would have without contact force) goes from

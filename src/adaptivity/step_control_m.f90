@@ -32,7 +32,7 @@ module step_control_m
     use checkpoint_m, only: checkpoint_t
     implicit none
     private
-    public :: error_estimator_t, step_controller_t, N_CONTROL_VALUES, MAX_LEVELS
+    public :: error_estimator_t, step_controller_t, MAX_LEVELS
     public :: energy_norm
 
     integer, parameter :: MAX_LEVELS = 3       !< past levels kept (p + 1 for p <= 2)
@@ -92,10 +92,6 @@ module step_control_m
         procedure :: save_checkpoint => controller_save_checkpoint
         procedure :: restore_checkpoint => controller_restore_checkpoint
     end type step_controller_t
-
-    !> Scalars of a controller (CONTROLLER_VALUES) and an estimator in a checkpoint's control.
-    integer, parameter :: CONTROLLER_VALUES = 7
-    integer, parameter :: N_CONTROL_VALUES = CONTROLLER_VALUES + 1 + MAX_LEVELS
 
 contains
 
@@ -384,15 +380,18 @@ contains
 
     ! ------------------------------------------------------------------ checkpoint
 
-    !> The controller's scalars into control(1:CONTROLLER_VALUES) of a checkpoint.
+    !> The controller's scalars into a checkpoint (step_controller/...).
     subroutine controller_save_checkpoint(self, ckpt)
         class(step_controller_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call require_control(ckpt)
-        ckpt%control(1:CONTROLLER_VALUES) = [self%dt_next, merge(1.0_dp, 0.0_dp, self%no_growth), self%scale, &
-                                             self%error_sum, real(self%n_estimated, dp), real(self%n_rejected, dp), &
-                                             real(self%n_forced, dp)]
+        call ckpt%put('step_controller/dt_next', self%dt_next)
+        call ckpt%put('step_controller/no_growth', self%no_growth)
+        call ckpt%put('step_controller/scale', self%scale)
+        call ckpt%put('step_controller/error_sum', self%error_sum)
+        call ckpt%put('step_controller/n_estimated', self%n_estimated)
+        call ckpt%put('step_controller/n_rejected', self%n_rejected)
+        call ckpt%put('step_controller/n_forced', self%n_forced)
     end subroutine controller_save_checkpoint
 
     !> The inverse of save_checkpoint (on a controller initialised for this run).
@@ -400,37 +399,35 @@ contains
         class(step_controller_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
 
-        self%dt_next = ckpt%control(1)
-        self%no_growth = ckpt%control(2) > 0.0_dp
-        self%scale = ckpt%control(3)
-        self%error_sum = ckpt%control(4)
-        self%n_estimated = nint(ckpt%control(5))
-        self%n_rejected = nint(ckpt%control(6))
-        self%n_forced = nint(ckpt%control(7))
+        call ckpt%get('step_controller/dt_next', self%dt_next)
+        call ckpt%get('step_controller/no_growth', self%no_growth)
+        call ckpt%get('step_controller/scale', self%scale)
+        call ckpt%get('step_controller/error_sum', self%error_sum)
+        call ckpt%get('step_controller/n_estimated', self%n_estimated)
+        call ckpt%get('step_controller/n_rejected', self%n_rejected)
+        call ckpt%get('step_controller/n_forced', self%n_forced)
     end subroutine controller_restore_checkpoint
 
-    !> The estimator's levels into a checkpoint: their number and steps after the
-    !> controller's scalars in control, the levels, most recent first, in history
-    !> (s+1, (1+N_FIELDS) MAX_LEVELS).
+    !> The estimator's levels into a checkpoint, most recent first: error_estimator/levels
+    !> (s+1, (1+N_FIELDS) MAX_LEVELS; unused ones zero) and steps (the step that reached each).
     subroutine estimator_save_checkpoint(self, ckpt)
         class(error_estimator_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
+        real(dp), allocatable :: levels(:, :)
+        real(dp) :: steps(self%n_levels)
         integer :: j, slot, width, stat
         character(len=256) :: message
 
-        call require_control(ckpt)
         width = 1 + N_FIELDS
-        if (allocated(ckpt%history)) deallocate (ckpt%history)
-        allocate (ckpt%history(size(self%levels, 1), width * MAX_LEVELS), stat=stat, errmsg=message)
+        allocate (levels(size(self%levels, 1), width * MAX_LEVELS), source=0.0_dp, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the checkpoint of the error estimator')
-        ckpt%control(CONTROLLER_VALUES + 1:) = 0.0_dp
-        ckpt%control(CONTROLLER_VALUES + 1) = real(self%n_levels, dp)
-        ckpt%history = 0.0_dp
         do j = 1, self%n_levels
             slot = level_slot(self%head, j)
-            ckpt%control(CONTROLLER_VALUES + 1 + j) = self%steps(slot)
-            ckpt%history(:, (j - 1) * width + 1:j * width) = self%levels(:, :, slot)
+            steps(j) = self%steps(slot)
+            levels(:, (j - 1) * width + 1:j * width) = self%levels(:, :, slot)
         end do
+        call ckpt%put('error_estimator/levels', levels)
+        call ckpt%put('error_estimator/steps', steps)
     end subroutine estimator_save_checkpoint
 
     !> The inverse of save_checkpoint (on an estimator initialised for this run, on the
@@ -438,29 +435,16 @@ contains
     subroutine estimator_restore_checkpoint(self, ckpt)
         class(error_estimator_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
+        real(dp), allocatable :: levels(:, :), steps(:)
         integer :: j, width
 
         width = 1 + N_FIELDS
+        call ckpt%get('error_estimator/levels', levels)
+        call ckpt%get('error_estimator/steps', steps)
         call self%reset()
-        do j = nint(ckpt%control(CONTROLLER_VALUES + 1)), 1, -1
-            call self%push(ckpt%history(:, (j - 1) * width + 1), ckpt%history(:, (j - 1) * width + 2:j * width), &
-                           ckpt%control(CONTROLLER_VALUES + 1 + j))
+        do j = size(steps), 1, -1
+            call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), steps(j))
         end do
     end subroutine estimator_restore_checkpoint
-
-    !> ckpt%control allocated with N_CONTROL_VALUES entries (its owners fill their parts).
-    subroutine require_control(ckpt)
-        type(checkpoint_t), intent(inout) :: ckpt
-        integer :: stat
-        character(len=256) :: message
-
-        if (allocated(ckpt%control)) then
-            if (size(ckpt%control) == N_CONTROL_VALUES) return
-            deallocate (ckpt%control)
-        end if
-        allocate (ckpt%control(N_CONTROL_VALUES), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the checkpoint of the step control')
-        ckpt%control = 0.0_dp
-    end subroutine require_control
 
 end module step_control_m

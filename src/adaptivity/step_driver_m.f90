@@ -118,12 +118,10 @@ contains
         call self%estimator%push(state%u, state%w, state%dt_last)
         self%level_kept = .false.
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
-        if (allocated(ckpt%control) .and. allocated(ckpt%history)) then
-            call self%control%restore_checkpoint(ckpt)
-            call self%estimator%restore_checkpoint(ckpt)
-            self%in_contact = ckpt%in_contact
-        end if
-        call self%events%restore(ckpt%events)
+        call self%control%restore_checkpoint(ckpt)
+        call self%estimator%restore_checkpoint(ckpt)
+        call ckpt%get('step_driver/in_contact', self%in_contact)
+        call self%events%restore_checkpoint(ckpt)
     end subroutine driver_restore_checkpoint
 
     !> The step control, the contact state and the events into a checkpoint.
@@ -133,8 +131,8 @@ contains
 
         call self%control%save_checkpoint(ckpt)
         call self%estimator%save_checkpoint(ckpt)
-        ckpt%in_contact = self%in_contact
-        ckpt%events = self%events%packed()
+        call ckpt%put('step_driver/in_contact', self%in_contact)
+        call self%events%save_checkpoint(ckpt)
     end subroutine driver_save_checkpoint
 
     !> The contact events so far.

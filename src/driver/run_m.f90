@@ -21,7 +21,7 @@ module run_m
     use strings_m, only: int_str
     use reals_m, only: is_zero
     use output_m, only: h5_writer_t
-    use restart_m, only: read_checkpoint, write_checkpoint, copy_history
+    use restart_m, only: read_checkpoint, copy_history
     use run_output_m, only: output_grid, write_series, write_snapshot, write_error_estimate
     use error_companion_m, only: error_companions_t
     use run_attributes_m, only: record_inputs, record_scales, record_results
@@ -112,6 +112,7 @@ contains
             call run%state%restore_checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
                 call run%mesh%restore_checkpoint(ckpt)
+                call ckpt%get('run/n_elements_max', run%n_elements_max)
                 call set_mesh(run%state, run%mesh%nodes())
                 call run%stepper%remesh(run%state)
                 call run%monitor%resize(run%state)
@@ -125,8 +126,7 @@ contains
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
         if (cfg%output%series_dt > 0.0_dp) &
             run%n_series_next = floor(run%state%t / cfg%output%series_dt * (1.0_dp + 1.0e-12_dp)) + 1
-        ! after a restart, also the elements held before the checkpoint (0 without a restart)
-        run%n_elements_max = max(run%state%s, ckpt%n_elements_max)
+        run%n_elements_max = max(run%state%s, run%n_elements_max)   ! a restart's: those held before
     end subroutine set_up
 
     !> Create <prefix>.h5.part with the inputs, the provenance and the initial state (or the
@@ -346,10 +346,10 @@ contains
         call run%driver%save_checkpoint(ckpt)
         if (cfg%mesh%adaptive) then
             call run%mesh%save_checkpoint(ckpt)
-            ckpt%n_elements_max = run%n_elements_max
+            call ckpt%put('run/n_elements_max', run%n_elements_max)
         end if
         if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
-        call write_checkpoint(run%writer, ckpt, step_failure(run%state%step, run%state%t, ''))
+        call run%writer%write_checkpoint(ckpt, step_failure(run%state%step, run%state%t, ''))
     end subroutine checkpoint
 
     !> A snapshot of the level in run%state, with its error estimate (&output error_estimate).

@@ -1,99 +1,223 @@
 !> The checkpoint writer of output_m (see restart_m for what a checkpoint holds): a
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
-    use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f
+    use iso_c_binding, only: c_loc, c_ptr
+    use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f, h5screate_f, H5S_SCALAR_F, H5T_STD_I64LE, &
+                    h5kind_to_type, H5_INTEGER_KIND, h5gopen_f, H5P_DEFAULT_F
+    use checkpoint_m, only: entry_t
+    use errors_m, only: check_allocation
     implicit none
 
 contains
 
-    !> Write the restart data: state (s+1, 6) with columns u, q, theta, v, P, eta; counters
-    !> (a real vector, see restart_m); previous (s+1, 6), the level before, for multistep
-    !> schemes; note says which state it is ('step 250 (t = ...)', for the message of a later
-    !> output failure). Raw data reach the file as they are written, so a kill in the middle of a
-    !> checkpoint would leave a torn one; there are therefore two slots,
-    !> /checkpoint/slot0 and /checkpoint/slot1: the new checkpoint goes into the slot not in
-    !> use, the file is flushed, and only then /checkpoint/current is pointed at it (and
-    !> flushed). The flushes are SWMR writing's (output_file_s), which write a chunk index
-    !> before what points to it, so a run killed at any moment leaves the last complete
-    !> checkpoint, and the history flushed with it, readable.
-    module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
-                                                    companion_levels, companion_scalars)
+    !> Write the checkpoint ckpt: entry 'owner/name' as dataset /checkpoint/slotN/owner/name
+    !> (restart_m), integers as 64-bit integers, scalars as scalar datasets; note says which
+    !> state it is ('step 250 (t = ...)', for the message of a later output failure). Raw
+    !> data reach the file as they are written, so a kill in the middle of a checkpoint would
+    !> leave a torn one; there are therefore two slots, /checkpoint/slot0 and
+    !> /checkpoint/slot1: the new checkpoint goes into the slot not in use, the file is
+    !> flushed, and only then /checkpoint/current is pointed at it (and flushed). The flushes
+    !> are SWMR writing's (output_file_s), which write a chunk index before what points to
+    !> it, so a run killed at any moment leaves the last complete checkpoint, and the history
+    !> flushed with it, readable. The first checkpoint creates both slots; later ones write
+    !> into the same datasets, held open (a checkpoint puts the same entries every time).
+    module subroutine writer_write_checkpoint(w, ckpt, note)
         class(h5_writer_t), intent(inout) :: w
-        real(dp), intent(in) :: state(:, :)
-        real(dp), intent(in) :: counters(:)
+        type(checkpoint_t), intent(in) :: ckpt
         character(len=*), intent(in) :: note
-        real(dp), intent(in), optional :: previous(:, :)
-        real(dp), intent(in), optional :: control(:)      !< step control's scalars (step_control_m)
-        real(dp), intent(in), optional :: history(:, :)   !< the error estimator's past levels
-        real(dp), intent(in), optional :: events(:, :)    !< (n_events, 2): t and kind of each event
-        !> adaptive mesh: its field scales, the remesh counters, then its node keys (restart_m)
-        real(dp), intent(in), optional :: mesh(:)
-        !> &output error_estimate: its companions' levels and scalars (error_companion_m)
-        real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
-
-        integer(hid_t) :: group_id
+        integer :: k, slot
         logical :: exists
-        integer :: hdferr, k
-        character(len=*), parameter :: GROUPS(3) = [character(len=17) :: &
-            'checkpoint', 'checkpoint/slot0', 'checkpoint/slot1']
+        integer :: hdferr
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: write_checkpoint() on a closed writer')
+        call w%need_open('write_checkpoint()')
         call h5lexists_f(w%file_id, 'checkpoint', exists, hdferr)
         call w%check(hdferr, 'h5lexists_f /checkpoint')
-        if (.not. exists) then
-            ! the first checkpoint creates everything later ones write into, SWMR writing
-            ! being off (output_file_s): both slots, the pointer (-1: no checkpoint yet), and
-            ! for an adaptive mesh /snapshots/native
-            call w%leave_swmr()
-            do k = 1, size(GROUPS)
-                call h5gcreate_f(w%file_id, trim(GROUPS(k)), group_id, hdferr)
-                call w%check(hdferr, 'h5gcreate_f /'//trim(GROUPS(k)))
-                call h5gclose_f(group_id, hdferr)
-                call w%check(hdferr, 'h5gclose_f /'//trim(GROUPS(k)))
-            end do
-            call w%put_real('/checkpoint/current', [-1.0_dp], [1, 1])
-            do k = 0, 1
-                call put_slot(w, '/checkpoint/slot'//int_str(k), .true., state, counters, previous, control, history, &
-                              events, mesh, companion_levels, companion_scalars)
-            end do
-            if (present(mesh) .and. .not. w%native_created) call writer_create_native(w)
-        end if
-        w%checkpoint_slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
-        call put_slot(w, '/checkpoint/slot'//int_str(w%checkpoint_slot), .false., state, counters, previous, control, &
-                      history, events, mesh, companion_levels, companion_scalars)
+        if (.not. exists) call create_slots(w, ckpt)
+        if (size(w%ckpt_names) /= ckpt%n) call w%fail('internal error: a checkpoint of other entries than the first')
+        slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
+        do k = 1, ckpt%n
+            if (ckpt%entries(k)%name /= w%ckpt_names(k)) &
+                call w%fail('internal error: checkpoint entry '//ckpt%entries(k)%name//' out of order')
+            call put_entry(w, k, slot, ckpt%entries(k))
+        end do
         call w%flush()
-        call w%put_real('/checkpoint/current', [real(w%checkpoint_slot, dp)], [1, 1])
+        call put_int64(w, w%ckpt_current_id, [int(slot, int64)], 'current')
         call w%flush()
+        w%checkpoint_slot = slot
         w%checkpoint_note = note
         w%n_checkpoints = w%n_checkpoints + 1
-        w%n_slot_events(w%checkpoint_slot) = 0
-        if (present(events)) w%n_slot_events(w%checkpoint_slot) = size(events, 1)
     end subroutine writer_write_checkpoint
 
-    !> Write (create_only: create, at their shapes) the datasets of one checkpoint slot
-    !> (write_checkpoint's arguments).
-    subroutine put_slot(w, slot, create_only, state, counters, previous, control, history, events, mesh, &
-                        companion_levels, companion_scalars)
+    !> The first checkpoint creates everything later ones write into, SWMR writing being off
+    !> (output_file_s): the groups, each entry's dataset in both slots (written), the
+    !> pointer /checkpoint/current (-1: no checkpoint yet), the layout attribute that tells
+    !> this layout from the positional one of earlier versions, and for an adaptive mesh
+    !> /snapshots/native.
+    subroutine create_slots(w, ckpt)
         class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: slot
-        logical, intent(in) :: create_only
-        real(dp), intent(in) :: state(:, :), counters(:)
-        real(dp), intent(in), optional :: previous(:, :), control(:), history(:, :), events(:, :), mesh(:)
-        real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
+        type(checkpoint_t), intent(in) :: ckpt
+        integer(hid_t) :: group_id, space_id
+        character(len=:), allocatable :: failed
+        integer :: k, slot, stat
+        character(len=256) :: message
+        integer :: hdferr
 
-        call w%put_real(slot//'/state', state, shape(state), create_only)
-        call w%put_real(slot//'/counters', counters, [size(counters), 1], create_only)
-        if (present(previous)) call w%put_real(slot//'/previous', previous, shape(previous), create_only)
-        if (present(control)) call w%put_real(slot//'/control', control, [size(control), 1], create_only)
-        if (present(history)) call w%put_real(slot//'/history', history, shape(history), create_only)
-        if (present(mesh)) call w%put_real(slot//'/mesh', mesh, [size(mesh), 1], create_only)
-        if (present(companion_levels)) call w%put_real(slot//'/companion_levels', companion_levels, &
-                                                       shape(companion_levels), create_only)
-        if (present(companion_scalars)) call w%put_real(slot//'/companion_scalars', companion_scalars, &
-                                                        [size(companion_scalars), 1], create_only)
-        ! the events grow from one checkpoint to the next; an empty list is removed by finish()
-        if (present(events)) call w%put_real(slot//'/events', events, shape(events), create_only)
-    end subroutine put_slot
+        call w%leave_swmr()
+        call make_groups(w, 'checkpoint/slot0/x')
+        call make_groups(w, 'checkpoint/slot1/x')
+        call h5gopen_f(w%file_id, 'checkpoint', group_id, hdferr)
+        call w%check(hdferr, 'h5gopen_f /checkpoint')
+        call put_attr(group_id, 'layout', CHECKPOINT_LAYOUT, failed)
+        if (failed /= '') call w%fail(failed)
+        call h5gclose_f(group_id, hdferr)
+        call w%check(hdferr, 'h5gclose_f /checkpoint')
+        call h5screate_simple_f(1, [1_hsize_t], space_id, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f /checkpoint/current')
+        call h5dcreate_f(w%file_id, 'checkpoint/current', H5T_STD_I64LE, space_id, w%ckpt_current_id, hdferr)
+        call w%check(hdferr, 'h5dcreate_f /checkpoint/current')
+        call h5sclose_f(space_id, hdferr)
+        call put_int64(w, w%ckpt_current_id, [-1_int64], 'current')
+        if (allocated(w%ckpt_ids)) deallocate (w%ckpt_ids, w%ckpt_dims, w%ckpt_names)
+        allocate (w%ckpt_ids(ckpt%n, 0:1), w%ckpt_dims(2, ckpt%n, 0:1), w%ckpt_names(ckpt%n), stat=stat, &
+                  errmsg=message)
+        call check_allocation(stat, message, 'the checkpoint writer')
+        w%ckpt_ids = -1
+        do k = 1, ckpt%n
+            w%ckpt_names(k) = ckpt%entries(k)%name
+            do slot = 0, 1
+                ! an owner's entries come together: its groups are made at its first
+                if (k == 1) then
+                    call make_groups(w, 'checkpoint/slot'//int_str(slot)//'/'//ckpt%entries(k)%name)
+                else if (parent(ckpt%entries(k)%name) /= parent(ckpt%entries(k - 1)%name)) then
+                    call make_groups(w, 'checkpoint/slot'//int_str(slot)//'/'//ckpt%entries(k)%name)
+                end if
+                call create_entry(w, k, slot, ckpt%entries(k))
+            end do
+        end do
+        if (ckpt%has('adaptive_mesh/keys') .and. .not. w%native_created) call writer_create_native(w)
+    end subroutine create_slots
+
+    !> 'a/b' of 'a/b/c'.
+    pure function parent(path) result(head)
+        character(len=*), intent(in) :: path
+        character(len=:), allocatable :: head
+
+        head = path(:index(path, '/', back=.true.))
+    end function parent
+
+    !> The groups on the path to dataset `path` that do not exist yet.
+    subroutine make_groups(w, path)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: path
+        logical :: exists
+        integer :: i
+        integer :: hdferr
+
+        do i = 1, len(path)
+            if (path(i:i) /= '/') cycle
+            call h5lexists_f(w%file_id, path(:i - 1), exists, hdferr)
+            call w%check(hdferr, 'h5lexists_f /'//path(:i - 1))
+            if (.not. exists) call w%make_group(path(:i - 1))
+        end do
+    end subroutine make_groups
+
+    !> Create entry k's dataset in a slot and write it: a scalar dataspace for a scalar, else
+    !> chunked and extendible (an adaptive mesh's arrays and the events change size, and a
+    !> later checkpoint resizes them in SWMR writing).
+    subroutine create_entry(w, k, slot, entry)
+        class(h5_writer_t), intent(inout) :: w
+        integer, intent(in) :: k, slot
+        type(entry_t), intent(in) :: entry
+        integer(hid_t) :: space_id, dcpl_id, file_type
+        integer(hsize_t) :: dims(2), maxdims(2)
+        character(len=:), allocatable :: name
+        integer :: hdferr
+
+        name = 'checkpoint/slot'//int_str(slot)//'/'//entry%name
+        dims = int(entry%dims, hsize_t)
+        maxdims = H5S_UNLIMITED_F
+        dcpl_id = H5P_DEFAULT_F
+        if (entry%rank == 0) then
+            call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+        else
+            call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
+            call w%check(hdferr, 'h5pcreate_f (dataset creation) /'//name)
+            call h5pset_chunk_f(dcpl_id, entry%rank, max(dims(:entry%rank), 1_hsize_t), hdferr)
+            call w%check(hdferr, 'h5pset_chunk_f /'//name)
+            call h5screate_simple_f(entry%rank, dims, space_id, hdferr, maxdims)
+        end if
+        call w%check(hdferr, 'h5screate_f /'//name)
+        file_type = merge(H5T_STD_I64LE, H5T_IEEE_F64LE, entry%is_integer)
+        call h5dcreate_f(w%file_id, name, file_type, space_id, w%ckpt_ids(k, slot), hdferr, dcpl_id=dcpl_id)
+        call w%check(hdferr, 'h5dcreate_f /'//name)
+        if (entry%rank > 0) call h5pclose_f(dcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (dataset creation) /'//name)
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f /'//name)
+        w%ckpt_dims(:, k, slot) = entry%dims
+        call put_entry(w, k, slot, entry)
+    end subroutine create_entry
+
+    !> Write entry k into its dataset of a slot (opened if leave_swmr closed it, resized if
+    !> its shape changed).
+    subroutine put_entry(w, k, slot, entry)
+        class(h5_writer_t), intent(inout) :: w
+        integer, intent(in) :: k, slot
+        type(entry_t), intent(in), target :: entry
+        character(len=:), allocatable :: name
+        type(c_ptr) :: buf
+        integer :: hdferr
+
+        associate (id => w%ckpt_ids(k, slot))
+            name = 'checkpoint/slot'//int_str(slot)//'/'//entry%name
+            if (id < 0) then
+                call h5dopen_f(w%file_id, name, id, hdferr)
+                call w%check(hdferr, 'h5dopen_f /'//name)
+            end if
+            if (any(w%ckpt_dims(:, k, slot) /= entry%dims)) then
+                call h5dset_extent_f(id, int(entry%dims(:entry%rank), hsize_t), hdferr)
+                call w%check(hdferr, 'h5dset_extent_f /'//name)
+                w%ckpt_dims(:, k, slot) = entry%dims
+            end if
+            if (product(entry%dims) == 0) return
+            if (entry%is_integer) then
+                call put_int64(w, id, entry%ints, entry%name)
+            else
+                buf = c_loc(entry%reals)
+                call h5dwrite_f(id, H5T_NATIVE_DOUBLE, buf, hdferr)
+                call w%check(hdferr, 'h5dwrite_f /'//name)
+            end if
+        end associate
+    end subroutine put_entry
+
+    !> Write the whole integer dataset dset_id from values.
+    subroutine put_int64(w, dset_id, values, name)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        integer(int64), intent(in), target :: values(:)
+        character(len=*), intent(in) :: name
+        integer :: hdferr
+        type(c_ptr) :: buf
+
+        buf = c_loc(values)
+        call h5dwrite_f(dset_id, h5kind_to_type(int64, H5_INTEGER_KIND), buf, hdferr)
+        call w%check(hdferr, 'h5dwrite_f /checkpoint/'//name)
+    end subroutine put_int64
+
+    !> Close the checkpoint's datasets (leave_swmr: the file is closed and reopened; the next
+    !> checkpoint opens them again).
+    module subroutine writer_close_checkpoint(w)
+        class(h5_writer_t), intent(inout) :: w
+        integer :: k, slot
+
+        if (w%ckpt_current_id >= 0) call w%close_dataset(w%ckpt_current_id, '/checkpoint/current')
+        if (.not. allocated(w%ckpt_ids)) return
+        do slot = 0, 1
+            do k = 1, size(w%ckpt_ids, 1)
+                if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), w%ckpt_names(k))
+            end do
+        end do
+    end subroutine writer_close_checkpoint
 
     !> Remove the object `name` if it exists (finish(): what SWMR writing made the run create
     !> in advance and it never used).
@@ -109,62 +233,5 @@ contains
         call h5ldelete_f(w%file_id, name, hdferr)
         call w%check(hdferr, 'h5ldelete_f '//name)
     end subroutine writer_drop
-
-    !> Write a real dataset (rank 1 when shape2(2) == 1, else rank 2); create_only: create
-    !> it, empty, at that shape. A dataset of another shape (the events, the arrays on an
-    !> adaptive mesh) is resized: datasets are chunked and extendible, so that a checkpoint
-    !> rewrites its slot in SWMR writing; creating one ends SWMR writing (output_file_s).
-    module subroutine writer_put_real(w, name, values, shape2, create_only)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
-        real(dp), intent(in) :: values(*)
-        integer, intent(in) :: shape2(2)
-        logical, intent(in), optional :: create_only
-
-        integer(hid_t) :: dset_id, space_id, dcpl_id
-        integer(hsize_t) :: dims(2), maxdims(2)
-        integer :: rank, hdferr
-        logical :: exists
-
-        dims = int(shape2, hsize_t)
-        rank = 2
-        if (shape2(2) == 1) rank = 1
-        call h5lexists_f(w%file_id, name, exists, hdferr)
-        call w%check(hdferr, 'h5lexists_f '//name)
-        if (exists) then
-            call h5dopen_f(w%file_id, name, dset_id, hdferr)
-            call w%check(hdferr, 'h5dopen_f '//name)
-            call h5dset_extent_f(dset_id, dims(1:rank), hdferr)
-            call w%check(hdferr, 'h5dset_extent_f '//name)
-        else
-            call w%leave_swmr()
-            maxdims = H5S_UNLIMITED_F
-            call h5screate_simple_f(rank, dims(1:rank), space_id, hdferr, maxdims(1:rank))
-            call w%check(hdferr, 'h5screate_simple_f '//name)
-            call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
-            call w%check(hdferr, 'h5pcreate_f (dataset creation) '//name)
-            call h5pset_chunk_f(dcpl_id, rank, max(dims(1:rank), 1_hsize_t), hdferr)
-            call w%check(hdferr, 'h5pset_chunk_f '//name)
-            call h5dcreate_f(w%file_id, name, H5T_NATIVE_DOUBLE, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
-            call w%check(hdferr, 'h5dcreate_f '//name)
-            call h5pclose_f(dcpl_id, hdferr)
-            call w%check(hdferr, 'h5pclose_f (dataset creation) '//name)
-            call h5sclose_f(space_id, hdferr)
-            call w%check(hdferr, 'h5sclose_f '//name)
-        end if
-        if (product(shape2) > 0 .and. .not. present_and_true(create_only)) then
-            call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values(1:product(shape2)), dims(1:rank), hdferr)
-            call w%check(hdferr, 'h5dwrite_f '//name)
-        end if
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f '//name)
-    end subroutine writer_put_real
-
-    pure logical function present_and_true(flag)
-        logical, intent(in), optional :: flag
-
-        present_and_true = .false.
-        if (present(flag)) present_and_true = flag
-    end function present_and_true
 
 end submodule output_checkpoint_s

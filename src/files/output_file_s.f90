@@ -93,6 +93,7 @@ contains
             call h5dclose_f(ids(k), hdferr)
             call w%check(hdferr, 'h5dclose_f '//trim(names(k)))
         end do
+        call writer_close_checkpoint(w)
         call w%reserve()
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f (leaving SWMR writing)')
@@ -267,16 +268,12 @@ contains
 
     !> Remove what SWMR writing made the run create in advance and it never used, so that
     !> the finished file holds what it held before SWMR: the second checkpoint slot of a run
-    !> with one checkpoint, a slot's empty /events, /snapshots/native of an adaptive mesh that
-    !> never left the output grid (with its offset and count detached from /snapshots/t).
+    !> with one checkpoint, /snapshots/native of an adaptive mesh that never left the output
+    !> grid (with its offset and count detached from /snapshots/t).
     subroutine tidy(w)
         class(h5_writer_t), intent(inout) :: w
-        integer :: slot
 
         if (w%n_checkpoints == 1) call w%drop('/checkpoint/slot1')
-        do slot = 0, min(w%n_checkpoints, 2) - 1
-            if (w%n_slot_events(slot) == 0) call w%drop('/checkpoint/slot'//int_str(slot)//'/events')
-        end do
         if (w%native_created .and. w%n_native_snap == 0) then
             call detach_native(w)
             call w%drop('/snapshots/native')

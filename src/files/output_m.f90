@@ -24,6 +24,7 @@ module output_m
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
                       write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
+    use checkpoint_m, only: checkpoint_t
     use fields_m, only: FIELDS, OUTPUT_ORDER, SNAPSHOTS, N_SNAPSHOT_FIELDS, N_OUTPUT_FIELDS, SERIES, N_SERIES, S_T
     use h5_attr_m, only: put_attr
     use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
@@ -39,7 +40,7 @@ module output_m
     implicit none
     private
     public :: h5_writer_t
-    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, CHECKPOINT_LAYOUT
 
     !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
     !> reals (192 KiB) whatever the length of the run.
@@ -49,6 +50,8 @@ module output_m
     !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
     !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
     integer, parameter :: SERIES_CHUNK = 256
+    !> Attribute layout of /checkpoint: its datasets are slotN/<owner>/<name> (restart_m)
+    character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name'
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
 
@@ -92,7 +95,11 @@ module output_m
         logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
         logical :: native_created = .false.        !< /snapshots/native exists (output_native_s)
         integer :: n_checkpoints = 0               !< checkpoints written
-        integer :: n_slot_events(0:1) = 0          !< rows of each slot's last /events
+        !> the checkpoint's datasets (entry, slot), open from the first checkpoint (output_checkpoint_s)
+        integer(hid_t), allocatable :: ckpt_ids(:, :)
+        integer, allocatable :: ckpt_dims(:, :, :)            !< (2, entry, slot): their shapes
+        character(len=64), allocatable :: ckpt_names(:)       !< the entries' names
+        integer(hid_t) :: ckpt_current_id = -1                !< /checkpoint/current
         real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
     contains
         procedure :: create => writer_create
@@ -111,7 +118,6 @@ module output_m
         procedure :: abandon => writer_abandon
         procedure, private :: check => writer_check
         procedure, private :: need_open => writer_need_open
-        procedure, private :: put_real => writer_put_real
         procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
@@ -213,18 +219,10 @@ module output_m
         module subroutine writer_flush_estimate(w)
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_flush_estimate
-        module subroutine writer_write_checkpoint(w, state, counters, note, previous, control, history, events, mesh, &
-                                                   companion_levels, companion_scalars)
+        module subroutine writer_write_checkpoint(w, ckpt, note)
             class(h5_writer_t), intent(inout) :: w
-            real(dp), intent(in) :: state(:, :)
-            real(dp), intent(in) :: counters(:)
+            type(checkpoint_t), intent(in) :: ckpt
             character(len=*), intent(in) :: note
-            real(dp), intent(in), optional :: previous(:, :)
-            real(dp), intent(in), optional :: control(:)
-            real(dp), intent(in), optional :: history(:, :)
-            real(dp), intent(in), optional :: events(:, :)
-            real(dp), intent(in), optional :: mesh(:)
-            real(dp), intent(in), optional :: companion_levels(:, :), companion_scalars(:)
         end subroutine writer_write_checkpoint
 
         module subroutine writer_drop(w, name)
@@ -232,13 +230,9 @@ module output_m
             character(len=*), intent(in) :: name
         end subroutine writer_drop
 
-        module subroutine writer_put_real(w, name, values, shape2, create_only)
+        module subroutine writer_close_checkpoint(w)
             class(h5_writer_t), intent(inout) :: w
-            character(len=*), intent(in) :: name
-            real(dp), intent(in) :: values(*)
-            integer, intent(in) :: shape2(2)
-            logical, intent(in), optional :: create_only
-        end subroutine writer_put_real
+        end subroutine writer_close_checkpoint
 
         module subroutine writer_describe(w, dset_id, what, long_name, units, si)
             class(h5_writer_t), intent(inout) :: w

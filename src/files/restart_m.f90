@@ -1,20 +1,16 @@
 !> Checkpoint contents and restart (&output checkpoint_every, &time restart_from).
 !>
 !> A checkpoint lives in the group /checkpoint of the output file, in one of two slots
-!> (slot0, slot1; /checkpoint/current says which is complete, see output_m): `state`
-!> (s+1, 1+N_FIELDS) with the columns of fields_m (F_U+1.., i.e. u, q, theta, v, P, eta);
-!> `previous`, the same for the level before (multistep schemes only); `counters`, the
-!> scalars the run needs to continue exactly (checkpoint_m's COUNTER_*); `control`, the
-!> step control's scalars followed by the contact state and the energy monitor's rise at
-!> step changes; `history`, the error estimator's levels; `events`; `mesh` (&mesh
-!> adaptive), the mesh's field scales, the energy monitor's remesh counters (2), the node
-!> keys, then the most elements the run has held (not in files of earlier versions, whose
-!> restarts count it from the checkpoint's mesh); `companion_levels`, `companion_scalars`
-!> (&output error_estimate, on either mesh: error_companion_m). checkpoint_m's checkpoint_t holds the same in memory; write_checkpoint and
-!> read_checkpoint convert between the two. A restart
-!> reads the last checkpoint of a file (complete, failed, or the .h5.part of a killed run),
-!> copies the series and snapshots up to it into the new file and continues the time loop
-!> from there, so the result is bit-for-bit that of an uninterrupted run.
+!> (slot0, slot1; /checkpoint/current says which is complete, see output_checkpoint_s). A
+!> slot holds one group per owner, each with that owner's named datasets: entry
+!> 'owner/name' of checkpoint_m's record is /checkpoint/slotN/owner/name (integers as
+!> integers, a logical as 0/1 under a name ending in _flag; docs/output.md lists them).
+!> /checkpoint's attribute layout (output_m's CHECKPOINT_LAYOUT) tells this layout from the
+!> positional one of earlier versions (slotN/counters, control, mesh, ...: arrays of reals
+!> told apart by position and length), which a restart refuses. A restart reads the last
+!> checkpoint of a file (complete, failed, or the .h5.part of a killed run), copies the
+!> series and snapshots up to it into the new file and continues the time loop from there,
+!> so the result is bit-for-bit that of an uninterrupted run.
 module restart_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -22,165 +18,86 @@ module restart_m
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, KIND_REAL, KIND_INTEGER, &
                             KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
-    use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
+    use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use reals_m, only: equal
-    use checkpoint_m, only: checkpoint_t, N_COUNTERS, COUNTER_STEP, COUNTER_T
+    use checkpoint_m, only: checkpoint_t
+    use checkpoint_read_m, only: read_entries, has_group_attribute
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists
-    use output_m, only: h5_writer_t
+    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT
     implicit none
     private
-    public :: write_checkpoint, read_checkpoint, copy_history
+    public :: read_checkpoint, copy_history
 
-    !> /checkpoint/slotN/mesh (&mesh adaptive): the indicator's field scales (1 + N_FIELDS)
-    !> and the remesh counters (2) come before the node keys
-    integer, parameter :: MESH_HEADER = N_FIELDS + 3
-    !> /checkpoint/slotN/control: the step control's scalars, then these two
-    integer, parameter :: CONTROL_TAIL = 2
     character(len=*), parameter :: WHERE = 'time.restart_from'
 
 contains
 
-    !> Write the checkpoint ckpt into the writer's file (the layout of the module header);
-    !> note says which state it is ('step 250 (t = ...)'). ckpt holds the step control (a
-    !> run always saves it).
-    subroutine write_checkpoint(writer, ckpt, note)
-        type(h5_writer_t), intent(inout) :: writer
-        type(checkpoint_t), intent(in) :: ckpt
-        character(len=*), intent(in) :: note
-
-        if (.not. allocated(ckpt%control)) call fatal(EXIT_OUTPUT, 'output', &
-                                                      'internal error: a checkpoint without the step control')
-        ! an unallocated actual argument (previous: single-step schemes) is an absent optional one
-        if (ckpt%has_mesh) then
-            call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
-                                         history=ckpt%history, events=ckpt%events, mesh=mesh_values(ckpt), &
-                                         companion_levels=ckpt%companion_levels, &
-                                         companion_scalars=ckpt%companion_scalars)
-        else
-            call writer%write_checkpoint(ckpt%state, ckpt%counters, note, ckpt%previous, control=control_values(ckpt), &
-                                         history=ckpt%history, events=ckpt%events, &
-                                         companion_levels=ckpt%companion_levels, &
-                                         companion_scalars=ckpt%companion_scalars)
-        end if
-    end subroutine write_checkpoint
-
-    !> /checkpoint/slotN/control: the step control's scalars, the contact state, the energy
-    !> monitor's rise at step changes.
-    pure function control_values(ckpt) result(values)
-        type(checkpoint_t), intent(in) :: ckpt
-        real(dp) :: values(size(ckpt%control) + CONTROL_TAIL)
-
-        values = [ckpt%control, merge(1.0_dp, 0.0_dp, ckpt%in_contact), ckpt%max_rise_step_change]
-    end function control_values
-
-    !> /checkpoint/slotN/mesh: the field scales, the remesh counters, the node keys, the most
-    !> elements held.
-    pure function mesh_values(ckpt) result(values)
-        type(checkpoint_t), intent(in) :: ckpt
-        real(dp) :: values(MESH_HEADER + size(ckpt%mesh_keys) + 1)
-
-        values = [ckpt%mesh_scale, ckpt%max_rise_remesh, real(ckpt%n_remeshes, dp), real(ckpt%mesh_keys, dp), &
-                  real(ckpt%n_elements_max, dp)]
-    end function mesh_values
-
     !> Read the checkpoint of `file` into ckpt, after checking that this run may continue
-    !> it: `file` is not the file this run writes, every input that changes the computed
-    !> history equals the one recorded in `file`, and t_end is not before the checkpoint.
-    !> Any of these failing is an input error (exit 2) that leaves no output. Parts the
-    !> checkpoint does not hold are left unallocated (events: (0, 2)).
+    !> it: `file` is not the file this run writes, its checkpoint is in this version's
+    !> layout, every input that changes the computed history equals the one recorded in
+    !> `file`, and t_end is not before the checkpoint. Any of these failing is an input error
+    !> (exit 2) that leaves no output.
     subroutine read_checkpoint(file, cfg, ckpt)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
         type(checkpoint_t), intent(out) :: ckpt
-        real(dp), allocatable :: values(:), mesh(:)
-        character(len=:), allocatable :: slot
-        integer :: s, n, stat
-        character(len=256) :: message
+        integer, allocatable :: current(:)
+        real(dp) :: t
+        integer :: step
 
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
         call require_not_output(file, trim(cfg%output%prefix))
         if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
+        if (.not. has_group_attribute(file, '/checkpoint', 'layout')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+            "': its checkpoint is in the positional layout of earlier versions of rodcontact (/checkpoint/slotN/"// &
+            'counters, control, mesh, ...: arrays of reals); this version reads only its own layout ('// &
+            CHECKPOINT_LAYOUT//') and cannot continue it: run again from the start, or restart with the '// &
+            'version that wrote the file')
         call require_same_history_inputs(file, cfg)
         call require_history_datasets(file)
-        s = cfg%mesh%n_elements
-        call read_real_1d(file, '/checkpoint/current', values)
-        ! -1: the run was killed while writing its first checkpoint (output_m)
-        if (nint(values(1)) < 0) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+        call read_int_1d(file, '/checkpoint/current', current)
+        ! -1: the run was killed while writing its first checkpoint (output_checkpoint_s)
+        if (current(1) < 0) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "' holds no complete checkpoint; the run must have reached a checkpoint")
-        slot = '/checkpoint/slot0'
-        if (nint(values(1)) == 1) slot = '/checkpoint/slot1'
-        call read_real_2d(file, slot//'/state', ckpt%state)
-        if (cfg%mesh%adaptive) then
-            ! the mesh of the checkpoint, whose s + 1 nodes the state's rows give
-            if (.not. dataset_exists(file, slot//'/mesh')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
-                "': its checkpoint has no adaptive mesh")
-            call read_real_1d(file, slot//'/mesh', mesh)
-            s = size(ckpt%state, 1) - 1
-            call read_mesh(mesh, s, ckpt)
-            if (.not. ckpt%has_mesh) &
-                call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/mesh does not fit its state's "//int_str(s + 1)//' nodes')
-        end if
-        if (any(shape(ckpt%state) /= [s + 1, 1 + N_FIELDS])) &
-            call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/state has the wrong shape")
-        if (dataset_exists(file, slot//'/previous')) call read_real_2d(file, slot//'/previous', ckpt%previous)
-        if (dataset_exists(file, slot//'/control')) then
-            call read_real_1d(file, slot//'/control', values)
-            n = size(values) - CONTROL_TAIL
-            ckpt%control = values(:n)
-            ckpt%in_contact = values(n + 1) > 0.0_dp
-            ckpt%max_rise_step_change = values(n + 2)
-        end if
-        if (dataset_exists(file, slot//'/history')) call read_real_2d(file, slot//'/history', ckpt%history)
-        if (cfg%output%error_estimate) then
-            if (.not. dataset_exists(file, slot//'/companion_scalars')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
-                "': its checkpoint has no error-estimate companions")
-            call read_real_2d(file, slot//'/companion_levels', ckpt%companion_levels)
-            call read_real_1d(file, slot//'/companion_scalars', ckpt%companion_scalars)
-            ! an adaptive mesh: error_companion_m checks them against the companions' meshes
-            if (.not. cfg%mesh%adaptive .and. size(ckpt%companion_levels, 1) /= s / 2 + 1) &
-                call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//slot//"/companion_levels has the wrong shape")
-        end if
-        if (dataset_exists(file, slot//'/events')) then
-            call read_real_2d(file, slot//'/events', ckpt%events)
-        else
-            allocate (ckpt%events(0, 2), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the event list')
-        end if
-        call read_real_1d(file, slot//'/counters', values)
-        if (size(values) /= N_COUNTERS) call fatal(EXIT_INPUT, WHERE, "'"//file//"': /checkpoint/counters is not "// &
-                                                   "from this version of rodcontact")
-        ckpt%counters = values
-        if (ends_before(cfg, ckpt%counters(COUNTER_T), nint(ckpt%counters(COUNTER_STEP)))) &
+        call read_entries(file, '/checkpoint/slot'//int_str(current(1)), ckpt)
+        call require_fit(file, cfg, ckpt)
+        call ckpt%get('state/t', t)
+        call ckpt%get('state/step', step)
+        if (ends_before(cfg, t, step)) &
             call fatal(EXIT_INPUT, 'time.t_end', 'got '//format_real(cfg%time%t_end)//"; the checkpoint in '"//file// &
-                       "' is at t = "//format_real(ckpt%counters(COUNTER_T))//' (step '// &
-                       int_str(nint(ckpt%counters(COUNTER_STEP)))//'): a restart continues a run up to t_end, '// &
-                       'so t_end must be >= '//format_real(ckpt%counters(COUNTER_T)))
+                       "' is at t = "//format_real(t)//' (step '//int_str(step)//'): a restart continues a run '// &
+                       'up to t_end, so t_end must be >= '//format_real(t))
     end subroutine read_checkpoint
 
-    !> The adaptive mesh part of a checkpoint from /checkpoint/slotN/mesh (mesh_values) on s
-    !> elements: MESH_HEADER values, s + 1 node keys, the most elements held (absent in
-    !> files of earlier versions: then s). ckpt%has_mesh stays .false. when the sizes do not fit.
-    subroutine read_mesh(mesh, s, ckpt)
-        real(dp), intent(in) :: mesh(:)
-        integer, intent(in) :: s
-        type(checkpoint_t), intent(inout) :: ckpt
-        integer :: n
+    !> The checkpoint's level fits this run's mesh (&mesh n_elements, or on an adaptive mesh
+    !> the checkpoint's node keys) and holds what this run continues (an adaptive mesh, the
+    !> error estimate's companions).
+    subroutine require_fit(file, cfg, ckpt)
+        character(len=*), intent(in) :: file
+        type(config_t), intent(in) :: cfg
+        type(checkpoint_t), intent(in) :: ckpt
+        real(dp), allocatable :: level(:, :)
+        integer(int64), allocatable :: keys(:)
+        integer :: s
 
-        if (size(mesh) /= MESH_HEADER + s + 1 .and. size(mesh) /= MESH_HEADER + s + 2) return
-        n = 1 + N_FIELDS
-        ckpt%has_mesh = .true.
-        ckpt%mesh_scale = mesh(1:n)
-        ckpt%max_rise_remesh = mesh(n + 1)
-        ckpt%n_remeshes = nint(mesh(n + 2))
-        ckpt%mesh_keys = nint(mesh(MESH_HEADER + 1:MESH_HEADER + s + 1), int64)
-        ckpt%n_elements_max = s
-        if (size(mesh) == MESH_HEADER + s + 2) ckpt%n_elements_max = max(s, nint(mesh(size(mesh))))
-    end subroutine read_mesh
+        s = cfg%mesh%n_elements
+        if (cfg%mesh%adaptive) then
+            if (.not. ckpt%has('adaptive_mesh/keys')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+                                                                 "': its checkpoint has no adaptive mesh")
+            call ckpt%get('adaptive_mesh/keys', keys)
+            s = size(keys) - 1
+        end if
+        call ckpt%get('state/level', level)
+        if (any(shape(level) /= [s + 1, 1 + N_FIELDS])) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+            "': its checkpoint's state/level does not fit the mesh")
+        if (cfg%output%error_estimate .and. .not. ckpt%has('error_companions/failed_flag')) &
+            call fatal(EXIT_INPUT, WHERE, "'"//file//"': its checkpoint has no error-estimate companions")
+    end subroutine require_fit
 
     !> Does the run cfg end before the checkpoint's level (time t, step n)? Fixed steps: its
     !> last step comes before the checkpoint's; adaptive steps: t_end < t.

@@ -1,53 +1,225 @@
-!> A checkpoint in memory: everything a run needs to continue exactly, as the types that
-!> hold it save it and restore it (&output checkpoint_every, &time restart_from).
+!> A checkpoint in memory: everything a run needs to continue exactly, as named entries
+!> that the types holding it put and get (&output checkpoint_every, &time restart_from).
 !>
-!> checkpoint_t is a record, not an owner: each part is written by the type it belongs to,
-!> with that type's own save_checkpoint and read back by its restore_checkpoint:
-!>   state_t (state_m)               state, previous, counters COUNTER_STEP, _T, _DT_LAST, _T_ANCHOR, _STEP_ANCHOR;
-!>                                   its mesh_t (mesh_m): max_rise_remesh, n_remeshes
-!>   stepper_t (stepper_m)           counters COUNTER_SOLVES, _CONTACT_STEPS
-!>   energy_monitor_t (energy_m)     counters COUNTER_ENERGY, _LAW_ENERGY, _HAVE_LAW, _MAX_RISE;
-!>                                   max_rise_step_change
-!>   step_controller_t, error_estimator_t (step_control_m)   control, history
-!>   step_driver_t (step_driver_m)   in_contact, events
-!>   adaptive_mesh_t (adaptive_mesh_m)   mesh_scale, mesh_keys (has_mesh)
-!>   error_companions_t (error_companion_m)   companion_levels, companion_scalars
-!>                                   (&output error_estimate only)
-!>   run_t (run_m)                   n_elements_max (&mesh adaptive only)
-!> How the record is laid out in the file's /checkpoint group is restart_m's business.
+!> checkpoint_t is a record, not an owner: each type puts its own entries, named
+!> 'owner/name', with its save_checkpoint and gets them back with its restore_checkpoint
+!> (state_t, mesh_t, stepper_t, energy_monitor_t, step_controller_t, error_estimator_t,
+!> step_driver_t, adaptive_mesh_t, error_companions_t, run_t: docs/output.md lists them).
+!> An entry is reals or integers, a scalar or an array of rank 1 or 2; integers are kept as
+!> integers (int64), a logical as the integer 0 or 1 under a name ending in _flag.
+!> files/restart_m maps the record to the file's /checkpoint/slotN/<owner>/<name> and back.
 module checkpoint_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
-    use fields_m, only: N_FIELDS
+    use errors_m, only: fatal, EXIT_INPUT, check_allocation
     implicit none
     private
-    public :: checkpoint_t, N_COUNTERS, COUNTER_STEP, COUNTER_T, COUNTER_SOLVES, COUNTER_CONTACT_STEPS, &
-              COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE, COUNTER_DT_LAST, &
-              COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR
+    public :: checkpoint_t, entry_t
 
-    !> The scalars of /checkpoint/slotN/counters, by position.
-    integer, parameter :: COUNTER_STEP = 1, COUNTER_T = 2, COUNTER_SOLVES = 3, COUNTER_CONTACT_STEPS = 4, &
-                          COUNTER_ENERGY = 5, COUNTER_LAW_ENERGY = 6, COUNTER_HAVE_LAW = 7, COUNTER_MAX_RISE = 8, &
-                          COUNTER_DT_LAST = 9, COUNTER_T_ANCHOR = 10, COUNTER_STEP_ANCHOR = 11
-    integer, parameter :: N_COUNTERS = 11
+    !> One named value: reals or integers, rank 0, 1 or 2 (dims: 1 past the rank).
+    type :: entry_t
+        character(len=:), allocatable :: name   !< 'owner/name'
+        logical :: is_integer = .false.
+        integer :: rank = 0
+        integer :: dims(2) = 1
+        real(dp), allocatable :: reals(:)
+        integer(int64), allocatable :: ints(:)
+    end type entry_t
 
     type :: checkpoint_t
-        real(dp) :: counters(N_COUNTERS) = 0.0_dp
-        real(dp), allocatable :: state(:, :)      !< (s+1, 1+N_FIELDS): u, then fields_m's F_*
-        real(dp), allocatable :: previous(:, :)   !< the level before (multistep schemes; else unallocated)
-        real(dp), allocatable :: control(:)       !< step control's scalars (unallocated: none saved)
-        real(dp), allocatable :: history(:, :)    !< the error estimator's past levels
-        logical :: in_contact = .false.           !< the contact state events are counted from
-        real(dp) :: max_rise_step_change = 0.0_dp
-        real(dp), allocatable :: events(:, :)     !< (n_events, 2): t and kind of each event
-        logical :: has_mesh = .false.             !< an adaptive mesh is saved
-        real(dp) :: mesh_scale(0:N_FIELDS) = 0.0_dp
-        real(dp) :: max_rise_remesh = 0.0_dp
-        integer :: n_remeshes = 0
-        integer(int64), allocatable :: mesh_keys(:)   !< (0:s)
-        integer :: n_elements_max = 0             !< the most elements the run has held (0: not saved)
-        real(dp), allocatable :: companion_levels(:, :)   !< the error estimate's companions (unallocated: none)
-        real(dp), allocatable :: companion_scalars(:)
+        integer :: n = 0                        !< entries(1:n) are in use
+        character(len=:), allocatable :: source   !< the file it was read from, for messages
+        type(entry_t), allocatable :: entries(:)
+    contains
+        generic :: put => put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
+        generic :: get => get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
+        procedure :: add, has, find
+        procedure, private :: put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
+        procedure, private :: get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
     end type checkpoint_t
+
+contains
+
+    !> Append an entry (its name unique: a name put twice is a programming error).
+    subroutine add(self, entry)
+        class(checkpoint_t), intent(inout) :: self
+        type(entry_t), intent(in) :: entry
+        type(entry_t), allocatable :: grown(:)
+        integer :: stat
+        character(len=256) :: message
+
+        if (self%has(entry%name)) call fatal(EXIT_INPUT, 'checkpoint', 'internal error: '//entry%name//' put twice')
+        if (.not. allocated(self%entries)) allocate (self%entries(0))
+        if (self%n == size(self%entries)) then
+            allocate (grown(max(64, 2 * self%n)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'a checkpoint')
+            grown(1:self%n) = self%entries
+            call move_alloc(grown, self%entries)
+        end if
+        self%n = self%n + 1
+        self%entries(self%n) = entry
+    end subroutine add
+
+    logical function has(self, name)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        integer :: k
+
+        has = .false.
+        do k = 1, self%n
+            if (self%entries(k)%name == name) has = .true.
+        end do
+    end function has
+
+    !> The entry `name`, of integers or reals and of that rank: a checkpoint without it
+    !> cannot be continued (an input error of the restart).
+    function find(self, name, is_integer, rank) result(entry)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        logical, intent(in) :: is_integer
+        integer, intent(in) :: rank
+        type(entry_t) :: entry
+        integer :: k
+
+        character(len=:), allocatable :: file
+
+        file = 'the checkpoint'
+        if (allocated(self%source)) file = "'"//self%source//"': its checkpoint"
+        do k = 1, self%n
+            if (self%entries(k)%name /= name) cycle
+            entry = self%entries(k)
+            if ((entry%is_integer .eqv. is_integer) .and. entry%rank == rank) return
+            call fatal(EXIT_INPUT, 'time.restart_from', file//"'s "//name//' is of another type or rank')
+        end do
+        call fatal(EXIT_INPUT, 'time.restart_from', file//' has no '//name)
+    end function find
+
+    subroutine put_real(self, name, value)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: value
+
+        call self%add(entry_t(name, .false., 0, [1, 1], [value], null()))
+    end subroutine put_real
+
+    subroutine put_reals(self, name, values)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: values(:)
+
+        call self%add(entry_t(name, .false., 1, [size(values), 1], values, null()))
+    end subroutine put_reals
+
+    subroutine put_real2(self, name, values)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        real(dp), intent(in) :: values(:, :)
+
+        call self%add(entry_t(name, .false., 2, shape(values), reshape(values, [size(values)]), null()))
+    end subroutine put_real2
+
+    subroutine put_int(self, name, value)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        integer, intent(in) :: value
+
+        call self%put_int64(name, int(value, int64))
+    end subroutine put_int
+
+    subroutine put_int64(self, name, value)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        integer(int64), intent(in) :: value
+
+        call self%add(entry_t(name, .true., 0, [1, 1], null(), [value]))
+    end subroutine put_int64
+
+    subroutine put_ints(self, name, values)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        integer(int64), intent(in) :: values(:)
+
+        call self%add(entry_t(name, .true., 1, [size(values), 1], null(), values))
+    end subroutine put_ints
+
+    !> A logical, as the integer 1 (true) or 0 under a name ending in _flag.
+    subroutine put_flag(self, name, flag)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        logical, intent(in) :: flag
+
+        call self%put_int64(name//'_flag', merge(1_int64, 0_int64, flag))
+    end subroutine put_flag
+
+    subroutine get_real(self, name, value)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        real(dp), intent(out) :: value
+        type(entry_t) :: entry
+
+        entry = self%find(name, .false., 0)
+        value = entry%reals(1)
+    end subroutine get_real
+
+    subroutine get_reals(self, name, values)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        real(dp), allocatable, intent(out) :: values(:)
+        type(entry_t) :: entry
+
+        entry = self%find(name, .false., 1)
+        values = entry%reals
+    end subroutine get_reals
+
+    subroutine get_real2(self, name, values)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        real(dp), allocatable, intent(out) :: values(:, :)
+        type(entry_t) :: entry
+
+        entry = self%find(name, .false., 2)
+        values = reshape(entry%reals, entry%dims)
+    end subroutine get_real2
+
+    subroutine get_int(self, name, value)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        integer, intent(out) :: value
+        integer(int64) :: wide
+
+        call self%get_int64(name, wide)
+        value = int(wide)
+    end subroutine get_int
+
+    subroutine get_int64(self, name, value)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        integer(int64), intent(out) :: value
+        type(entry_t) :: entry
+
+        entry = self%find(name, .true., 0)
+        value = entry%ints(1)
+    end subroutine get_int64
+
+    subroutine get_ints(self, name, values)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        integer(int64), allocatable, intent(out) :: values(:)
+        type(entry_t) :: entry
+
+        entry = self%find(name, .true., 1)
+        values = entry%ints
+    end subroutine get_ints
+
+    !> The logical put_flag wrote under name//'_flag'.
+    subroutine get_flag(self, name, flag)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        logical, intent(out) :: flag
+        integer(int64) :: value
+
+        call self%get_int64(name//'_flag', value)
+        flag = value /= 0
+    end subroutine get_flag
 
 end module checkpoint_m

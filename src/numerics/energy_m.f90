@@ -11,7 +11,7 @@ module energy_m
     use reals_m, only: equal
     use fe_m, only: inertia_difference_energy
     use errors_m, only: check_allocation
-    use checkpoint_m, only: checkpoint_t, COUNTER_ENERGY, COUNTER_LAW_ENERGY, COUNTER_HAVE_LAW, COUNTER_MAX_RISE
+    use checkpoint_m, only: checkpoint_t
     implicit none
     private
     public :: discrete_energy, linear_energy, linear_energy_by_nodes, bdf2_energy, energy_parts, energy_and_parts, &
@@ -497,11 +497,11 @@ contains
         class(energy_monitor_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        ckpt%counters(COUNTER_ENERGY) = self%energy
-        ckpt%counters(COUNTER_LAW_ENERGY) = self%law_energy
-        ckpt%counters(COUNTER_HAVE_LAW) = merge(1.0_dp, 0.0_dp, self%have_law)
-        ckpt%counters(COUNTER_MAX_RISE) = self%max_rise
-        ckpt%max_rise_step_change = self%max_rise_step_change
+        call ckpt%put('energy_monitor/energy', self%energy)
+        call ckpt%put('energy_monitor/law_energy', self%law_energy)
+        call ckpt%put('energy_monitor/have_law', self%have_law)
+        call ckpt%put('energy_monitor/max_rise', self%max_rise)
+        call ckpt%put('energy_monitor/max_rise_step_change', self%max_rise_step_change)
     end subroutine monitor_save_checkpoint
 
     !> The inverse of save_checkpoint (on a monitor initialised for this run).
@@ -509,11 +509,11 @@ contains
         class(energy_monitor_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
 
-        self%energy = ckpt%counters(COUNTER_ENERGY)
-        self%law_energy = ckpt%counters(COUNTER_LAW_ENERGY)
-        self%have_law = ckpt%counters(COUNTER_HAVE_LAW) > 0.0_dp
-        self%max_rise = ckpt%counters(COUNTER_MAX_RISE)
-        self%max_rise_step_change = ckpt%max_rise_step_change
+        call ckpt%get('energy_monitor/energy', self%energy)
+        call ckpt%get('energy_monitor/law_energy', self%law_energy)
+        call ckpt%get('energy_monitor/have_law', self%have_law)
+        call ckpt%get('energy_monitor/max_rise', self%max_rise)
+        call ckpt%get('energy_monitor/max_rise_step_change', self%max_rise_step_change)
         self%have_parts = .false.
     end subroutine monitor_restore_checkpoint
 

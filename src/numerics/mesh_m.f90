@@ -175,8 +175,8 @@ contains
         class(mesh_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        ckpt%n_remeshes = self%remeshes
-        ckpt%max_rise_remesh = self%rise_remesh
+        call ckpt%put('mesh/n_remeshes', self%remeshes)
+        call ckpt%put('mesh/max_rise_remesh', self%rise_remesh)
     end subroutine mesh_save_checkpoint
 
     !> The inverse of save_checkpoint (the nodes are set apart: set_nodes keeps the counters).
@@ -184,8 +184,8 @@ contains
         class(mesh_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
 
-        self%remeshes = ckpt%n_remeshes
-        self%rise_remesh = ckpt%max_rise_remesh
+        call ckpt%get('mesh/n_remeshes', self%remeshes)
+        call ckpt%get('mesh/max_rise_remesh', self%rise_remesh)
     end subroutine mesh_restore_checkpoint
 
     !> Remeshes of the run so far.

@@ -8,7 +8,7 @@ module state_m
     use initial_data_m, only: profile
     use errors_m, only: check_allocation
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
-    use checkpoint_m, only: checkpoint_t, COUNTER_STEP, COUNTER_T, COUNTER_DT_LAST, COUNTER_T_ANCHOR, COUNTER_STEP_ANCHOR
+    use checkpoint_m, only: checkpoint_t
     implicit none
     private
     public :: state_t, initial_state, set_mesh, field_values, advance_time, accept_step, land_on, &
@@ -205,18 +205,19 @@ contains
         w = 0.0_dp
     end subroutine sized_level
 
-    !> The level, the level before (multistep schemes) and the time counters into a checkpoint.
+    !> The level, the level before (multistep schemes) and the time counters into a
+    !> checkpoint: state/level and state/previous (s+1, 1+N_FIELDS; pack_level), state/step, t, ...
     subroutine state_save_checkpoint(self, ckpt)
         class(state_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        ckpt%state = pack_level(self%u, self%w)
-        if (allocated(self%u_prev)) ckpt%previous = pack_level(self%u_prev, self%w_prev)
-        ckpt%counters(COUNTER_STEP) = real(self%step, dp)
-        ckpt%counters(COUNTER_T) = self%t
-        ckpt%counters(COUNTER_DT_LAST) = self%dt_last
-        ckpt%counters(COUNTER_T_ANCHOR) = self%t_anchor
-        ckpt%counters(COUNTER_STEP_ANCHOR) = real(self%step_anchor, dp)
+        call ckpt%put('state/level', pack_level(self%u, self%w))
+        if (allocated(self%u_prev)) call ckpt%put('state/previous', pack_level(self%u_prev, self%w_prev))
+        call ckpt%put('state/step', self%step)
+        call ckpt%put('state/t', self%t)
+        call ckpt%put('state/dt_last', self%dt_last)
+        call ckpt%put('state/t_anchor', self%t_anchor)
+        call ckpt%put('state/step_anchor', self%step_anchor)
         call self%mesh%save_checkpoint(ckpt)
     end subroutine state_save_checkpoint
 
@@ -225,30 +226,33 @@ contains
     subroutine state_restore_checkpoint(self, ckpt)
         class(state_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
+        real(dp), allocatable :: level(:, :)
         integer :: s, stat
         character(len=256) :: message
 
-        s = size(ckpt%state, 1) - 1
+        call ckpt%get('state/level', level)
+        s = size(level, 1) - 1
         if (size(self%u) /= s + 1) then
             deallocate (self%u, self%w)
             allocate (self%u(0:s), self%w(0:s, N_FIELDS), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the state')
             self%s = s
         end if
-        self%u = ckpt%state(:, 1)
-        self%w = ckpt%state(:, 2:)
-        if (allocated(ckpt%previous)) then
+        self%u = level(:, 1)
+        self%w = level(:, 2:)
+        if (ckpt%has('state/previous')) then
+            call ckpt%get('state/previous', level)
             if (allocated(self%u_prev)) deallocate (self%u_prev, self%w_prev)
             allocate (self%u_prev(0:s), self%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'the previous level')
-            self%u_prev = ckpt%previous(:, 1)
-            self%w_prev = ckpt%previous(:, 2:)
+            self%u_prev = level(:, 1)
+            self%w_prev = level(:, 2:)
         end if
-        self%step = nint(ckpt%counters(COUNTER_STEP))
-        self%t = ckpt%counters(COUNTER_T)
-        self%dt_last = ckpt%counters(COUNTER_DT_LAST)
-        self%t_anchor = ckpt%counters(COUNTER_T_ANCHOR)
-        self%step_anchor = nint(ckpt%counters(COUNTER_STEP_ANCHOR))
+        call ckpt%get('state/step', self%step)
+        call ckpt%get('state/t', self%t)
+        call ckpt%get('state/dt_last', self%dt_last)
+        call ckpt%get('state/t_anchor', self%t_anchor)
+        call ckpt%get('state/step_anchor', self%step_anchor)
         call self%mesh%restore_checkpoint(ckpt)
     end subroutine state_restore_checkpoint
 

@@ -33,7 +33,7 @@ module stepper_m
     use state_m, only: state_t, advance_time, accept_step, keep_copy
     use mesh_m, only: mesh_t, copy_mesh
     use sources_m, only: source_t, add_source_terms
-    use checkpoint_m, only: checkpoint_t, COUNTER_SOLVES, COUNTER_CONTACT_STEPS
+    use checkpoint_m, only: checkpoint_t
     use massless_end_m, only: settle_end
     implicit none
     private
@@ -610,18 +610,17 @@ contains
         class(stepper_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        ckpt%counters(COUNTER_SOLVES) = real(self%n_solves, dp)
-        ckpt%counters(COUNTER_CONTACT_STEPS) = real(self%n_contact_steps, dp)
+        call ckpt%put('stepper/n_solves', self%n_solves)
+        call ckpt%put('stepper/n_contact_steps', self%n_contact_steps)
     end subroutine stepper_save_checkpoint
 
     !> The inverse of save_checkpoint.
     subroutine stepper_restore_checkpoint(self, ckpt)
-        use iso_fortran_env, only: int64
         class(stepper_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
 
-        self%n_solves = nint(ckpt%counters(COUNTER_SOLVES), int64)
-        self%n_contact_steps = nint(ckpt%counters(COUNTER_CONTACT_STEPS), int64)
+        call ckpt%get('stepper/n_solves', self%n_solves)
+        call ckpt%get('stepper/n_contact_steps', self%n_contact_steps)
     end subroutine stepper_restore_checkpoint
 
 end module stepper_m

@@ -20,13 +20,11 @@ program rodcontact
     implicit none
     type(config_t) :: cfg
     character(len=:), allocatable :: source, file, problem
-    character(len=:), allocatable :: overrides(:)
-    integer, allocatable :: summary_args(:)
-    integer :: k
+    integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
+    integer :: k, max_len
     logical :: check_only, events
 
-    allocate (character(len=1) :: overrides(0))   ! its length set: gfortran 12 warns otherwise
-    call parse_command_line(source, overrides, summary_args, check_only, events)
+    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, events)
     if (size(summary_args) > 0) then
         ! every file is checked before any row is written: a bad one is an input error
         do k = 1, size(summary_args)
@@ -46,7 +44,17 @@ program rodcontact
         end do
         stop
     end if
-    call read_config(source, cfg, overrides)
+    max_len = max_argument_length()
+    block
+        ! the --set values: argument set_arg(k) without its first set_skip(k) characters
+        character(len=max_len) :: overrides(size(set_arg))
+
+        do k = 1, size(set_arg)
+            overrides(k) = argument(set_arg(k))
+            overrides(k) = overrides(k)(set_skip(k) + 1:)
+        end do
+        call read_config(source, cfg, overrides)
+    end block
     call validate_config(cfg, scheme_rules())
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
     if (check_only) stop
@@ -54,13 +62,13 @@ program rodcontact
 
 contains
 
-    !> The input source ('-' = standard input), the --set values (after '--set' or '--set=',
-    !> each as long as the longest argument), the arguments that are files of --summary
-    !> (every argument after it; none without it), and whether --check was given. --help,
-    !> --version and --summary-header print and stop here.
-    subroutine parse_command_line(source, overrides, summary_args, check_only, events)
+    !> The input source ('-' = standard input), where the --set values are (argument
+    !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
+    !> the arguments that are files of --summary (every argument after it; none without it),
+    !> and whether --check was given. --help, --version and --summary-header print and stop.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, events)
         character(len=:), allocatable, intent(out) :: source
-        character(len=:), allocatable, intent(out) :: overrides(:)
+        integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
         integer, allocatable, intent(out) :: summary_args(:)
         logical, intent(out) :: check_only
         logical, intent(out) :: events     !< --events: the files' event rows instead of --summary
@@ -73,8 +81,7 @@ contains
         source_given = .false.
         check_only = .false.
         events = .false.
-        allocate (character(len=max_argument_length()) :: overrides(0))
-        allocate (summary_args(0))
+        allocate (set_arg(0), set_skip(0), summary_args(0))
         i = 1
         do while (i <= n_args)
             arg = argument(i)
@@ -91,7 +98,7 @@ contains
             case ('--summary', '--events')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', arg // ' needs a file: ' // &
                                             'rodcontact ' // arg // ' <prefix>.h5 [more files ...]')
-                if (source_given .or. size(overrides) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
+                if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
                     arg // ' takes only HDF5 files, no input file, --set or --check')
                 events = arg == '--events'
                 summary_args = [(k, k = i + 1, n_args)]
@@ -102,24 +109,27 @@ contains
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
                                             'group.variable=value, e.g. --set model.varpi=0.3')
                 i = i + 1
-                overrides = [character(len=len(overrides)) :: overrides, argument(i)]
+                set_arg = [set_arg, i]
+                set_skip = [set_skip, 0]
             case default
-                call take_operand(arg, source, source_given, overrides)
+                call take_operand(arg, i, source, source_given, set_arg, set_skip)
             end select
             i = i + 1
         end do
     end subroutine parse_command_line
 
-    !> An argument that names no option: '--set=X' (X is appended to overrides), or the
+    !> Argument i, `arg`, names no option: '--set=X' (appended to set_arg, set_skip), or the
     !> input file (source; source_given: whether one was given before).
-    subroutine take_operand(arg, source, source_given, overrides)
+    subroutine take_operand(arg, i, source, source_given, set_arg, set_skip)
         character(len=*), intent(in) :: arg
+        integer, intent(in) :: i
         character(len=:), allocatable, intent(inout) :: source
         logical, intent(inout) :: source_given
-        character(len=:), allocatable, intent(inout) :: overrides(:)
+        integer, allocatable, intent(inout) :: set_arg(:), set_skip(:)
 
         if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
-            overrides = [character(len=len(overrides)) :: overrides, arg(7:)]
+            set_arg = [set_arg, i]
+            set_skip = [set_skip, 6]
             return
         end if
         if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', "unknown option '" // &

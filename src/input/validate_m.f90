@@ -1,8 +1,7 @@
 !> Input validation (the ranges and combinations of docs/input.md), run before any
 !> allocation or output: the checks go through the groups in the order model, contact,
 !> mesh, time, initial, solver, output, and the first failure stops with EXIT_INPUT, naming
-!> group.variable, the value given and what is allowed. The time schemes' rules come from
-!> time_scheme_m (a later layer) as an argument: scheme_rule_t.
+!> group.variable, the value given and what is allowed.
 module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -45,14 +44,12 @@ module validate_m
     !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
     real(dp), parameter :: MAX_MAGNITUDE = 1.0e30_dp
     real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
-    !> The bounds of require_real.
-    integer, parameter :: NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3
+    integer, parameter :: NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3   !< the bounds of require_real
 
 contains
 
-    !> Apply every check to cfg; stop with EXIT_INPUT at the first failure.
-    !> A large (but allowed) output size gives a warning on stderr. schemes: the time
-    !> schemes and their rules (time_scheme_m's scheme_rules()).
+    !> Apply every check to cfg; stop with EXIT_INPUT at the first failure. A large (but
+    !> allowed) output size gives a warning on stderr.
     subroutine validate_config(cfg, schemes)
         type(config_t), intent(in) :: cfg
         type(scheme_rule_t), intent(in) :: schemes(:)

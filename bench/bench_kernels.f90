@@ -31,7 +31,8 @@ program bench_kernels
     use banded_m, only: band_t, lapack_info_message
     use band_reference_m, only: solve_with_dgbtrs
     use block_tridiagonal_m, only: block_tridiagonal_t
-    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix
+    use scheme_m, only: assemble_matrix
+    use slots_m, only: MONOLITHIC_SLOTS
     use mesh_m, only: uniform_mesh
     use fields_m, only: N_FIELDS
     use state_m, only: state_t, initial_state

@@ -15,7 +15,8 @@ program test_conditioning
     use config_m, only: model_t
     use banded_m, only: band_t, lapack_info_message
     use block_tridiagonal_m, only: block_tridiagonal_t
-    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix
+    use scheme_m, only: assemble_matrix
+    use slots_m, only: MONOLITHIC_SLOTS
     use mesh_m, only: uniform_mesh
     use fields_m, only: N_FIELDS, F_V
     use testing_m, only: check_true, test_summary

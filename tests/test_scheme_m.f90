@@ -14,8 +14,8 @@ program test_scheme_m
     use banded_m, only: band_t
     use band_reference_m, only: band_to_dense
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, FIELDS, is_dirichlet
-    use scheme_m, only: MONOLITHIC_SLOTS, assemble_matrix, assemble_blocks, band_width, THERMAL_SLOTS, &
-                        MECHANICAL_SLOTS
+    use scheme_m, only: assemble_matrix, assemble_blocks, band_width
+    use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
     use block_tridiagonal_m, only: block_tridiagonal_t
     use state_m, only: state_t
     use mesh_m, only: mesh_t, uniform_mesh, graded_mesh

@@ -28,23 +28,11 @@ module scheme_m
     use mesh_m, only: mesh_t
     use banded_m, only: band_t
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use slots_m, only: scatter_fields
     implicit none
     private
-    public :: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS
-    public :: element_block, band_width, assemble_matrix, assemble_blocks, active_fields, slots_of
-    public :: old_state_rhs, add_lagged_coupling, gather_fields, scatter_fields, initial_data_present
-
-    ! Field order within a node (fields_m's F_*). The coupling graph (q-theta, theta-v,
-    ! theta-P, v-P, P-eta) is a triangle theta-v-P with q and eta hanging off theta and P;
-    ! the order q, theta, v, P, eta puts every coupled pair at most 2 slots apart, so the
-    ! interleaved system has kl = ku = 5 + 2 = 7 (an arbitrary order needs up to 9).
-
-    !> Slot of each field within a node for the three systems (0: field not in the system).
-    !> monolithic: all five fields; the paper's Section 7 splitting: a thermal block
-    !> (q, theta, P, eta; kl = ku = 4 + 1 = 5) and a mechanical block (v; tridiagonal).
-    integer, parameter :: MONOLITHIC_SLOTS(N_FIELDS) = [1, 2, 3, 4, 5]
-    integer, parameter :: THERMAL_SLOTS(N_FIELDS) = [1, 2, 0, 3, 4]
-    integer, parameter :: MECHANICAL_SLOTS(N_FIELDS) = [0, 0, 1, 0, 0]
+    public :: element_block, band_width, assemble_matrix, assemble_blocks, active_fields
+    public :: old_state_rhs, add_lagged_coupling, initial_data_present
 
 contains
 
@@ -173,22 +161,6 @@ contains
         has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
     end function initial_data_present
 
-    !> Slots of the monolithic system holding only the active fields, in the order of
-    !> MONOLITHIC_SLOTS (0: field left out).
-    pure function slots_of(active) result(slots)
-        logical, intent(in) :: active(N_FIELDS)
-        integer :: slots(N_FIELDS)
-        integer :: f, k
-
-        slots = 0
-        k = 0
-        do f = 1, N_FIELDS
-            if (.not. active(f)) cycle
-            k = k + 1
-            slots(f) = k
-        end do
-    end function slots_of
-
     !> Assemble the matrix of (6.1) restricted to the fields with slots(f) > 0, nodes
     !> interleaved: unknown (node i, field f) is row/column nf*i + slots(f), nf = count(slots>0).
     !> Dirichlet unknowns get identity rows. The contact term is not included. The element
@@ -241,7 +213,7 @@ contains
         end do
     end subroutine assemble_matrix
 
-    !> The matrix of assemble_matrix with every field in the system (MONOLITHIC_SLOTS) as its
+    !> The matrix of assemble_matrix with every field in the system (slots_m) as its
     !> node blocks, for block_tridiagonal_m's factor_blocks: d(:, :, i) = D_i (node i),
     !> e(:, :, i) = E_i (row node i, column node i+1), f(:, :, i) = F_i (row node i+1, column
     !> node i), each s+1 (d) or s (e, f) blocks. The same entries bit for bit: assemble_matrix
@@ -297,15 +269,26 @@ contains
             if (next_changed) d(:, :, el) = d_right
             changed = next_changed
         end do
+        call dirichlet_blocks(s, d, e, f)
+    end subroutine assemble_blocks
+
+    !> assemble_blocks' Dirichlet unknowns as assemble_matrix's set_identity_row: the row and
+    !> column of (node 0, field) in D_0, E_0, F_0 and of (node s, field) in D_s, F_{s-1}, E_{s-1}
+    !> zero, the diagonal entry 1.
+    pure subroutine dirichlet_blocks(s, d, e, f)
+        integer, intent(in) :: s
+        real(dp), intent(inout) :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)
+        integer :: row
+
         do row = 1, N_FIELDS
-            if (is_dirichlet(row, 0, s)) then   ! row and column of (node 0, row) in D_0, E_0, F_0
+            if (is_dirichlet(row, 0, s)) then
                 d(row, :, 0) = 0.0_dp
                 d(:, row, 0) = 0.0_dp
                 e(row, :, 0) = 0.0_dp
                 f(:, row, 0) = 0.0_dp
                 d(row, row, 0) = 1.0_dp
             end if
-            if (is_dirichlet(row, s, s)) then   ! row and column of (node s, row) in D_s, F_{s-1}, E_{s-1}
+            if (is_dirichlet(row, s, s)) then
                 d(row, :, s) = 0.0_dp
                 d(:, row, s) = 0.0_dp
                 f(row, :, s - 1) = 0.0_dp
@@ -313,7 +296,7 @@ contains
                 d(row, row, s) = 1.0_dp
             end if
         end do
-    end subroutine assemble_blocks
+    end subroutine dirichlet_blocks
 
     !> Right-hand side of (6.1) from the previous time level (module header), into the system
     !> vector b of the fields with slots(f) > 0 (b(slots(f), i): the right-hand side of field
@@ -397,58 +380,5 @@ contains
             if (is_dirichlet(f, s, s)) b(s, f) = 0.0_dp
         end do
     end subroutine zero_dirichlet_rows
-
-    !> Interleave field-major w(0:s, f) into the system vector x (fields with slots > 0).
-    pure subroutine scatter_fields(slots, w, x)
-        integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        real(dp), intent(out), contiguous :: x(:)
-        integer :: f, nf, i
-
-        nf = count(slots > 0)
-        if (nf == N_FIELDS) then
-            ! every field: node by node, the five slots of a node stored together
-            do i = 0, ubound(w, 1)
-                x(N_FIELDS * i + slots(1)) = w(i, 1)
-                x(N_FIELDS * i + slots(2)) = w(i, 2)
-                x(N_FIELDS * i + slots(3)) = w(i, 3)
-                x(N_FIELDS * i + slots(4)) = w(i, 4)
-                x(N_FIELDS * i + slots(5)) = w(i, 5)
-            end do
-            return
-        end if
-        do f = 1, N_FIELDS
-            if (slots(f) == 0) cycle
-            do i = 0, ubound(w, 1)
-                x(nf * i + slots(f)) = w(i, f)
-            end do
-        end do
-    end subroutine scatter_fields
-
-    !> Inverse of scatter_fields: copy the system vector x into the fields it holds.
-    pure subroutine gather_fields(slots, x, w)
-        integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(in), contiguous :: x(:)
-        real(dp), intent(inout), contiguous :: w(0:, :)
-        integer :: f, nf, i
-
-        nf = count(slots > 0)
-        if (nf == N_FIELDS) then
-            do i = 0, ubound(w, 1)
-                w(i, 1) = x(N_FIELDS * i + slots(1))
-                w(i, 2) = x(N_FIELDS * i + slots(2))
-                w(i, 3) = x(N_FIELDS * i + slots(3))
-                w(i, 4) = x(N_FIELDS * i + slots(4))
-                w(i, 5) = x(N_FIELDS * i + slots(5))
-            end do
-            return
-        end if
-        do f = 1, N_FIELDS
-            if (slots(f) == 0) cycle
-            do i = 0, ubound(w, 1)
-                w(i, f) = x(nf * i + slots(f))
-            end do
-        end do
-    end subroutine gather_fields
 
 end module scheme_m

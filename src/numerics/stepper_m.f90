@@ -24,9 +24,9 @@ module stepper_m
     use banded_m, only: band_t, lapack_info_message
     use system_cache_m, only: monolithic_system_t, system_cache_t
     use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
-    use scheme_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, active_fields, slots_of, &
-                        assemble_matrix, assemble_blocks, old_state_rhs, add_lagged_coupling, &
-                        scatter_fields, gather_fields, initial_data_present
+    use scheme_m, only: active_fields, assemble_matrix, assemble_blocks, old_state_rhs, add_lagged_coupling, &
+                        initial_data_present
+    use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, slots_of, scatter_fields, gather_fields
     use block_tridiagonal_m, only: NB_MAX
     use contact_law_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t

@@ -1,45 +1,26 @@
 !> The built-in error estimate of a run (&output error_estimate = .true.; docs/scheme.md,
-!> "The error estimate of a run"): companion solutions integrated beside the run on coarser
-!> meshes with longer steps, and Richardson extrapolation with observed orders.
+!> "The error estimate of a run", has the reasons and the measurements): companion
+!> solutions integrated beside the run on coarser meshes with longer steps, and Richardson
+!> extrapolation with observed orders.
 !>
 !> The run X computes on s elements (size h) with steps dt. Beside it:
 !>   A at (2 dt, 2 h)   every other node;   C at (4 dt, 4 h)   every fourth node;
 !>   D at (8 dt, 4 h)   C's mesh.
-!> Total (time and space together), per field: X, A, C refine dt and h together by 2; with
-!> d1 = |A - X| and d2 = |C - A| at their common nodes the observed order is
-!> r = log2(d2 / d1) (clamped to [ORDER_MIN, ORDER_MAX]) and the error of X is
-!> (A - X) / (2^r - 1) on A's nodes (Richardson; scaled up to the size d2 / (2^r (2^r - 1))
-!> of the coarse pair's extrapolation when d1 is smaller than that, as it is when r is
-!> clamped at ORDER_MAX: a fine difference that nearly vanishes by chance, e.g. at a kink
-!> that moves). Observed, not nominal: at a usual
-!> resolution several fields converge at order ~1 (initial layers of the stiff modes, the
-!> coupling), where the nominal order 2 underestimates 3x.
-!> Time part: C and D differ in dt alone; with p_t = min(p, r) (p the scheme's order: the
-!> time error converges no faster than the scheme, nor than the whole) the time error of X
-!> is (D - C) / (4^p_t (2^p_t - 1)) on C's nodes. Space part: what the total leaves beyond
-!> the time part, sqrt(total^2 - time^2) (0 when the time part is larger).
-!> The relative errors are L2 norms over the rod (trapezoidal rule on the companion's
-!> nodes) over the field's L2 norm on the same nodes.
-!> Steps: a companion of k (2, 4, 8) takes each step over k consecutive steps of the run
-!> (their sum), and reaches every snapshot with a step over the run's last k steps: the
-!> run's steps wait in a queue, and when 3k are queued the first k go into one step; at a
-!> snapshot the L queued steps go into one step over the last k and, before it, the r = L - k
-!> others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). When the run has taken
-!> LAND_SPAN k steps or more since the last snapshot the companion itself so lands (its queue
-!> empties); with closer snapshots a copy of it lands (the r steps in one step: two steps
-!> per snapshot) and the companion goes on with its queue, so that its own steps stay over
-!> k of the run's (landing itself at every snapshot
-!> of 10 steps, C and D took steps over 3, 3, 4 and 2, 8 of the run's, no longer 2x and 4x
-!> A's, and fixed BDF2 steps were estimated 4.4x on experiment 1). Either way, with the
-!> run's steps of any count between snapshots (odd, adaptive landing steps) the last step
-!> to the snapshot is over the run's last k, as Richardson assumes for the midpoint rule's
-!> algebraic fields (v, whose value is that of the last half step: an error dt_last/2 v_t),
-!> and BDF2's step ratios stay within [1/2, 2] (fewer steps between snapshots than 2k: one
-!> shorter step before the last).
-!> Cost: A a quarter of the run's solves, C a sixteenth, D a thirty-second (docs/scheme.md
-!> has the measurement; on an adaptive mesh also a transfer per companion whose mesh changes
-!> at a remesh); the companions' steps skip the stepper's per-step finiteness test
-!> (a non-finite value stays non-finite: the estimate tests the companions' levels).
+!> Total, per field: with d1 = |A - X| and d2 = |C - A| at their common nodes the observed
+!> order is r = log2(d2 / d1), clamped to [ORDER_MIN, ORDER_MAX], and the error of X is
+!> (A - X) / (2^r - 1) on A's nodes, scaled up to d2 / (2^r (2^r - 1)) when d1 is smaller.
+!> Time part: with p_t = min(p, r) (p the scheme's order) the error of X is
+!> (D - C) / (4^p_t (2^p_t - 1)) on C's nodes. Space part: sqrt(total^2 - time^2) (0 when
+!> the time part is larger). Relative L2 norms by the trapezoidal rule on the companion's
+!> nodes.
+!> Steps: a companion of k (2, 4, 8) takes each step over k consecutive steps of the run:
+!> the run's steps wait in a queue, and when 3k are queued the first k go into one step; at
+!> a snapshot the L queued steps go into one step over the last k and, before it, the
+!> r = L - k others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). The
+!> companion itself so lands when the run has taken LAND_SPAN k steps or more since the
+!> last snapshot; otherwise a copy lands and the companion goes on with its queue, so that
+!> its own steps stay over k of the run's. The companions skip the stepper's per-step
+!> finiteness test (the estimate tests their levels).
 !> Meshes of a multiple of 4 (coarse) elements (validate_m). On an adaptive mesh (&mesh
 !> adaptive) "every other node" is the companion's own bisection mesh, coarser by 2 (A) and 4
 !> (C, D) where the run's level is the same, nested in the run's (companion_mesh_m); it is
@@ -284,10 +265,7 @@ contains
         class(error_companions_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         real(dp), intent(out) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
-        real(dp) :: x(0:state%s), a(0:state%s / 2), total(0:state%s / 2)
-        real(dp), dimension(0:state%s / 4) :: c, d, time
-        real(dp) :: r, p_t, d1, d2
-        integer :: k
+        integer :: k, i
 
         call companions_land(self)
         do k = 1, N_COMPANIONS
@@ -301,27 +279,12 @@ contains
         end if
         if (self%adaptive) then
             call estimate_graded(self, state, values)
-            self%last = values
-            return
+        else   ! A's nodes are every other of the run's, C's every other of A's
+            associate (s_a => self%pair(COMP_A)%state%s, s_c => self%pair(COMP_C)%state%s)
+                call extrapolate(self, state, [(2 * i, i = 0, s_a)], [(4 * i, i = 0, s_c)], [(2 * i, i = 0, s_c)], &
+                                 values)
+            end associate
         end if
-        do k = 1, N_OUTPUT_FIELDS
-            x = field_values(state, OUTPUT_ORDER(k))
-            a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
-            c = landed_values(self%pair(COMP_C), OUTPUT_ORDER(k))
-            d = landed_values(self%pair(COMP_D), OUTPUT_ORDER(k))
-            d1 = l2_norm(a(0::2) - x(0::4))
-            d2 = l2_norm(c - a(0::2))
-            r = observed_order(d1, d2)
-            ! a fine difference smaller than the coarse one allows (r clamped at ORDER_MAX):
-            ! the coarse pair's extrapolation, d2 / 2^r, is the estimate's size
-            total = (a - x(0::2)) / (2.0_dp**r - 1.0_dp)
-            if (d2 / 2.0_dp**r > d1) total = total * (d2 / 2.0_dp**r / d1)
-            p_t = min(real(self%p, dp), r)
-            time = (d - c) / (4.0_dp**p_t * (2.0_dp**p_t - 1.0_dp))
-            values(k, PART_TOTAL) = relative(l2_norm(total), l2_norm(x(0::2)))
-            values(k, PART_TIME) = relative(l2_norm(time), l2_norm(x(0::4)))
-            values(k, PART_SPACE) = sqrt(max(values(k, PART_TOTAL)**2 - values(k, PART_TIME)**2, 0.0_dp))
-        end do
         self%last = values
     end subroutine companions_estimate
 
@@ -360,15 +323,22 @@ contains
             order = min(max(log(coarse / fine) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
     end function observed_order
 
-    !> The L2 norm over the rod of the P1 function with nodal values x on a uniform mesh,
-    !> up to the factor sqrt(h) (the trapezoidal rule; the factor cancels in a ratio).
-    pure real(dp) function l2_norm(x)
+    !> The L2 norm over the rod of the P1 function with nodal values x: on a uniform mesh
+    !> (weights absent) up to the factor sqrt(h) (the trapezoidal rule; the factor cancels in
+    !> a ratio); else by the trapezoidal rule with weights (companion_mesh_m's
+    !> trapezoid_weights).
+    pure real(dp) function norm(x, weights)
         real(dp), intent(in) :: x(0:)
+        real(dp), intent(in), optional :: weights(0:)
         integer :: n
 
-        n = ubound(x, 1)
-        l2_norm = sqrt(max(sum(x**2) - 0.5_dp * (x(0)**2 + x(n)**2), 0.0_dp))
-    end function l2_norm
+        if (present(weights)) then
+            norm = sqrt(sum(weights * x**2))
+        else
+            n = ubound(x, 1)
+            norm = sqrt(max(sum(x**2) - 0.5_dp * (x(0)**2 + x(n)**2), 0.0_dp))
+        end if
+    end function norm
 
     !> error / norm; 0 for a field that is zero at every node (a field left out of the
     !> system, or u at t = 0: the companions hold the same zeros).
@@ -544,45 +514,47 @@ contains
         type(error_companions_t), intent(in) :: self
         type(state_t), intent(in) :: state
         real(dp), intent(out) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
-        integer, dimension(0:self%pair(COMP_A)%state%s) :: x_on_a
-        integer, dimension(0:self%pair(COMP_C)%state%s) :: x_on_c, a_on_c
-        real(dp), dimension(0:self%pair(COMP_A)%state%s) :: a, total, weights_a
-        real(dp), dimension(0:self%pair(COMP_C)%state%s) :: c, d, time, weights_c
+
+        associate (k_a => self%pair(COMP_A)%k, k_c => self%pair(COMP_C)%k)
+            call extrapolate(self, state, key_positions(k_a, self%k_run), key_positions(k_c, self%k_run), &
+                             key_positions(k_c, k_a), values, trapezoid_weights(k_a), trapezoid_weights(k_c))
+        end associate
+    end subroutine estimate_graded
+
+    !> The estimate (module header) of every field from the run's level (state) and the
+    !> companions' landed levels: x_on_a, x_on_c the run's nodes at A's and C's, a_on_c A's
+    !> at C's; weights_a, weights_c the trapezoidal rule's on A's and C's nodes (adaptive
+    !> mesh; absent: a uniform mesh).
+    subroutine extrapolate(self, state, x_on_a, x_on_c, a_on_c, values, weights_a, weights_c)
+        type(error_companions_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        integer, intent(in) :: x_on_a(0:), x_on_c(0:), a_on_c(0:)
+        real(dp), intent(out) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
+        real(dp), intent(in), optional :: weights_a(0:), weights_c(0:)
+        real(dp), dimension(0:ubound(x_on_a, 1)) :: a, total
+        real(dp), dimension(0:ubound(x_on_c, 1)) :: c, d, time
         real(dp) :: x(0:state%s)
         real(dp) :: r, p_t, d1, d2
         integer :: k
 
-        associate (k_a => self%pair(COMP_A)%k, k_c => self%pair(COMP_C)%k)
-            x_on_a = key_positions(k_a, self%k_run)
-            x_on_c = key_positions(k_c, self%k_run)
-            a_on_c = key_positions(k_c, k_a)
-            weights_a = trapezoid_weights(k_a)
-            weights_c = trapezoid_weights(k_c)
-        end associate
         do k = 1, N_OUTPUT_FIELDS
             x = field_values(state, OUTPUT_ORDER(k))
             a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
             c = landed_values(self%pair(COMP_C), OUTPUT_ORDER(k))
             d = landed_values(self%pair(COMP_D), OUTPUT_ORDER(k))
-            d1 = weighted_norm(a(a_on_c) - x(x_on_c), weights_c)
-            d2 = weighted_norm(c - a(a_on_c), weights_c)
+            d1 = norm(a(a_on_c) - x(x_on_c), weights_c)
+            d2 = norm(c - a(a_on_c), weights_c)
             r = observed_order(d1, d2)
+            ! a fine difference smaller than the coarse one allows (r clamped at ORDER_MAX):
+            ! the coarse pair's extrapolation, d2 / 2^r, is the estimate's size
             total = (a - x(x_on_a)) / (2.0_dp**r - 1.0_dp)
             if (d2 / 2.0_dp**r > d1) total = total * (d2 / 2.0_dp**r / d1)
             p_t = min(real(self%p, dp), r)
             time = (d - c) / (4.0_dp**p_t * (2.0_dp**p_t - 1.0_dp))
-            values(k, PART_TOTAL) = relative(weighted_norm(total, weights_a), weighted_norm(x(x_on_a), weights_a))
-            values(k, PART_TIME) = relative(weighted_norm(time, weights_c), weighted_norm(x(x_on_c), weights_c))
+            values(k, PART_TOTAL) = relative(norm(total, weights_a), norm(x(x_on_a), weights_a))
+            values(k, PART_TIME) = relative(norm(time, weights_c), norm(x(x_on_c), weights_c))
             values(k, PART_SPACE) = sqrt(max(values(k, PART_TOTAL)**2 - values(k, PART_TIME)**2, 0.0_dp))
         end do
-    end subroutine estimate_graded
-
-    !> The L2 norm of the P1 function with nodal values x by the trapezoidal rule with weights
-    !> (companion_mesh_m's trapezoid_weights).
-    pure real(dp) function weighted_norm(x, weights)
-        real(dp), intent(in) :: x(:), weights(:)
-
-        weighted_norm = sqrt(sum(weights * x**2))
-    end function weighted_norm
+    end subroutine extrapolate
 
 end module error_companion_m

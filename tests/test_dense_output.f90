@@ -1,4 +1,5 @@
-!> Dense output (dense_output_m through step_driver_t%dense_level and dense_series): on a
+!> Dense output (dense_output_m through step_driver_t%dense_level and run_output_m's
+!> dense_series): on a
 !> manufactured solution whose fields are linear in x (tests/lib/mms_m: no spatial error, u(1,t)
 !> = 0.03 + 0.02 sin 2t), fixed steps dt = 0.04, 0.02, 0.01, 0.005 to t = 1. Per scheme:
 !>  - the error of u(1,t) at the middle of every step (the interpolant) falls at the scheme's
@@ -18,7 +19,9 @@ program test_dense_output
     use step_driver_m, only: step_driver_t
     use mms_m, only: mms_t, mms_linear_in_x, U_FIELD
     use convergence_m, only: mms_config, mms_initial_state
-    use fields_m, only: N_FIELDS, N_ENERGY_PARTS
+    use fields_m, only: N_FIELDS, N_SERIES, S_U_END, S_ENERGY, S_ENERGY_PARTS
+    use error_estimator_m, only: MAX_LEVELS
+    use run_output_m, only: dense_series
     use testing_m, only: check_true, test_summary
     use dense_output_m, only: lagrange_weights
     implicit none
@@ -71,11 +74,11 @@ contains
         type(step_result_t) :: result
         type(energy_monitor_t) :: monitor
         type(step_driver_t) :: driver
-        real(dp) :: u(0:S), w(0:S, N_FIELDS), t_mid, u_end, energy, e_mid, parts(N_ENERGY_PARTS)
+        real(dp) :: u(0:S), w(0:S, N_FIELDS), t_mid, e_mid, rows(N_SERIES, MAX_LEVELS), values(N_SERIES)
         real(dp) :: t_level(3), e_level(3)   !< the last levels' times and errors, newest first
         logical :: at_snapshot
         character(len=200) :: failure
-        integer :: n
+        integer :: n, n_rows
 
         cfg = mms_config(mms, S, dt, 1.0_dp, scheme)
         cfg%output%series_dt = dt      ! dense output: fixed steps keep their levels (step_driver_m)
@@ -100,9 +103,10 @@ contains
             e_mid = u(S) - mms%exact(U_FIELD, t_mid, 1.0_dp, 0)
             between = max(between, abs(e_mid))
             if (n > p) own = max(own, abs(e_mid - sum(lagrange_weights(t_level(1:p + 1), t_mid) * e_level(1:p + 1))))
-            call driver%dense_series(state, stepper%law, monitor%current_energy(), monitor%parts(state), t_mid, &
-                                      u_end, energy, parts)
-            series_gap = max(series_gap, abs(u_end - u(S)), abs(sum(parts) - energy) / max(abs(energy), 1.0_dp))
+            n_rows = 0
+            call dense_series(driver, stepper, state, monitor, result, t_mid, rows, n_rows, values)
+            series_gap = max(series_gap, abs(values(S_U_END) - u(S)), &
+                             abs(sum(values(S_ENERGY_PARTS)) - values(S_ENERGY)) / max(abs(values(S_ENERGY)), 1.0_dp))
         end do
     end subroutine run
 

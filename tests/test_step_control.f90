@@ -1,7 +1,8 @@
 !> Adaptive time steps (step_control_m):
 !>  1. the controller rejects a step whose estimate exceeds the tolerance (smaller retry, no
 !>     growth right after), grows the step (by at most 2) when the estimate is small, keeps
-!>     it inside the deadband and inside [dt_min, dt_max]; the ratio is est / (tol S) at a
+!>     it inside the deadband and inside [dt_min, dt_max], grows it again after a
+!>     rejection (regrowth_check); the ratio is est / (tol S) at a
 !>     scale S /= 1 (at S = 1, est / tol would pass too);
 !>  1b. save_checkpoint / restore_checkpoint (into checkpoint_m's checkpoint_t) give back
 !>     every counter and sum of the controller, its proposal and no-growth flag, and the
@@ -19,10 +20,11 @@
 !>     steps from the same past levels (the time error alone).
 program test_step_control
     use kinds_m, only: dp
-    use config_m, only: config_t, model_t
+    use config_m, only: config_t, model_t, time_t
     use state_m, only: state_t
     use stepper_m, only: stepper_t, step_result_t
-    use step_control_m, only: error_estimator_t, step_controller_t, energy_norm
+    use error_estimator_m, only: error_estimator_t, energy_norm
+    use step_control_m, only: step_controller_t
     use time_scheme_m, only: time_scheme_t, time_scheme, scheme_rules
     use validate_m, only: scheme_rule_t
     use checkpoint_m, only: checkpoint_t
@@ -72,7 +74,8 @@ contains
         real(dp) :: error_sum, scale
         integer :: n_estimated, n_rejected, n_forced
 
-        call c%init(1.0e-3_dp, 1.0e-6_dp, 0.1_dp, time_scheme('bdf2'), 0.01_dp, scale=1.0_dp)
+        call c%init(time_t(dt=0.01_dp, error_tol=1.0e-3_dp, dt_min=1.0e-6_dp, dt_max=0.1_dp), time_scheme('bdf2'), &
+                    scale=1.0_dp)
         call check('ratio est / (tol S) = 8 for est = 8e-3', abs(c%ratio(8.0e-3_dp) - 8.0_dp) < 1.0e-12_dp)
         call c%reject(0.01_dp, 8.0_dp)
         call c%counts(error_sum, scale, n_estimated, n_rejected, n_forced)
@@ -100,7 +103,29 @@ contains
         write (detail, '(a,es24.16)') 'got ', c%ratio(8.0e-3_dp)
         call check('ratio est / (tol S) = 3.2 for est = 8e-3, S = 2.5', abs(c%ratio(8.0e-3_dp) - 3.2_dp) < 1.0e-12_dp, &
                    trim(detail))
+        call regrowth_check()
     end subroutine controller_checks
+
+    !> After a rejection the step grows again: one step at the retried size (no growth),
+    !> then three quiet steps double it each, past the step that was rejected.
+    subroutine regrowth_check()
+        type(step_controller_t) :: c
+        real(dp) :: dt_retry, expected
+        integer :: k
+
+        call c%init(time_t(dt=0.01_dp, error_tol=1.0e-3_dp, dt_min=1.0e-6_dp, dt_max=0.1_dp), time_scheme('bdf2'), &
+                    scale=1.0_dp)
+        call c%reject(0.01_dp, 8.0_dp)
+        dt_retry = c%proposal()
+        call c%accept(dt_retry, 1.0e-6_dp)
+        do k = 1, 3
+            call c%accept(c%proposal(), 1.0e-6_dp)
+        end do
+        expected = 8.0_dp * dt_retry
+        write (detail, '(a,es24.16,a,es24.16)') 'got ', c%proposal(), ', expected ', expected
+        call check('after a rejection quiet steps grow again (8 times the retry, past the rejected 0.01)', &
+                   abs(c%proposal() - expected) < 1.0e-12_dp * expected .and. c%proposal() > 0.01_dp, trim(detail))
+    end subroutine regrowth_check
 
     !> A controller and an estimator in the middle of a run, through a checkpoint.
     subroutine checkpoint_checks()
@@ -115,7 +140,7 @@ contains
         integer :: i, j
 
         ! counters and sums none of which is the default or equal to another
-        call c%init(1.0e-4_dp, 1.0e-8_dp, 0.5_dp, time_scheme('bdf2'), 0.01_dp)
+        call c%init(time_t(dt=0.01_dp, error_tol=1.0e-4_dp, dt_min=1.0e-8_dp, dt_max=0.5_dp), time_scheme('bdf2'))
         call c%observe_size(3.75_dp)
         do j = 1, 17
             call c%add_estimate(0.001_dp * real(j, dp))
@@ -135,7 +160,7 @@ contains
         end do
         call c%save_checkpoint(ckpt)
         call e%save_checkpoint(ckpt)
-        call c2%init(1.0e-4_dp, 1.0e-8_dp, 0.5_dp, time_scheme('bdf2'), 0.01_dp)
+        call c2%init(time_t(dt=0.01_dp, error_tol=1.0e-4_dp, dt_min=1.0e-8_dp, dt_max=0.5_dp), time_scheme('bdf2'))
         call e2%init(time_scheme('bdf2'), SC)
         call c2%restore_checkpoint(ckpt)
         call e2%restore_checkpoint(ckpt)

@@ -12,7 +12,7 @@ module remesh_m
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
     use transfer_m, only: transfer_level
     use stepper_m, only: stepper_t
-    use step_control_m, only: error_estimator_t, MAX_LEVELS
+    use error_estimator_m, only: error_estimator_t, MAX_LEVELS
     use energy_m, only: energy_monitor_t
     use errors_m, only: check_allocation
     implicit none

@@ -12,22 +12,19 @@
 !> and on the end of the run. An accepted step adds its contact event to the event log,
 !> (adaptive steps) its level to the error estimator and its estimate to the controller's
 !> error sum, and its energy to the energy monitor. Fixed steps compute no estimate.
+!> Trying, judging and accepting one step: the submodule step_driver_trial_s.
 module step_driver_m
     use kinds_m, only: dp
-    use reals_m, only: equal
-    use iso_fortran_env, only: error_unit
-    use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t, with_contact_mass
-    use state_m, only: state_t, advance_time, land_on, copy_state, keep_copy
+    use state_m, only: state_t, copy_state, keep_copy
     use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
-    use energy_m, only: energy_monitor_t, energy_and_parts
-    use fields_m, only: N_ENERGY_PARTS
+    use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t
-    use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, &
-                        LINEAR_CUT_MIN
-    use step_control_m, only: error_estimator_t, step_controller_t, energy_norm, MAX_LEVELS
-    use dense_output_m, only: lagrange_weights, interpolant_root
+    use events_m, only: event_log_t
+    use error_estimator_m, only: error_estimator_t, energy_norm, MAX_LEVELS
+    use step_control_m, only: step_controller_t
+    use dense_output_m, only: lagrange_weights
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
     use remesh_m, only: remesh
     implicit none
@@ -39,7 +36,7 @@ module step_driver_m
         logical :: adaptive = .false.          !< &time adaptive
         logical :: mesh_adaptive = .false.     !< &mesh adaptive
         !> dense output (&output series_dt, snapshot_land = .false.): fixed steps keep their
-        !> levels in the estimator too (dense_level, dense_series)
+        !> levels in the estimator too (dense_weights, dense_level, past_level)
         logical :: dense = .false.
         real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
         real(dp) :: v_front = 0.0_dp           !< adaptive_mesh_m's front_speed
@@ -57,10 +54,6 @@ module step_driver_m
         logical :: saved_without_level = .false.
         logical :: in_contact = .false.        !< the contact state after the last accepted step
         logical :: warned_forced = .false.
-        !> dense output: E of the j-th most recent level (dense_series), for the step energies_step
-        real(dp) :: level_energy(MAX_LEVELS) = 0.0_dp
-        real(dp) :: level_parts(N_ENERGY_PARTS, MAX_LEVELS) = 0.0_dp   !< their parts (energy_parts)
-        integer :: energies_step = -1
     contains
         procedure :: init => driver_init
         procedure :: take_step => driver_take_step
@@ -70,13 +63,89 @@ module step_driver_m
         procedure :: save_checkpoint => driver_save_checkpoint
         procedure :: restore_checkpoint => driver_restore_checkpoint
         procedure :: dense_level => driver_dense_level
-        procedure :: dense_series => driver_dense_series
-        procedure, private :: event_time => driver_event_time
-        procedure, private :: release_time => driver_release_time
+        procedure :: dense_weights => driver_dense_weights
+        procedure :: past_level => driver_past_level
         procedure, private :: landing => driver_landing
         procedure, private :: choose_step => driver_choose_step
+        procedure, private :: try_step => driver_try_step
+        procedure, private :: judge => driver_judge
+        procedure, private :: accept => driver_accept
+        procedure, private :: keep_level => driver_keep_level
         procedure, private :: undo_step => driver_undo_step
     end type step_driver_t
+
+    !> One tried step of take_step: its size, where it started and ends, the contact state
+    !> it reached, its estimate and the contact event it crossed.
+    type :: trial_t
+        real(dp) :: dt = 0.0_dp             !< its size
+        real(dp) :: target = 0.0_dp         !< t_stop or the next snapshot time
+        logical :: lands = .false.          !< it ends on target
+        logical :: at_snapshot = .false.    !< it ends on a snapshot time
+        real(dp) :: t_before = 0.0_dp       !< the state's t before it
+        real(dp) :: dt_last = 0.0_dp        !< the state's dt_last before it
+        real(dp) :: gap_start = 0.0_dp      !< u(1) - g before it
+        real(dp) :: gap_end = 0.0_dp        !< the gap at its end (contact_state)
+        logical :: contact = .false.        !< the contact state at its end
+        logical :: flipped = .false.        !< it changed the contact state
+        real(dp) :: est = 0.0_dp            !< its error estimate
+        real(dp) :: err = -1.0_dp           !< est / (tol S); negative: no estimate
+        integer :: landings = 0             !< retries cut to end at a located event
+        real(dp) :: dt_land = 0.0_dp        !< the next such retry's size
+        !> the end of the last step that changed the contact state (landing)
+        real(dp) :: t_bound = 0.0_dp
+    end type trial_t
+
+    interface   ! trying one step and judging it (src/adaptivity/step_driver_trial_s.f90)
+        module subroutine driver_try_step(self, state, stepper, result, trial, failure)
+            class(step_driver_t), intent(inout) :: self
+            type(state_t), intent(inout) :: state
+            type(stepper_t), intent(inout) :: stepper
+            type(step_result_t), intent(inout) :: result
+            type(trial_t), intent(inout) :: trial
+            character(len=*), intent(inout) :: failure
+        end subroutine driver_try_step
+
+        module subroutine driver_judge(self, state, stepper, result, trial, retry)
+            class(step_driver_t), intent(inout) :: self
+            type(state_t), intent(inout) :: state
+            type(stepper_t), intent(inout) :: stepper
+            type(step_result_t), intent(in) :: result
+            type(trial_t), intent(inout) :: trial
+            logical, intent(out) :: retry
+        end subroutine driver_judge
+
+        module subroutine driver_landing(self, state, result, law, trial, cut)
+            class(step_driver_t), intent(in) :: self
+            type(state_t), intent(in) :: state
+            type(step_result_t), intent(in) :: result
+            type(contact_law_t), intent(in) :: law
+            type(trial_t), intent(inout) :: trial
+            logical, intent(out) :: cut
+        end subroutine driver_landing
+
+        module subroutine driver_accept(self, state, law, monitor, result, trial, failure)
+            class(step_driver_t), intent(inout) :: self
+            type(state_t), intent(inout) :: state
+            type(contact_law_t), intent(in) :: law
+            type(energy_monitor_t), intent(inout) :: monitor
+            type(step_result_t), intent(in) :: result
+            type(trial_t), intent(in) :: trial
+            character(len=*), intent(inout) :: failure
+        end subroutine driver_accept
+
+        module subroutine driver_keep_level(self, state, trial)
+            class(step_driver_t), intent(inout) :: self
+            type(state_t), intent(in) :: state
+            type(trial_t), intent(in) :: trial
+        end subroutine driver_keep_level
+
+        module subroutine driver_undo_step(self, stepper, result, state)
+            class(step_driver_t), intent(in) :: self
+            type(stepper_t), intent(inout) :: stepper
+            type(step_result_t), intent(in) :: result
+            type(state_t), intent(inout) :: state
+        end subroutine driver_undo_step
+    end interface
 
 contains
 
@@ -99,8 +168,7 @@ contains
         self%v_front = front_speed(cfg%model)
         self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         call self%estimator%init(stepper%scheme, state%s)
-        call self%control%init(cfg%time%error_tol, cfg%time%dt_min, cfg%time%dt_max, stepper%scheme, &
-                               cfg%time%dt, scale=energy_norm(monitor%current_energy()))
+        call self%control%init(cfg%time, stepper%scheme, scale=energy_norm(monitor%current_energy()))
         call self%estimator%push(state%u, state%w, 0.0_dp)
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
     end subroutine driver_init
@@ -152,9 +220,11 @@ contains
     end function driver_controller
 
     !> Take one accepted step from state towards t_stop (landing on it, or on t_snapshot
-    !> when that comes first; at_snapshot: the step ended there). On a numerical failure,
-    !> failure says which step and why ('' otherwise); the state is then that of the
-    !> failed step (a failed solve) or of the accepted step (a non-finite energy).
+    !> when that comes first; at_snapshot: the step ended there): choose a step, try it,
+    !> judge it (locate a contact event it crossed, reject it on its estimate) until one
+    !> is accepted. On a numerical failure, failure says which step and why ('' otherwise);
+    !> the state is then that of the failed step (a failed solve) or of the accepted step
+    !> (a non-finite energy).
     subroutine driver_take_step(self, state, stepper, monitor, result, t_stop, at_snapshot, failure, t_snapshot)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
@@ -165,274 +235,69 @@ contains
         logical, intent(out) :: at_snapshot
         character(len=*), intent(out) :: failure
         real(dp), intent(in), optional :: t_snapshot   !< the next snapshot time (absent: none)
-        real(dp) :: dt_try, target, t_before, gap_start, gap_end, est, err, saved_dt_last, dt_land, t_event, t_bound
-        logical :: lands, contact_now, flipped, landed, cut
-        integer :: landings
+        type(trial_t) :: trial
+        logical :: retry
 
         failure = ''
-        landings = 0
-        landed = .false.
         do
-            call self%choose_step(state, t_stop, dt_try, target, lands, at_snapshot, t_snapshot)
-            if (landings > 0) then
-                ! the retry of a step that changed the contact state: end at the located event
-                dt_try = dt_land
-                lands = .false.
-                at_snapshot = .false.
-            end if
-            t_before = state%t
-            saved_dt_last = state%dt_last
-            gap_start = state%u(state%s) - stepper%law%g
-            if (self%adaptive) then
-                self%saved_without_level = self%level_kept
-                call copy_state(state, self%saved, level=.not. self%saved_without_level)
-            end if
-            call stepper%advance(state, result, dt_try)
-            if (.not. result%ok) then
-                failure = step_failure(state%step + 1, advance_time(state, dt_try), trim(result%message))
-                return
-            end if
-            call contact_state(stepper%law, state, result, contact_now, gap_end)
-            flipped = contact_now .neqv. self%in_contact
-            est = 0.0_dp
-            err = -1.0_dp
+            call self%choose_step(state, t_stop, trial, t_snapshot)
+            call self%try_step(state, stepper, result, trial, failure)
+            at_snapshot = trial%at_snapshot
+            if (failure /= '') return
             ! fixed steps compute no estimate (the run's error: &output error_estimate)
             if (.not. self%adaptive) exit
-            if (self%estimator%ready() .and. .not. flipped) then
-                est = self%estimator%estimate(self%model, state%u, state%w, dt_try, state%mesh)
-                err = self%control%ratio(est)
-            end if
-            if ((flipped .or. landings > 0) .and. landings < MAX_LANDINGS) then
-                ! locate the event; in the step's interior, or beyond a cut step's end: retry to end there
-                call self%landing(state, result, stepper%law, t_before, dt_try, gap_start, gap_end, flipped, t_bound, &
-                                  cut, dt_land)
-                if (cut) then
-                    call self%undo_step(stepper, result, state)
-                    landings = landings + 1
-                    cycle
-                end if
-            end if
-            if (err > 1.0_dp .and. dt_try > self%dt_min) then
-                call self%undo_step(stepper, result, state)
-                call self%control%reject(dt_try, err)
-                landings = 0
-                cycle
-            end if
-            if (err > 1.0_dp) then
-                call self%control%count_forced()
-                if (.not. self%warned_forced) call warn_forced(state%t, self%dt_min)
-                self%warned_forced = .true.
-            end if
-            exit
+            call self%judge(state, stepper, result, trial, retry)
+            if (.not. retry) exit
         end do
-        ! the step is accepted
-        landed = landings > 0
-        if (lands .and. self%adaptive) call land_on(state, target)
-        if (flipped) then
-            if (self%adaptive .and. self%in_contact .and. stepper%law%is_signorini()) then
-                call self%release_time(state, t_before, dt_try, .false., t_before, t_before + dt_try, t_event, cut)
-            else
-                t_event = self%event_time(t_before, dt_try, gap_start, gap_end, result%trial_gap, contact_now, &
-                                          stepper%law%g)
-            end if
-            call self%events%add(t_event, merge(EVENT_ONSET, EVENT_RELEASE, contact_now))
-            if (self%adaptive) call self%estimator%reset()
-        end if
-        self%in_contact = contact_now
-        if (self%dense .and. .not. self%adaptive) call self%estimator%push(state%u, state%w, dt_try)
-        if (self%adaptive) then
-            call self%estimator%push(state%u, state%w, dt_try)
-            self%level_kept = .true.
-            if (self%saved_without_level .and. self%estimator%n_levels < 2) then
-                ! after an event the levels are forgotten: dense output takes the level before
-                ! the step from the saved state (dense_weights), so it gets its level now
-                associate (e => self%estimator, before => modulo(self%estimator%head - 2, MAX_LEVELS) + 1)
-                    call keep_copy(e%levels(:, 0, before), e%levels(:, 1:, before), self%saved%u, self%saved%w, &
-                                   'the saved state')
-                end associate
-                self%saved_without_level = .false.
-            end if
-            if (err >= 0.0_dp) call self%control%add_estimate(est)
-            ! a step cut to end at an event, and the event's step, keep the proposal made before it
-            call self%control%accept(dt_try, err, shortened=lands .or. landed .or. flipped)
-        end if
-        call monitor%observe(state, step_changed=.not. equal(dt_try, saved_dt_last))
-        if (.not. ieee_is_finite(monitor%current_energy())) then
-            failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
-            return
-        end if
-        if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))
+        call self%accept(state, stepper%law, monitor, result, trial, failure)
     end subroutine driver_take_step
 
-    !> The next step: &time dt or the controller's proposal (at most the scheme's step-ratio
-    !> bound times the last step; on an adaptive mesh at most FRONT_CFL of its smallest elements for the
-    !> fastest front), shortened to end on the next snapshot time or t_stop (target; lands).
-    !> Adaptive steps that would leave less than a step to the target take half the
-    !> distance instead, so no tiny step follows.
-    subroutine driver_choose_step(self, state, t_stop, dt_try, target, lands, at_snapshot, t_snapshot)
+    !> The next step (trial%dt): &time dt or the controller's proposal (at most the scheme's
+    !> step-ratio bound times the last step; on an adaptive mesh at most FRONT_CFL of its
+    !> smallest elements for the fastest front), shortened to end on the next snapshot time
+    !> or t_stop (target; lands). Adaptive steps that would leave less than a step to the
+    !> target take half the distance instead, so no tiny step follows. The retry of a step
+    !> that changed the contact state (landings > 0) ends at the located event (dt_land).
+    subroutine driver_choose_step(self, state, t_stop, trial, t_snapshot)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
         real(dp), intent(in) :: t_stop
-        real(dp), intent(out) :: dt_try, target
-        logical, intent(out) :: lands, at_snapshot
+        type(trial_t), intent(inout) :: trial
         real(dp), intent(in), optional :: t_snapshot
-        real(dp) :: remaining, slack
+        real(dp) :: remaining, slack, dt
 
         if (self%adaptive) then
-            dt_try = self%control%proposal(state%dt_last)
-            dt_try = min(max(dt_try, self%dt_min), self%dt_max)
+            dt = self%control%proposal(state%dt_last)
+            dt = min(max(dt, self%dt_min), self%dt_max)
             if (self%mesh_adaptive .and. self%v_front > 0.0_dp) &
-                dt_try = max(min(dt_try, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)
-            slack = 1.0e-9_dp * dt_try
+                dt = max(min(dt, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)
         else
-            dt_try = self%dt
-            slack = 1.0e-9_dp * self%dt
+            dt = self%dt
         end if
-        target = t_stop
-        at_snapshot = .false.
+        slack = 1.0e-9_dp * dt
+        trial%target = t_stop
+        trial%at_snapshot = .false.
         if (present(t_snapshot)) then
             ! a snapshot time that is t_stop to round-off is the target (not t_stop): so
             ! a run to t_stop takes the steps a longer run takes up to there
-            if (t_snapshot <= target + slack) then
-                target = t_snapshot
-                at_snapshot = .true.
-            end if
+            trial%at_snapshot = t_snapshot <= t_stop + slack
+            if (trial%at_snapshot) trial%target = t_snapshot
         end if
-        remaining = target - state%t
-        lands = dt_try >= remaining - slack
-        if (lands) then
-            if (self%adaptive .or. dt_try > remaining + slack) dt_try = remaining
-        else if (self%adaptive .and. dt_try > 0.5_dp * remaining) then
-            dt_try = 0.5_dp * remaining
+        remaining = trial%target - state%t
+        trial%lands = dt >= remaining - slack
+        if (trial%lands) then
+            if (self%adaptive .or. dt > remaining + slack) dt = remaining
+        else if (self%adaptive .and. dt > 0.5_dp * remaining) then
+            dt = 0.5_dp * remaining
         end if
-        at_snapshot = at_snapshot .and. lands
+        trial%dt = dt
+        trial%at_snapshot = trial%at_snapshot .and. trial%lands
+        if (trial%landings > 0) then
+            trial%dt = trial%dt_land
+            trial%lands = .false.
+            trial%at_snapshot = .false.
+        end if
     end subroutine driver_choose_step
-
-    !> The time of the contact event in the step from t_before of size dt whose gap went from
-    !> gap_start to gap_end: adaptive steps of a scheme of order 2, with a level before
-    !> t_before since the last event, take the root of the quadratic interpolant of the gap
-    !> (dense_output_m) through the two levels before the step and its end: for an onset
-    !> (onset = .true.) the end's trial gap (no contact force in the step: the free motion,
-    !> which the solution follows up to the onset; the stiff penalty bends u^n(1) away from
-    !> it within the step), for a release u^n(1) - g (gap_end). Otherwise (and if that has no
-    !> root in the step) the straight line's (events_m's crossing_time). Fixed steps keep the
-    !> straight line (and their results).
-    !> With t_lo, t_hi: the interpolant's root in [t_lo, t_hi] instead (found: there is one).
-    real(dp) function driver_event_time(self, t_before, dt, gap_start, gap_end, trial_gap, onset, g, t_lo, t_hi, &
-                                        found) result(t_event)
-        class(step_driver_t), intent(in) :: self
-        real(dp), intent(in) :: t_before, dt, gap_start, gap_end, trial_gap, g
-        logical, intent(in) :: onset
-        real(dp), intent(in), optional :: t_lo, t_hi
-        logical, intent(out), optional :: found
-        real(dp) :: times(3), gaps(3), lo, hi
-        integer :: slot
-        logical :: has_root
-
-        t_event = crossing_time(t_before, dt, gap_start, gap_end)
-        lo = t_before
-        hi = t_before + dt
-        if (present(t_lo)) lo = t_lo
-        if (present(t_hi)) hi = t_hi
-        if (present(found)) found = .false.
-        if (.not. self%adaptive .or. self%estimator%order < 2 .or. self%estimator%n_levels < 2) return
-        associate (e => self%estimator)
-            slot = modulo(e%head - 2, MAX_LEVELS) + 1     ! the level before t_before
-            times = [t_before + dt, t_before, t_before - e%steps(e%head)]
-            gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, slot) - g]
-        end associate
-        call interpolant_root(times, gaps, lo, hi, t_event, has_root)
-        if (.not. has_root) t_event = crossing_time(t_before, dt, gap_start, gap_end)
-        if (present(found)) found = has_root
-    end function driver_event_time
-
-    !> The time of a Signorini release (adaptive steps): the contact force lambda = -sigma at the
-    !> contact node from the node's equilibrium with its neighbour, alpha (u_{s-1} - u_s) / h_s
-    !> (exact for the massless contact node of &contact mass = 'redistributed', the last
-    !> element's stress otherwise), at the levels since the last event (t_before the latest)
-    !> and, with_end, at the state's level at t_before + dt too; the root in [t_lo, t_hi] of the
-    !> polynomial through them (dense_output_m), at most p+1 of them (p the scheme's order).
-    !> found = .false. (t_event = t_hi): no root there, or fewer than two levels.
-    subroutine driver_release_time(self, state, t_before, dt, with_end, t_lo, t_hi, t_event, found)
-        class(step_driver_t), intent(in) :: self
-        type(state_t), intent(in) :: state
-        real(dp), intent(in) :: t_before, dt, t_lo, t_hi
-        logical, intent(in) :: with_end
-        real(dp), intent(out) :: t_event
-        logical, intent(out) :: found
-        real(dp) :: times(MAX_LEVELS + 1), force(MAX_LEVELS + 1), to_node
-        integer :: j, k, n, slot, s
-
-        t_event = t_hi
-        found = .false.
-        s = state%s
-        to_node = self%model%alpha / state%mesh%h(s)
-        k = 0
-        if (with_end) then
-            k = 1
-            times(1) = t_before + dt
-            force(1) = to_node * (state%u(s - 1) - state%u(s))
-        end if
-        associate (e => self%estimator)
-            n = min(e%n_levels, e%order + 1 - k)
-            if (k + n < 2) return
-            do j = 1, n
-                slot = modulo(e%head - j, MAX_LEVELS) + 1
-                times(k + j) = t_before
-                if (j > 1) times(k + j) = times(k + j - 1) - e%steps(modulo(e%head - j + 1, MAX_LEVELS) + 1)
-                force(k + j) = to_node * (e%levels(s - 1, 0, slot) - e%levels(s, 0, slot))
-            end do
-        end associate
-        call interpolant_root(times(1:k + n), force(1:k + n), t_lo, t_hi, t_event, found)
-        if (.not. found) t_event = t_hi
-    end subroutine driver_release_time
-
-    !> A tried adaptive step from t_before of size dt that changed the contact state (flipped),
-    !> or a step cut to end at an event that did not (the event is later): locate the event
-    !> (a Signorini release: release_time; otherwise event_time's interpolated gap) and say
-    !> whether the step is retried to end there (cut, of size dt_land; events_m's event_landing;
-    !> an event located by the straight line only is not cut closer than LINEAR_CUT_MIN of the
-    !> step to its start).
-    !> t_bound: the end of the last step that changed the contact state (set on a flipped
-    !> step), beyond which the event is not sought.
-    subroutine driver_landing(self, state, result, law, t_before, dt, gap_start, gap_end, flipped, t_bound, cut, &
-                              dt_land)
-        class(step_driver_t), intent(in) :: self
-        type(state_t), intent(in) :: state
-        type(step_result_t), intent(in) :: result
-        type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: t_before, dt, gap_start, gap_end
-        logical, intent(in) :: flipped
-        real(dp), intent(inout) :: t_bound
-        logical, intent(out) :: cut
-        real(dp), intent(out) :: dt_land
-        real(dp) :: t_lo, t_event
-        logical :: found
-
-        if (flipped) then
-            t_bound = t_before + dt
-            t_lo = t_before
-        else
-            t_lo = t_before + dt
-        end if
-        if (self%in_contact .and. law%is_signorini()) then
-            call self%release_time(state, t_before, dt, .not. flipped, t_lo, t_bound, t_event, found)
-        else
-            t_event = self%event_time(t_before, dt, gap_start, gap_end, result%trial_gap, .not. self%in_contact, &
-                                      law%g, t_lo, t_bound, found)
-        end if
-        if (flipped) then
-            call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)
-            ! located by the straight line only (no interpolant: Euler, or right after an event): no
-            ! cut of less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
-            ! repeat step after step
-            if (.not. found) cut = cut .and. dt_land >= LINEAR_CUT_MIN * dt
-        else
-            ! the cut step ended short of the event: cut again at the event located with its end
-            call event_landing(t_before, t_bound - t_before, t_event, self%dt_min, cut, dt_land)
-            cut = cut .and. found .and. t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
-        end if
-    end subroutine driver_landing
 
     !> The interpolant at time t of the last accepted step [t_{n-1}, t_n] (state holds X^n;
     !> dense_output_m): the polynomial through the levels since the last contact event, p+1
@@ -440,14 +305,12 @@ contains
     !> most recent level (j = 1: X^n); n = 1: one level since the event, and the straight
     !> line from the state saved before the step is taken instead (weight(2) is the saved
     !> state's).
-    subroutine dense_weights(self, state, t, n, weight)
-        type(step_driver_t), intent(in) :: self
+    subroutine driver_dense_weights(self, state, t, n, weight)
+        class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
         real(dp), intent(in) :: t
         integer, intent(out) :: n
         real(dp), intent(out) :: weight(MAX_LEVELS)
-        real(dp) :: times(MAX_LEVELS)
-        integer :: j
 
         weight = 0.0_dp
         associate (e => self%estimator)
@@ -459,13 +322,9 @@ contains
                 weight(1:2) = lagrange_weights([state%t, self%saved%t], t)
                 return
             end if
-            times(1) = state%t
-            do j = 2, n
-                times(j) = times(j - 1) - e%steps(modulo(e%head - j + 1, MAX_LEVELS) + 1)
-            end do
-            weight(1:n) = lagrange_weights(times(1:n), t)
+            weight(1:n) = lagrange_weights(e%times(state%t, n), t)
         end associate
-    end subroutine dense_weights
+    end subroutine driver_dense_weights
 
     !> The level (u, w) at time t of the last accepted step, from the scheme's interpolant
     !> (dense_weights): a snapshot between the steps.
@@ -477,7 +336,7 @@ contains
         real(dp) :: weight(MAX_LEVELS)
         integer :: j, n, slot
 
-        call dense_weights(self, state, t, n, weight)
+        call self%dense_weights(state, t, n, weight)
         u = weight(1) * state%u
         w = weight(1) * state%w
         if (n < 2) then
@@ -485,73 +344,30 @@ contains
             w = w + weight(2) * self%saved%w
         end if
         do j = 2, n
-            slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
+            slot = self%estimator%slot(j)
             u = u + weight(j) * self%estimator%levels(:, 0, slot)
             w = w + weight(j) * self%estimator%levels(:, 1:, slot)
         end do
     end subroutine driver_dense_level
 
-    !> u(1,t), E(t) and E's parts (energy_m's energy_parts) at time t of the last accepted
-    !> step for a series entry: the scheme's interpolant (dense_weights) of the levels' u(1),
-    !> E^k (Corollary 6.2) and parts (energy_now, parts_now: those of the state, from the
-    !> energy monitor). The energies and parts of the earlier levels are computed once per
-    !> step, from the levels the estimator holds (so a restart gives the same bits).
-    subroutine driver_dense_series(self, state, law, energy_now, parts_now, t, u_end, energy, parts)
-        class(step_driver_t), intent(inout) :: self
-        type(state_t), intent(in) :: state
-        type(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: energy_now, parts_now(N_ENERGY_PARTS), t
-        real(dp), intent(out) :: u_end, energy, parts(N_ENERGY_PARTS)
-        real(dp) :: weight(MAX_LEVELS)
-        integer :: j, n, slot
-
-        call dense_weights(self, state, t, n, weight)
-        if (self%energies_step /= state%step) then
-            self%energies_step = state%step
-            if (n < 2) then
-                call energy_and_parts(self%model, law, self%saved%u, self%saved%w, self%saved%mesh, &
-                                      self%level_energy(2), self%level_parts(:, 2))
-            else
-                do j = 2, n
-                    slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
-                    associate (u => self%estimator%levels(:, 0, slot), w => self%estimator%levels(:, 1:, slot))
-                        call energy_and_parts(self%model, law, u, w, state%mesh, self%level_energy(j), &
-                                              self%level_parts(:, j))
-                    end associate
-                end do
-            end if
-        end if
-        u_end = weight(1) * state%u(state%s)
-        energy = weight(1) * energy_now
-        parts = weight(1) * parts_now
-        do j = 2, max(n, 2)
-            if (n < 2) then
-                u_end = u_end + weight(2) * self%saved%u(self%saved%s)
-            else
-                slot = modulo(self%estimator%head - j, MAX_LEVELS) + 1
-                u_end = u_end + weight(j) * self%estimator%levels(state%s, 0, slot)
-            end if
-            energy = energy + weight(j) * self%level_energy(j)
-            parts = parts + weight(j) * self%level_parts(:, j)
-        end do
-    end subroutine driver_dense_series
-
-    !> A rejected step: the state as before it, and the step's contact count taken back.
-    subroutine driver_undo_step(self, stepper, result, state)
+    !> The j-th most recent level (j >= 2) of the last accepted step's interpolant
+    !> (dense_weights) into level, on state's mesh: the estimator's, or with one level since
+    !> an event the state saved before the step.
+    subroutine driver_past_level(self, state, j, level)
         class(step_driver_t), intent(in) :: self
-        type(stepper_t), intent(inout) :: stepper
-        type(step_result_t), intent(in) :: result
-        type(state_t), intent(inout) :: state
+        type(state_t), intent(in) :: state
+        integer, intent(in) :: j
+        type(state_t), intent(inout) :: level
 
-        call stepper%take_back(result)
-        call copy_state(self%saved, state, level=.not. self%saved_without_level)
-        if (self%saved_without_level) then   ! the level the step started from: the estimator's newest
-            associate (e => self%estimator)
-                state%u = e%levels(:, 0, e%head)
-                state%w = e%levels(:, 1:, e%head)
-            end associate
+        if (self%estimator%n_levels < 2) then
+            call copy_state(self%saved, level)
+            return
         end if
-    end subroutine driver_undo_step
+        call copy_state(state, level, level=.false.)
+        associate (e => self%estimator, slot => self%estimator%slot(j))
+            call keep_copy(e%levels(:, 0, slot), e%levels(:, 1:, slot), level%u, level%w, 'a past level')
+        end associate
+    end subroutine driver_past_level
 
     !> Adapt the mesh to the level in state and, if it changed, move the state, the
     !> estimator's levels, the stepper and the monitor onto it (remesh_m).
@@ -566,36 +382,6 @@ contains
         call remesh(mesh, state, stepper, self%estimator, monitor, changed)
         if (changed) self%level_kept = .false.
     end subroutine driver_remesh
-
-    !> The contact state after a step, as events are counted: penalty, u^n(1) > g (the end
-    !> position; the midpoint rule's force may act a step longer); Signorini, an active
-    !> multiplier. gap: the gap at the step's end the crossing time is interpolated to,
-    !> u^n(1) - g (penalty) or the trial gap (Signorini, whose u^n(1) stops at g).
-    subroutine contact_state(law, state, result, in_contact, gap)
-        type(contact_law_t), intent(in) :: law
-        type(state_t), intent(in) :: state
-        type(step_result_t), intent(in) :: result
-        logical, intent(out) :: in_contact
-        real(dp), intent(out) :: gap
-
-        if (law%is_signorini()) then
-            in_contact = result%in_contact
-            gap = result%trial_gap
-        else
-            gap = state%u(state%s) - law%g
-            in_contact = gap > 0.0_dp
-        end if
-    end subroutine contact_state
-
-    !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
-    subroutine warn_forced(t, dt_min)
-        real(dp), intent(in) :: t, dt_min
-
-        write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', t, &
-            ' a step of dt_min = ', dt_min, ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
-            '(the count is in the root attribute time_steps_at_dt_min)'
-        flush (error_unit)
-    end subroutine warn_forced
 
     !> 'step n (t = ...): reason' for a failure message and the status attribute; with
     !> reason = '' just 'step n (t = ...)'.

@@ -9,12 +9,11 @@ module run_m
     use config_m, only: config_t, number_of_steps
     use errors_m, only: fatal, check_allocation, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_arrived, stop_signal_name, ignore_file_size_signal
-    use state_m, only: state_t, initial_state, set_mesh, copy_state
+    use state_m, only: state_t, initial_state, set_mesh
     use adaptive_mesh_m, only: adaptive_mesh_t
     use remesh_m, only: initial_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
-    use fields_m, only: N_ENERGY_PARTS
     use checkpoint_m, only: checkpoint_t
     use step_driver_m, only: step_driver_t, step_failure
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
@@ -22,7 +21,8 @@ module run_m
     use reals_m, only: is_zero
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, copy_history
-    use run_output_m, only: output_grid, write_series, write_snapshot, write_error_estimate
+    use run_output_m, only: output_grid, write_series, write_dense_series, write_snapshot, write_dense_snapshots, &
+                            write_error_estimate
     use error_companion_m, only: error_companions_t
     use run_attributes_m, only: record_inputs, record_scales, record_results
     use provenance_m, only: record_provenance
@@ -361,55 +361,24 @@ contains
         if (cfg%output%error_estimate) call write_error_estimate(run%writer, run%companions, run%state)
     end subroutine snapshot
 
-    !> Dense output of the step just taken from t_before: the series entries at the times
-    !> k series_dt and (snapshot_land = .false.) the snapshots at k snapshot_dt in (t_before,
-    !> t_n], from the scheme's interpolant (step_driver_t%dense_level, dense_output_m); no
-    !> error estimate (validate_m refuses &output error_estimate with snapshot_land = .false.).
-    !> at_end: an entry or snapshot so written is at t_n (to round-off), so the last step's
-    !> own would repeat it.
+    !> Dense output of the step just taken from t_before (run_output_m): the series entries
+    !> at the times k series_dt and (snapshot_land = .false.) the snapshots at k snapshot_dt
+    !> in (t_before, t_n]; no error estimate (validate_m refuses &output error_estimate with
+    !> snapshot_land = .false.). at_end: an entry or snapshot so written is at t_n (to
+    !> round-off), so the last step's own would repeat it.
     subroutine write_dense_output(run, cfg, t_before, at_end)
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
         real(dp), intent(in) :: t_before
         logical, intent(out) :: at_end
-        type(state_t) :: level
-        real(dp) :: t, slack, u_end, energy, parts(N_ENERGY_PARTS)
 
         at_end = .false.
-        slack = 1.0e-9_dp * run%state%dt_last
-        if (cfg%output%series_dt > 0.0_dp) then
-            do
-                t = real(run%n_series_next, dp) * cfg%output%series_dt
-                if (t > run%state%t + slack .or. t <= t_before) exit
-                call run%driver%dense_series(run%state, run%stepper%law, run%monitor%current_energy(), &
-                                             run%monitor%parts(run%state), t, u_end, energy, parts)
-                call write_series(run%writer, run%stepper, run%state, run%monitor, run%result, &
-                                  dense=[t, u_end, energy, parts])
-                run%n_series_next = run%n_series_next + 1
-                at_end = at_end .or. t >= run%state%t - slack
-            end do
-        end if
-        if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) then
-            do
-                t = real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt
-                if (t > run%state%t + slack .or. t <= t_before) exit
-                call dense_level(t)
-                call write_snapshot(run%writer, level, cfg%model, run%x_out)
-                run%n_snapshot_next = run%n_snapshot_next + 1
-                at_end = at_end .or. t >= run%state%t - slack
-            end do
-        end if
-
-    contains
-
-        !> level: the state with the interpolated values at t.
-        subroutine dense_level(t)
-            real(dp), intent(in) :: t
-
-            call copy_state(run%state, level)
-            call run%driver%dense_level(run%state, t, level%u, level%w)
-            level%t = t
-        end subroutine dense_level
+        if (cfg%output%series_dt > 0.0_dp) &
+            call write_dense_series(run%writer, run%driver, run%stepper, run%state, run%monitor, run%result, &
+                                    t_before, cfg%output%series_dt, run%n_series_next, at_end)
+        if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) &
+            call write_dense_snapshots(run%writer, run%driver, run%state, cfg%model, run%x_out, t_before, &
+                                       cfg%output%snapshot_dt, run%n_snapshot_next, at_end)
     end subroutine write_dense_output
 
     !> Has the run reached its end? Fixed steps without snapshot_dt: n_steps steps (as

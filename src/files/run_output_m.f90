@@ -1,6 +1,7 @@
 !> What a run writes while it runs: the fixed output grid, one series entry, one snapshot
-!> (the solution interpolated to the output grid, and on a graded mesh its nodal values).
-!> The time loop (run_m) says when; this module says what, from the state and the step.
+!> (the solution interpolated to the output grid, and on a graded mesh its nodal values),
+!> and both between the steps (dense output) from the scheme's interpolant, by the same
+!> procedures. The time loop (run_m) says when; this module says what.
 module run_output_m
     use kinds_m, only: dp
     use config_m, only: config_t
@@ -9,16 +10,20 @@ module run_output_m
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
                         S_N_ELEMENTS, S_ENERGY_PARTS, N_ENERGY_PARTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, &
                         K_SIGMA
-    use state_m, only: state_t, field_values
+    use state_m, only: state_t, field_values, copy_state
     use stress_m, only: nodal_stress
     use stepper_m, only: stepper_t, step_result_t
-    use energy_m, only: energy_monitor_t
+    use contact_law_m, only: contact_law_t
+    use energy_m, only: energy_monitor_t, energy_and_parts
+    use step_driver_m, only: step_driver_t
+    use error_estimator_m, only: MAX_LEVELS
     use output_m, only: h5_writer_t
     use errors_m, only: check_allocation
     use error_companion_m, only: error_companions_t, N_ESTIMATE_PARTS
     implicit none
     private
-    public :: output_grid, write_series, write_snapshot, write_error_estimate
+    public :: output_grid, write_series, write_dense_series, dense_series, write_snapshot, write_dense_snapshots, &
+              write_error_estimate
 
 contains
 
@@ -39,47 +44,138 @@ contains
         x = mesh_nodes(n)
     end subroutine output_grid
 
-    !> One series entry (fields_m's SERIES); the contact stress is sigma(1,t) = -lambda
-    !> (normal compliance (3.4), or the Signorini multiplier). initial: the level is the
-    !> initial data, reached without a step (its lambda is the law's force at its u(1)).
-    !> dense = [t, u(1,t), E(t), E's parts]: the entry is at t between the steps, from the scheme's
-    !> interpolant (dense output, run_m; state: the step's end); lambda is the penalty law's
-    !> force at that u(1) (Signorini: the step's multiplier).
-    subroutine write_series(writer, stepper, state, monitor, result, initial, dense)
+    !> One series entry (fields_m's SERIES) of the level in state: level_series, then
+    !> step_series. initial: the level is the initial data, reached without a step (its
+    !> lambda is the law's force at its u(1)).
+    subroutine write_series(writer, stepper, state, monitor, result, initial)
         type(h5_writer_t), intent(inout) :: writer
         type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
         type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
         type(step_result_t), intent(in) :: result
         logical, intent(in), optional :: initial
-        real(dp), intent(in), optional :: dense(3 + N_ENERGY_PARTS)
         real(dp) :: values(N_SERIES)
+        logical :: from_law
 
-        values(S_T) = state%t
-        values(S_ENERGY) = monitor%current_energy()
-        values(S_U_END) = state%u(state%s)
-        values(S_PENETRATION) = stepper%law%penetration(state%u(state%s))
+        from_law = .false.
+        if (present(initial)) from_law = initial
+        call level_series(state, monitor%current_energy(), monitor%parts(state), values)
+        call step_series(stepper%law, state, result, state%t, from_law, values)
+        call writer%append_series(values)
+    end subroutine write_series
+
+    !> The series values that are a function of a level alone (u, w on its mesh; energy:
+    !> its E^n, parts: E's terms, energy_m's energy_and_parts); the others are 0 here.
+    !> Dense output interpolates these between the steps (write_dense_series).
+    pure subroutine level_series(level, energy, parts, values)
+        type(state_t), intent(in) :: level
+        real(dp), intent(in) :: energy, parts(N_ENERGY_PARTS)
+        real(dp), intent(out) :: values(N_SERIES)
+
+        values = 0.0_dp
+        values(S_ENERGY) = energy
+        values(S_U_END) = level%u(level%s)
+        values(S_ENERGY_PARTS) = parts
+    end subroutine level_series
+
+    !> The other series values of an entry at t of the last step (state: its end), from
+    !> level_series' (interpolated between the steps): the contact stress is sigma(1,t) =
+    !> -lambda, the step's (normal compliance (3.4) or the Signorini multiplier), or with
+    !> from_law the law's force at u(1,t).
+    subroutine step_series(law, state, result, t, from_law, values)
+        type(contact_law_t), intent(in) :: law
+        type(state_t), intent(in) :: state
+        type(step_result_t), intent(in) :: result
+        real(dp), intent(in) :: t
+        logical, intent(in) :: from_law
+        real(dp), intent(inout) :: values(N_SERIES)
+
+        values(S_T) = t
+        values(S_PENETRATION) = law%penetration(values(S_U_END))
         values(S_CONTACT_STRESS) = -result%contact_force
-        if (present(initial)) then
-            if (initial) values(S_CONTACT_STRESS) = -stepper%law%force(state%u(state%s))
-        end if
-        if (present(dense)) then
-            values(S_T) = dense(1)
-            values(S_U_END) = dense(2)
-            values(S_ENERGY) = dense(3)
-            values(S_PENETRATION) = stepper%law%penetration(dense(2))
-            if (.not. stepper%law%is_signorini()) values(S_CONTACT_STRESS) = -stepper%law%force(dense(2))
-        end if
+        if (from_law) values(S_CONTACT_STRESS) = -law%force(values(S_U_END))
         values(S_ITERATIONS) = real(result%iterations, dp)
         values(S_DT) = state%dt_last
         values(S_N_ELEMENTS) = real(state%s, dp)
-        if (present(dense)) then
-            values(S_ENERGY_PARTS) = dense(4:)
-        else
-            values(S_ENERGY_PARTS) = monitor%parts(state)
-        end if
-        call writer%append_series(values)
-    end subroutine write_series
+    end subroutine step_series
+
+    !> Dense output (&output series_dt) of the step just taken from t_before (state: its
+    !> end): the entries at the times n_next series_dt in (t_before, t_n] (dense_series).
+    !> at_end: an entry so written is at t_n (to round-off).
+    subroutine write_dense_series(writer, driver, stepper, state, monitor, result, t_before, series_dt, n_next, &
+                                  at_end)
+        type(h5_writer_t), intent(inout) :: writer
+        type(step_driver_t), intent(in) :: driver
+        type(stepper_t), intent(in) :: stepper
+        type(state_t), intent(in) :: state
+        type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
+        type(step_result_t), intent(in) :: result
+        real(dp), intent(in) :: t_before, series_dt
+        integer, intent(inout) :: n_next
+        logical, intent(inout) :: at_end
+        real(dp) :: rows(N_SERIES, MAX_LEVELS), values(N_SERIES), t, slack
+        integer :: n_rows
+
+        n_rows = 0
+        slack = 1.0e-9_dp * state%dt_last
+        do
+            t = real(n_next, dp) * series_dt
+            if (t > state%t + slack .or. t <= t_before) exit
+            call dense_series(driver, stepper, state, monitor, result, t, rows, n_rows, values)
+            call writer%append_series(values)
+            n_next = n_next + 1
+            at_end = at_end .or. t >= state%t - slack
+        end do
+    end subroutine write_dense_series
+
+    !> The series entry at t in the last accepted step (state: its end): the scheme's
+    !> interpolant (step_driver_t%dense_weights) of level_series of the step's levels, then
+    !> step_series (the penalty law's lambda at the interpolated u(1); Signorini: the
+    !> step's multiplier). rows(:, 1:n_rows): those levels' level_series, computed when
+    !> n_rows = 0 (once per step).
+    subroutine dense_series(driver, stepper, state, monitor, result, t, rows, n_rows, values)
+        type(step_driver_t), intent(in) :: driver
+        type(stepper_t), intent(in) :: stepper
+        type(state_t), intent(in) :: state
+        type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
+        type(step_result_t), intent(in) :: result
+        real(dp), intent(in) :: t
+        real(dp), intent(inout) :: rows(N_SERIES, MAX_LEVELS)
+        integer, intent(inout) :: n_rows
+        real(dp), intent(out) :: values(N_SERIES)
+        real(dp) :: weight(MAX_LEVELS)
+        integer :: j, n
+
+        call driver%dense_weights(state, t, n, weight)
+        if (n_rows == 0) call interpolant_rows(driver, stepper, state, monitor, max(n, 2), rows)
+        n_rows = max(n, 2)
+        values = weight(1) * rows(:, 1)
+        do j = 2, n_rows
+            values = values + weight(j) * rows(:, j)
+        end do
+        call step_series(stepper%law, state, result, t, .not. stepper%law%is_signorini(), values)
+    end subroutine dense_series
+
+    !> rows(:, j) = level_series of the j-th most recent of the n levels of the last step's
+    !> interpolant: state's (the monitor's energy), then step_driver_t%past_level's.
+    subroutine interpolant_rows(driver, stepper, state, monitor, n, rows)
+        type(step_driver_t), intent(in) :: driver
+        type(stepper_t), intent(in) :: stepper
+        type(state_t), intent(in) :: state
+        type(energy_monitor_t), intent(in) :: monitor
+        integer, intent(in) :: n
+        real(dp), intent(out) :: rows(:, :)
+        type(state_t) :: level
+        real(dp) :: energy, parts(N_ENERGY_PARTS)
+        integer :: j
+
+        call level_series(state, monitor%current_energy(), monitor%parts(state), rows(:, 1))
+        do j = 2, n
+            call driver%past_level(state, j, level)
+            call energy_and_parts(stepper%model, stepper%law, level%u, level%w, level%mesh, energy, parts)
+            call level_series(level, energy, parts, rows(:, j))
+        end do
+    end subroutine interpolant_rows
 
     !> One snapshot: every dataset of fields_m's SNAPSHOTS (the fields of OUTPUT_ORDER and
     !> the stress sigma of stress_m, with the coefficients of `model`) on the output grid
@@ -108,6 +204,34 @@ contains
         call writer%append_snapshot(state%t, on_grid)
         if (.not. state%mesh%is_uniform()) call writer%append_native(x, values)
     end subroutine write_snapshot
+
+    !> Dense output (&output snapshot_dt, snapshot_land = .false.) of the step just taken
+    !> from t_before (state: its end): the snapshots at the times n_next snapshot_dt in
+    !> (t_before, t_n], each write_snapshot of the level the scheme's interpolant gives
+    !> (step_driver_t%dense_level). at_end: a snapshot so written is at t_n (to round-off).
+    subroutine write_dense_snapshots(writer, driver, state, model, x_out, t_before, snapshot_dt, n_next, at_end)
+        type(h5_writer_t), intent(inout) :: writer
+        type(step_driver_t), intent(in) :: driver
+        type(state_t), intent(in) :: state
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: x_out(:), t_before, snapshot_dt
+        integer, intent(inout) :: n_next
+        logical, intent(inout) :: at_end
+        type(state_t) :: level
+        real(dp) :: t, slack
+
+        slack = 1.0e-9_dp * state%dt_last
+        do
+            t = real(n_next, dp) * snapshot_dt
+            if (t > state%t + slack .or. t <= t_before) exit
+            call copy_state(state, level)
+            call driver%dense_level(state, t, level%u, level%w)
+            level%t = t
+            call write_snapshot(writer, level, model, x_out)
+            n_next = n_next + 1
+            at_end = at_end .or. t >= state%t - slack
+        end do
+    end subroutine write_dense_snapshots
 
     !> With &output error_estimate: the estimate of the snapshot just written
     !> (/snapshots/error_estimate*; error_companion_m).

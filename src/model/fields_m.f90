@@ -52,13 +52,15 @@ module fields_m
         character(len=24) :: scale       !< as field_t's scale; '' when there is no physical scale
     end type series_t
 
-    !> The terms of E^n (energy_m's energy_parts, in this order), each a /series dataset:
-    !> they add up to /series/energy to round-off.
-    integer, parameter :: N_ENERGY_PARTS = 8
-    integer, parameter :: N_SERIES = 8 + N_ENERGY_PARTS
+    !> The datasets (rows of SERIES): N_SCALAR_SERIES of their own (S_*), then the terms
+    !> of E^n (energy_m's energy_parts, in this order, S_ENERGY_PARTS), which add up to
+    !> /series/energy to round-off.
     integer, parameter :: S_T = 1, S_ENERGY = 2, S_U_END = 3, S_PENETRATION = 4, S_CONTACT_STRESS = 5, &
-                          S_ITERATIONS = 6, S_DT = 7, S_N_ELEMENTS = 8
-    integer, parameter :: S_ENERGY_PARTS(N_ENERGY_PARTS) = [9, 10, 11, 12, 13, 14, 15, 16]
+                          S_ITERATIONS = 6, S_DT = 7, S_N_ELEMENTS = 8, N_SCALAR_SERIES = 8
+    integer, parameter :: N_ENERGY_PARTS = 8
+    integer, parameter :: N_SERIES = N_SCALAR_SERIES + N_ENERGY_PARTS
+    integer :: k_   !< the index of S_ENERGY_PARTS' implied do
+    integer, parameter :: S_ENERGY_PARTS(N_ENERGY_PARTS) = N_SCALAR_SERIES + [(k_, k_ = 1, N_ENERGY_PARTS)]
     type(series_t), parameter :: SERIES(N_SERIES) = [ &
         series_t('t', 'time t_n', .false., '1', 'time'), &
         series_t('energy', 'discrete energy E^n of Corollary 6.2', .false., '1', 'energy'), &

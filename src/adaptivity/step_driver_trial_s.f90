@@ -1,0 +1,223 @@
+!> Trying one step and judging it (step_driver_m's take_step): try_step, judge (with
+!> landing: where a contact event the step crossed lies, and whether the step is cut to
+!> end there), accept and keep_level, undo_step. A submodule of step_driver_m, so that it
+!> works on the driver's private state.
+submodule (step_driver_m) step_driver_trial_s
+    use reals_m, only: equal
+    use iso_fortran_env, only: error_unit
+    use ieee_arithmetic, only: ieee_is_finite
+    use state_m, only: advance_time, land_on
+    use events_m, only: EVENT_ONSET, EVENT_RELEASE, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
+    use event_location_m, only: contact_state, gap_event_time, release_time
+    use error_estimator_m, only: energy_norm
+    implicit none
+
+contains
+
+    !> Try the step of trial%dt from state (adaptive steps: the state saved before it):
+    !> where it started, and the contact state it reached; failure: the solve failed.
+    module subroutine driver_try_step(self, state, stepper, result, trial, failure)
+        class(step_driver_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(stepper_t), intent(inout) :: stepper
+        type(step_result_t), intent(inout) :: result
+        type(trial_t), intent(inout) :: trial
+        character(len=*), intent(inout) :: failure
+
+        trial%t_before = state%t
+        trial%dt_last = state%dt_last
+        trial%gap_start = state%u(state%s) - stepper%law%g
+        if (self%adaptive) then
+            self%saved_without_level = self%level_kept
+            call copy_state(state, self%saved, level=.not. self%saved_without_level)
+        end if
+        call stepper%advance(state, result, trial%dt)
+        if (.not. result%ok) then
+            failure = step_failure(state%step + 1, advance_time(state, trial%dt), trim(result%message))
+            return
+        end if
+        call contact_state(stepper%law, state, result, trial%contact, trial%gap_end)
+        trial%flipped = trial%contact .neqv. self%in_contact
+        trial%est = 0.0_dp
+        trial%err = -1.0_dp
+    end subroutine driver_try_step
+
+    !> Judge a tried adaptive step: its estimate (none across a contact event); a contact
+    !> event it crossed located (landing), the step taken back to end there (retry); a step
+    !> whose estimate exceeds the tolerance taken back to be retried smaller (retry), unless
+    !> it is at dt_min (then accepted and counted as forced).
+    module subroutine driver_judge(self, state, stepper, result, trial, retry)
+        class(step_driver_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(stepper_t), intent(inout) :: stepper
+        type(step_result_t), intent(in) :: result
+        type(trial_t), intent(inout) :: trial
+        logical, intent(out) :: retry
+        logical :: cut
+
+        retry = .true.
+        if (self%estimator%ready() .and. .not. trial%flipped) then
+            trial%est = self%estimator%estimate(self%model, state%u, state%w, trial%dt, state%mesh)
+            trial%err = self%control%ratio(trial%est)
+        end if
+        if ((trial%flipped .or. trial%landings > 0) .and. trial%landings < MAX_LANDINGS) then
+            call self%landing(state, result, stepper%law, trial, cut)
+            if (cut) then
+                call self%undo_step(stepper, result, state)
+                trial%landings = trial%landings + 1
+                return
+            end if
+        end if
+        if (trial%err > 1.0_dp .and. trial%dt > self%dt_min) then
+            call self%undo_step(stepper, result, state)
+            call self%control%reject(trial%dt, trial%err)
+            trial%landings = 0
+            return
+        end if
+        retry = .false.
+        if (trial%err > 1.0_dp) then
+            call self%control%count_forced()
+            if (.not. self%warned_forced) call warn_forced(state%t, self%dt_min)
+            self%warned_forced = .true.
+        end if
+    end subroutine driver_judge
+
+    !> A tried adaptive step from t_before of size dt that changed the contact state (flipped),
+    !> or a step cut to end at an event that did not (the event is later): locate the event
+    !> (a Signorini release: release_time; otherwise event_time's interpolated gap) and say
+    !> whether the step is retried to end there (cut, of size dt_land; events_m's event_landing;
+    !> an event located by the straight line only is not cut closer than LINEAR_CUT_MIN of the
+    !> step to its start).
+    !> t_bound: the end of the last step that changed the contact state (set on a flipped
+    !> step), beyond which the event is not sought.
+    module subroutine driver_landing(self, state, result, law, trial, cut)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        type(step_result_t), intent(in) :: result
+        type(contact_law_t), intent(in) :: law
+        type(trial_t), intent(inout) :: trial
+        logical, intent(out) :: cut
+        real(dp) :: t_lo, t_event
+        logical :: found
+
+        associate (t_before => trial%t_before, dt => trial%dt, flipped => trial%flipped, &
+                   t_bound => trial%t_bound, dt_land => trial%dt_land)
+            if (flipped) then
+                t_bound = t_before + dt
+                t_lo = t_before
+            else
+                t_lo = t_before + dt
+            end if
+            if (self%in_contact .and. law%is_signorini()) then
+                call release_time(self%estimator, self%model%alpha, state, t_before, dt, .not. flipped, t_lo, &
+                                  t_bound, t_event, found)
+            else
+                t_event = gap_event_time(self%estimator, self%adaptive, t_before, dt, trial%gap_start, &
+                                         trial%gap_end, result%trial_gap, .not. self%in_contact, law%g, t_lo, &
+                                         t_bound, found)
+            end if
+            if (flipped) then
+                call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)
+                ! located by the straight line only (no interpolant: Euler, or right after an event): no
+                ! cut of less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
+                ! repeat step after step
+                if (.not. found) cut = cut .and. dt_land >= LINEAR_CUT_MIN * dt
+            else
+                ! the cut step ended short of the event: cut again at the event located with its end
+                call event_landing(t_before, t_bound - t_before, t_event, self%dt_min, cut, dt_land)
+                cut = cut .and. found .and. t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
+            end if
+        end associate
+    end subroutine driver_landing
+
+    !> The tried step is accepted: its contact event into the log, its level into the
+    !> estimator and its estimate to the controller (keep_level), its energy to the monitor.
+    module subroutine driver_accept(self, state, law, monitor, result, trial, failure)
+        class(step_driver_t), intent(inout) :: self
+        type(state_t), intent(inout) :: state
+        type(contact_law_t), intent(in) :: law
+        type(energy_monitor_t), intent(inout) :: monitor
+        type(step_result_t), intent(in) :: result
+        type(trial_t), intent(in) :: trial
+        character(len=*), intent(inout) :: failure
+        real(dp) :: t_event
+        logical :: found
+
+        if (trial%lands .and. self%adaptive) call land_on(state, trial%target)
+        if (trial%flipped) then
+            associate (t0 => trial%t_before, dt => trial%dt, e => self%estimator)
+                if (self%adaptive .and. self%in_contact .and. law%is_signorini()) then
+                    call release_time(e, self%model%alpha, state, t0, dt, .false., t0, t0 + dt, t_event, found)
+                else
+                    t_event = gap_event_time(e, self%adaptive, t0, dt, trial%gap_start, trial%gap_end, &
+                                             result%trial_gap, trial%contact, law%g)
+                end if
+            end associate
+            call self%events%add(t_event, merge(EVENT_ONSET, EVENT_RELEASE, trial%contact))
+            if (self%adaptive) call self%estimator%reset()
+        end if
+        self%in_contact = trial%contact
+        call self%keep_level(state, trial)
+        call monitor%observe(state, step_changed=.not. equal(trial%dt, trial%dt_last))
+        if (.not. ieee_is_finite(monitor%current_energy())) then
+            failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
+            return
+        end if
+        if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))
+    end subroutine driver_accept
+
+    !> The accepted level into the estimator (adaptive steps; fixed steps with dense output)
+    !> and the step's estimate and size to the controller (adaptive steps).
+    module subroutine driver_keep_level(self, state, trial)
+        class(step_driver_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        type(trial_t), intent(in) :: trial
+
+        if (.not. self%adaptive) then
+            if (self%dense) call self%estimator%push(state%u, state%w, trial%dt)
+            return
+        end if
+        call self%estimator%push(state%u, state%w, trial%dt)
+        self%level_kept = .true.
+        if (self%saved_without_level .and. self%estimator%n_levels < 2) then
+            ! after an event the levels are forgotten: dense output takes the level before
+            ! the step from the saved state (dense_weights), so it gets its level now
+            associate (e => self%estimator, before => self%estimator%slot(2))
+                call keep_copy(e%levels(:, 0, before), e%levels(:, 1:, before), self%saved%u, self%saved%w, &
+                               'the saved state')
+            end associate
+            self%saved_without_level = .false.
+        end if
+        if (trial%err >= 0.0_dp) call self%control%add_estimate(trial%est)
+        ! a step cut to end at an event, and the event's step, keep the proposal made before it
+        call self%control%accept(trial%dt, trial%err, shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
+    end subroutine driver_keep_level
+
+    !> A rejected step: the state as before it, and the step's contact count taken back.
+    module subroutine driver_undo_step(self, stepper, result, state)
+        class(step_driver_t), intent(in) :: self
+        type(stepper_t), intent(inout) :: stepper
+        type(step_result_t), intent(in) :: result
+        type(state_t), intent(inout) :: state
+
+        call stepper%take_back(result)
+        call copy_state(self%saved, state, level=.not. self%saved_without_level)
+        if (self%saved_without_level) then   ! the level the step started from: the estimator's newest
+            associate (e => self%estimator, newest => self%estimator%slot(1))
+                state%u = e%levels(:, 0, newest)
+                state%w = e%levels(:, 1:, newest)
+            end associate
+        end if
+    end subroutine driver_undo_step
+
+    !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
+    subroutine warn_forced(t, dt_min)
+        real(dp), intent(in) :: t, dt_min
+
+        write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', t, &
+            ' a step of dt_min = ', dt_min, ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
+            '(the count is in the root attribute time_steps_at_dt_min)'
+        flush (error_unit)
+    end subroutine warn_forced
+
+end submodule step_driver_trial_s

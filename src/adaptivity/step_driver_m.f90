@@ -243,7 +243,7 @@ contains
             call self%choose_step(state, t_stop, trial, t_snapshot)
             call self%try_step(state, stepper, result, trial, failure)
             at_snapshot = trial%at_snapshot
-            if (failure /= '') return
+            if (.not. result%ok) return   ! failure says why
             ! fixed steps compute no estimate (the run's error: &output error_estimate)
             if (.not. self%adaptive) exit
             call self%judge(state, stepper, result, trial, retry)

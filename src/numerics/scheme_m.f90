@@ -305,41 +305,41 @@ contains
     !> (scatter_fields). Dirichlet rows are zero. The contact term is not included. No
     !> allocation: called every time step. mesh: the mesh of the level (its mass and stiffness
     !> matrices).
-    subroutine old_state_rhs(model, dt, u_old, w_old, slots, b, y, mesh)
+    subroutine old_state_rhs(model, dt, u_old, w_old, slots, b, y, work, mesh)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt
         real(dp), intent(in) :: u_old(0:)          !< u^{n-1}
         real(dp), intent(in) :: w_old(0:, :)       !< fields at t_{n-1}, w_old(:, f)
         integer, intent(in) :: slots(N_FIELDS)
         real(dp), intent(out), contiguous :: b(:)
-        !> scratch: y(:, f) the right-hand side of field f's equation, y(:, 0) work
-        real(dp), intent(out) :: y(0:ubound(u_old, 1), 0:N_FIELDS)
+        real(dp), intent(out) :: y(0:ubound(u_old, 1), N_FIELDS)   !< scratch: field f's equation
+        real(dp), intent(out) :: work(0:ubound(u_old, 1))           !< scratch
         type(mesh_t), intent(in) :: mesh
 
         ! (6.1)_1: rho Me v^{n-1} - dt alpha Ke u^{n-1}
         call mesh%apply_mass(w_old(:, F_V), y(:, F_V))
         if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) &
             call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w_old(:, F_V), y(:, F_V))
-        call mesh%apply_stiffness(u_old, y(:, 0))
-        y(:, F_V) = model%rho * y(:, F_V) - dt * model%alpha * y(:, 0)
+        call mesh%apply_stiffness(u_old, work)
+        y(:, F_V) = model%rho * y(:, F_V) - dt * model%alpha * work
         if (slots(F_THETA) > 0) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})
-            y(:, 0) = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
-            call mesh%apply_mass(y(:, 0), y(:, F_THETA))
+            work = model%c * w_old(:, F_THETA) + model%d * w_old(:, F_P)
+            call mesh%apply_mass(work, y(:, F_THETA))
         end if
         if (slots(F_Q) > 0) then       ! (6.1)_3: tau0 Me q^{n-1}
             call mesh%apply_mass(w_old(:, F_Q), y(:, F_Q))
             y(:, F_Q) = model%tau0 * y(:, F_Q)
         end if
         if (slots(F_P) > 0) then       ! (6.1)_4: Me (d theta^{n-1} + r P^{n-1})
-            y(:, 0) = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
-            call mesh%apply_mass(y(:, 0), y(:, F_P))
+            work = model%d * w_old(:, F_THETA) + model%r * w_old(:, F_P)
+            call mesh%apply_mass(work, y(:, F_P))
         end if
         if (slots(F_ETA) > 0) then     ! (6.1)_5 times hbar: hbar tau Me eta^{n-1}
             call mesh%apply_mass(w_old(:, F_ETA), y(:, F_ETA))
             y(:, F_ETA) = model%hbar * model%tau * y(:, F_ETA)
         end if
-        call zero_dirichlet_rows(y(:, 1:))
-        call scatter_fields(slots, y(:, 1:), b)
+        call zero_dirichlet_rows(y)
+        call scatter_fields(slots, y, b)
     end subroutine old_state_rhs
 
     !> b(:, row) -= (block (row, col) of (6.1)) * w(:, col) for every coupling from a field

@@ -82,7 +82,7 @@ module stepper_m
         type(band_t) :: thermal        !< paper: (q, theta, P, eta) block, factored
         type(band_t) :: mechanical     !< paper: v block, factored
         ! work arrays, allocated once
-        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:, :), x(:), xt(:)
+        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
         !> the node blocks E_i, F_i of a system before its block LU (setup_monolithic; D_i are
         !> assembled into the factors' storage)
@@ -153,7 +153,7 @@ contains
         if (allocated(self%b)) deallocate (self%b, self%b_old, self%w_lag, self%w_new, self%u_lag, self%work, &
                                            self%u_star, self%w_star)
         allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
-                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s, 0:N_FIELDS), self%u_star(0:s), &
+                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%u_star(0:s), &
                   self%w_star(0:s, N_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the work arrays')
         self%w_new = 0.0_dp
@@ -375,7 +375,7 @@ contains
         real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%x, self%work, self%mesh)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%x, self%b, self%work, self%mesh)
         if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%x, self%mesh)
     end subroutine start_rhs
 
@@ -508,13 +508,13 @@ contains
         do l = 1, self%max_iter
             ! thermal block with the lagged velocity
             self%b = self%b_old
-            call add_lagged_coupling(self%model, dt, THERMAL_SLOTS, self%w_lag, self%b, self%work(:, 0))
+            call add_lagged_coupling(self%model, dt, THERMAL_SLOTS, self%w_lag, self%b, self%work)
             call scatter_fields(THERMAL_SLOTS, self%b, self%xt)
             call self%thermal%solve(self%xt)
             call gather_fields(THERMAL_SLOTS, self%xt, self%w_new)
             ! mechanical block with the new theta, P and the lagged penalty
             self%b(:, F_V) = self%b_old(:, F_V)
-            call add_lagged_coupling(self%model, dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work(:, 0))
+            call add_lagged_coupling(self%model, dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work)
             self%b(s, F_V) = self%b(s, F_V) - self%law%lagged_impulse(dt, self%u_lag(s))
             self%x(1:s + 1) = self%b(:, F_V)
             call self%mechanical%solve(self%x(1:s + 1))

@@ -10,9 +10,8 @@
 !> whether its system was found here or factored anew: a restart, which starts with an empty
 !> cache, repeats the run bit for bit.
 !>
-!> Adaptive steps take sizes from a geometric ladder (step_control_m), so a few entries
-!> cover the sizes a run moves between; when the cache is full the least recently used
-!> entry is replaced.
+!> Whatever sizes the steps take, a size met before costs no factorisation while its
+!> entry is kept; when the cache is full the least recently used entry is replaced.
 module system_cache_m
     use kinds_m, only: dp
     use reals_m, only: equal
@@ -22,9 +21,8 @@ module system_cache_m
     private
     public :: monolithic_system_t, system_cache_t, CACHE_SIZE
 
-    !> factored systems kept (distinct dt_eff). 16: after a contact event the steps climb the
-    !> ladder again from event_tol through sizes met before the event, which 8 entries had
-    !> forgotten (exp1 midpoint to t = 60, error_tol 1e-5: 49 factorisations against 62)
+    !> factored systems kept (distinct dt_eff; the choice of 16: docs/performance.md,
+    !> "The step-size ladder")
     integer, parameter :: CACHE_SIZE = 16
 
     !> The monolithic matrix of (6.1) for one step size, factored, with its contact response.

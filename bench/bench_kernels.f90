@@ -7,7 +7,7 @@
 !> exp1's initial data), sets n_elements = s and, with the input's dt (1e-4 for exp1):
 !>   1. assembles the monolithic matrix of (6.1) (5 fields interleaved, kl = ku = 7), factors
 !>      it with dgbtrf (band_t%factor) and the block-tridiagonal LU (block_tridiagonal_t%factor
-!>      on the unfactored band), and times on the same factors one
+!>      on the band's node blocks: band_reference_m's factor_band_blocks), and times on the same factors one
 !>        dgbtrs        LAPACK's band substitution (tests/lib band_reference_m) - the floor
 !>        band_solve    the same substitution as plain loops (band_t%solve)
 !>        block_solve   the block-tridiagonal substitution (block_tridiagonal_t%solve)
@@ -29,7 +29,7 @@ program bench_kernels
     use config_m, only: config_t
     use config_reader_m, only: read_config
     use banded_m, only: band_t, lapack_info_message
-    use band_reference_m, only: solve_with_dgbtrs
+    use band_reference_m, only: solve_with_dgbtrs, factor_band_blocks
     use block_tridiagonal_m, only: block_tridiagonal_t
     use scheme_m, only: assemble_matrix
     use slots_m, only: MONOLITHIC_SLOTS
@@ -87,7 +87,7 @@ program bench_kernels
     ! --- 1. the monolithic matrix, factored twice -----------------------------------------
     setup_seconds = wall_seconds()
     call assemble_matrix(cfg%model, uniform_mesh(s), cfg%time%dt, MONOLITHIC_SLOTS, a)
-    call blocks%factor(a, N_FIELDS, info)             ! on the unfactored band
+    call factor_band_blocks(blocks, a, N_FIELDS, info, .false.)   ! on the unfactored band
     if (info /= 0) then
         write (*, '(a,i0)') 'bench_kernels: block factorisation failed at node ', info
         stop 1

@@ -8,7 +8,7 @@ program test_banded_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use kinds_m, only: dp
     use banded_m, only: band_t, lapack_info_message
-    use band_reference_m, only: band_to_dense, solve_with_dgbtrs
+    use band_reference_m, only: band_to_dense, solve_with_dgbtrs, factor_band_blocks
     use block_tridiagonal_m, only: block_tridiagonal_t, product5, product5_left_pattern, product5_right_pattern, &
                                    in_pattern
     use testing_m, only: check_close, check_true, test_summary
@@ -124,7 +124,7 @@ contains
         do k = 1, 2
             inline = k == 2
             write (label, '(a,i0,a,i0,a,l1)') 'block LU, nb = ', nb, ', band ', kw, ', inline inverse = ', inline
-            call blocks%factor(m, nb, stat, inline_inverse=inline)
+            call factor_band_blocks(blocks, m, nb, stat, inline)
             call check_true(trim(label)//': factors', stat == 0)
             got = rhs
             call blocks%solve(got)
@@ -137,7 +137,7 @@ contains
                 call m%add(i, j, -m%get(i, j))
             end do
         end do
-        call blocks%factor(m, nb, stat, inline_inverse=.true.)
+        call factor_band_blocks(blocks, m, nb, stat, .true.)
         write (label, '(a,i0,a,i0,a)') 'block LU, nb = ', nb, ', band ', kw, ', inline inverse: zero column reported'
         call check_true(trim(label), stat == 3, 'info /= 3')
     end subroutine check_block_lu

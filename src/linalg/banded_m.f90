@@ -1,5 +1,7 @@
-!> Banded matrices in LAPACK general-band storage, factored once with dgbtrf and solved
-!> many times with dgbtrs. Every LAPACK info is decoded into a readable message.
+!> Banded matrices in LAPACK general-band storage, factored with dgbtrf and solved by
+!> band_solve, a plain-loop substitution on dgbtrf's factors (the paper method's blocks;
+!> the monolithic method's check of its block LU, and its fallback). Every LAPACK info is
+!> decoded into a readable message.
 module banded_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation
@@ -189,12 +191,12 @@ contains
     end subroutine band_factor
 
     !> Solve A x = b in place with the factors of factor(): forward substitution with L and the
-    !> row interchanges, back substitution with the band of U, exactly the operations of
-    !> LAPACK's dgbtrs ('N', one right-hand side) on the same factors, written as plain loops.
-    !> Why not dgbtrs itself: it makes one BLAS call per column (dswap, dger of length kl),
-    !> and for our kl = ku = 7 that call overhead, not arithmetic, dominates; with OpenBLAS
-    !> it is worse. No allocation: called every time step. It cannot fail once factor()
-    !> succeeded (calling it before is a bug in rodcontact and stops the program).
+    !> row interchanges, back substitution with the band of U: the order of LAPACK's dgbtrs
+    !> ('N', one right-hand side), but U's diagonal divides as a product with its reciprocal,
+    !> so the bits differ from dgbtrs's. Not dgbtrs itself: its BLAS call per column (dswap,
+    !> dger of length kl) costs more than the arithmetic at kl = ku = 7 (docs/performance.md).
+    !> No allocation: called every time step. It cannot fail once factor() succeeded
+    !> (calling it before is a bug in rodcontact and stops the program).
     subroutine band_solve(self, b)
         class(band_t), intent(in) :: self
         real(dp), intent(inout) :: b(:)

@@ -214,7 +214,7 @@ contains
     end subroutine assemble_matrix
 
     !> The matrix of assemble_matrix with every field in the system (slots_m) as its
-    !> node blocks, for block_tridiagonal_m's factor_blocks: d(:, :, i) = D_i (node i),
+    !> node blocks, for block_tridiagonal_m's factor: d(:, :, i) = D_i (node i),
     !> e(:, :, i) = E_i (row node i, column node i+1), f(:, :, i) = F_i (row node i+1, column
     !> node i), each s+1 (d) or s (e, f) blocks. The same entries bit for bit: assemble_matrix
     !> adds into a zero band, at each entry, the element on its left and then the element on

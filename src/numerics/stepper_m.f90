@@ -1,14 +1,14 @@
 !> One time step of (6.1) by either solution method of docs/scheme.md.
 !>
-!> 'monolithic': all five fields in one band (nodes interleaved, kl = ku = 7), factored once
-!>   with dgbtrf; the per-step solve uses the block-tridiagonal LU of the same matrix
-!>   (block_tridiagonal_m, 2-3x faster) when it reproduces the dgbtrf solution at set-up.
+!> 'monolithic': all five fields in one system (nodes interleaved), factored once by the
+!>   block-tridiagonal LU (block_tridiagonal_m), which solves every step once it reproduces
+!>   the band LU's (dgbtrf) solution at set-up (setup_monolithic).
 !>   The contact term (dt/eps)[u^{n-1}(1) + dt v_s - g]_+ acts on one unknown (v at x=1),
 !>   so with y = A^{-1} b and z = A^{-1} e_s (computed once) the solution is x = y - f z with
 !>   the scalar contact force f solving f = (dt/eps)[a - dt z_s f]_+, a = u^{n-1}(1) + dt y_s - g.
 !>   z_s = e_s^T A^{-1} e_s > 0 because the symmetric part of A is positive definite (Theorem
 !>   6.1), so the semismooth equation has the closed-form root f = 0 if a <= 0, else
-!>   f = dt a / (eps + dt^2 z_s): the active-set step is exact, one dgbtrs per time step.
+!>   f = dt a / (eps + dt^2 z_s): the active-set step is exact, one solve per time step.
 !> 'paper': the Section 7 iteration: thermal block (q, theta, P, eta) with the velocity of
 !>   the previous iterate, then the mechanical block with the new theta, P and the lagged
 !>   penalty, until the largest change of any nodal value is <= tol * max(1, max |value|).
@@ -84,9 +84,8 @@ module stepper_m
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
-        !> the node blocks E_i, F_i of a system before its block LU (setup_monolithic; D_i are
-        !> assembled into the factors' storage)
-        real(dp), allocatable :: e_blocks(:, :, :), f_blocks(:, :, :)
+        !> the node blocks D_i, E_i, F_i of a system before its block LU (setup_monolithic)
+        real(dp), allocatable :: d_blocks(:, :, :), e_blocks(:, :, :), f_blocks(:, :, :)
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
@@ -211,97 +210,87 @@ contains
         if (result%ok) call self%cache%stored(k, dt_eff)
     end subroutine find_system
 
-    !> Assemble (6.1) with step dt_eff, factor it (dgbtrf and block LU) and compute the
-    !> contact response z. A graded (adaptive) mesh, factored at every remesh, inverts the
-    !> block LU's pivot blocks by the written-out kernel (LAPACK's call overhead on 5 x 5
-    !> blocks was half of such a run), and once the block LU has passed blocks_agree on one
-    !> system of the run, factors later systems by it alone (docs/performance.md), with every
-    !> field in the system from node blocks assembled as such (assemble_blocks, factor_blocks:
-    !> no band, the same factors bit for bit). So do adaptive steps, which factor a system at
-    !> every new step size. Fixed steps on a uniform mesh keep LAPACK and the check (and their
-    !> results bit for bit).
+    !> Assemble (6.1) with step dt_eff, factor it by the block LU and compute the contact
+    !> response z. The block LU does not pivot across nodes: until it has passed blocks_agree
+    !> in a run, the band is factored too (dgbtrf), gives z, and solves if the check fails.
+    !> Fixed steps on a uniform mesh (a system or two a run) check each system and invert
+    !> the pivot blocks by LAPACK; adaptive steps and a graded mesh (a system per step size
+    !> or remesh) trust the block LU once checked and invert by invert5 (docs/performance.md).
+    !> Each inversion keeps its runs' bits.
     subroutine setup_monolithic(self, dt_eff, sys, result)
         type(stepper_t), intent(inout) :: self
         real(dp), intent(in) :: dt_eff
         type(monolithic_system_t), intent(out) :: sys
         type(step_result_t), intent(inout) :: result
         type(band_t) :: unfactored
-        integer :: info, stat
-        character(len=256) :: message
+        integer :: info
         logical :: fast
 
         fast = self%adaptive_steps .or. .not. self%mesh%is_uniform()
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
-        if (fast .and. self%blocks_trusted .and. count(self%active) == NB_MAX) then
-            ! the trusted block LU alone, every field: its blocks assembled as such (no band;
-            ! assemble_blocks and factor_blocks give the band's factors bit for bit)
-            call require_blocks(self)
-            call sys%blocks%prepare(self%s)
-            call assemble_blocks(self%step_model, self%mesh, dt_eff, sys%blocks%g, self%e_blocks, self%f_blocks)
-            call sys%blocks%factor_blocks(self%e_blocks, self%f_blocks, info, inline_inverse=.true.)
-            if (info == 0) then
-                sys%use_blocks = .true.
-                call contact_response(sys, .true.)
-                if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
-                    call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
-                return
-            end if
-        end if
-        call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
-        call sys%blocks%factor(sys%a, count(self%active), info, inline_inverse=fast)
+        ! the fields in the system (active): assemble_matrix's band, bit for bit
+        call require_blocks(self)
+        call assemble_blocks(self%step_model, self%mesh, dt_eff, self%d_blocks, self%e_blocks, self%f_blocks)
+        call sys%blocks%factor(self%d_blocks, self%e_blocks, self%f_blocks, info, fast, self%active)
         sys%use_blocks = info == 0
         if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
+            call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
             unfactored = sys%a
             call sys%a%factor(info)
             if (info /= 0) then
                 call fail(result, lapack_info_message('dgbtrf', info))
                 return
             end if
-            call contact_response(sys, .false.)
+            call contact_response(self, sys)
             if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
             self%blocks_trusted = sys%use_blocks .and. fast
         end if
         ! once trusted, z from the block LU for every system (a restart, which checks the
-        ! block LU anew, then repeats the run bit for bit)
-        if (self%blocks_trusted) call contact_response(sys, .true.)
-        ! the block LU solves with this system from now on: the band (~45 % of an entry's
-        ! memory) is not used again, so the cache holds twice the entries in the same memory
-        if (sys%use_blocks .and. self%blocks_trusted) call sys%a%release()
+        ! block LU anew, then repeats the run bit for bit), and the band is not kept
+        if (self%blocks_trusted) then
+            call contact_response(self, sys)
+            call sys%a%release()
+        end if
         if (.not. (sys%z(sys%contact_dof) > 0.0_dp)) &
             call fail(result, 'contact compliance e_s^T A^{-1} e_s is not positive')
-
-    contains
-
-        !> z = A^{-1} e_s, the response to a unit contact force (block LU or dgbtrf's factors).
-        subroutine contact_response(sys, with_blocks)
-            type(monolithic_system_t), intent(inout) :: sys
-            logical, intent(in) :: with_blocks
-
-            if (.not. allocated(sys%z)) then
-                allocate (sys%z(count(self%active) * (self%s + 1)), stat=stat, errmsg=message)
-                call check_allocation(stat, message, 'the contact response')
-            end if
-            sys%z = 0.0_dp
-            sys%z(sys%contact_dof) = 1.0_dp
-            if (with_blocks) then
-                call sys%blocks%solve_last(sys%z)   ! e_s: zero outside the last node
-            else
-                call sys%a%solve(sys%z)
-            end if
-        end subroutine contact_response
     end subroutine setup_monolithic
 
-    !> The work arrays of assemble_blocks (E_i, F_i) for self%s elements.
-    subroutine require_blocks(self)
-        type(stepper_t), intent(inout) :: self
+    !> z = A^{-1} e_s, the response to a unit contact force (block LU once trusted, else band).
+    subroutine contact_response(self, sys)
+        type(stepper_t), intent(in) :: self
+        type(monolithic_system_t), intent(inout) :: sys
         integer :: stat
         character(len=256) :: message
 
+        if (.not. allocated(sys%z)) then
+            allocate (sys%z(count(self%active) * (self%s + 1)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the contact response')
+        end if
+        sys%z = 0.0_dp
+        sys%z(sys%contact_dof) = 1.0_dp
+        if (sys%use_blocks .and. self%blocks_trusted) then
+            call sys%blocks%solve(sys%z)
+        else
+            call sys%a%solve(sys%z)
+        end if
+    end subroutine contact_response
+
+    !> The work arrays of assemble_blocks for self%s elements: E_i, F_i kept, D_i anew (the
+    !> block LU takes it as its factors' storage).
+    subroutine require_blocks(self)
+        type(stepper_t), intent(inout) :: self
+        integer :: stat, s
+        character(len=256) :: message
+
+        s = self%s
+        if (allocated(self%d_blocks)) deallocate (self%d_blocks)
+        allocate (self%d_blocks(NB_MAX, NB_MAX, 0:s), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the blocks of the system')
         if (allocated(self%e_blocks)) then
-            if (ubound(self%e_blocks, 3) == self%s - 1) return
+            if (ubound(self%e_blocks, 3) == s - 1) return
             deallocate (self%e_blocks, self%f_blocks)
         end if
-        allocate (self%e_blocks(NB_MAX, NB_MAX, 0:self%s - 1), self%f_blocks(NB_MAX, NB_MAX, 0:self%s - 1), &
+        allocate (self%e_blocks(NB_MAX, NB_MAX, 0:s - 1), self%f_blocks(NB_MAX, NB_MAX, 0:s - 1), &
                   stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the blocks of the system')
     end subroutine require_blocks

@@ -1,12 +1,13 @@
 !> Test and benchmark helpers for band_t that the program itself does not need: the dense
-!> copy of a band matrix and LAPACK's own dgbtrs on band_t's factors (the reference for
-!> band_t%solve, which does the same operations as plain loops).
+!> copy of a band matrix, LAPACK's own dgbtrs on band_t's factors (the reference for
+!> band_t%solve, a plain-loop substitution), and the block LU of a band's node blocks.
 module band_reference_m
     use kinds_m, only: dp
     use banded_m, only: band_t
+    use block_tridiagonal_m, only: block_tridiagonal_t
     implicit none
     private
-    public :: band_to_dense, solve_with_dgbtrs
+    public :: band_to_dense, solve_with_dgbtrs, factor_band_blocks
 
     interface
         subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
@@ -35,6 +36,32 @@ contains
             end do
         end do
     end function band_to_dense
+
+    !> The block LU (block_tridiagonal_m) of the unfactored band a with nb unknowns per node:
+    !> its node blocks D_i, E_i, F_i read with a%get and factored (info, inline as factor's).
+    subroutine factor_band_blocks(blocks, a, nb, info, inline)
+        type(block_tridiagonal_t), intent(inout) :: blocks
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: nb
+        integer, intent(out) :: info
+        logical, intent(in) :: inline
+        real(dp), allocatable :: d(:, :, :), e(:, :, :), f(:, :, :)
+        integer :: last, i, r, c
+
+        last = a%n / nb - 1
+        allocate (d(nb, nb, 0:last), e(nb, nb, 0:last - 1), f(nb, nb, 0:last - 1))
+        do i = 0, last
+            do c = 1, nb
+                do r = 1, nb
+                    d(r, c, i) = a%get(nb * i + r, nb * i + c)
+                    if (i == last) cycle
+                    e(r, c, i) = a%get(nb * i + r, nb * (i + 1) + c)
+                    f(r, c, i) = a%get(nb * (i + 1) + r, nb * i + c)
+                end do
+            end do
+        end do
+        call blocks%factor(d, e, f, info, inline_inverse=inline)
+    end subroutine factor_band_blocks
 
     !> Solve A x = b in place with LAPACK's dgbtrs on the factors of a%factor().
     subroutine solve_with_dgbtrs(a, b, info)

@@ -12,7 +12,8 @@
 # that an out-of-bounds access or a NaN/Inf produced anywhere stops the test that caused
 # it. The Release run comes first; both always run. The Debug run leaves out the tests
 # labelled slurm (tests/test_slurm.sh: a Slurm cluster running scan scripts, nothing that
-# the Debug build checks) when it is given no ctest arguments.
+# the Debug build checks) and extension (tests/test_new_contact_law.sh: builds a Release
+# copy of its own) when it is given no ctest arguments.
 #
 # Both builds treat compiler warnings on the project's sources as errors (WERROR=ON for
 # scripts/setup.sh): the code compiles warning-free with -Wall -Wextra, and stays so.
@@ -52,7 +53,7 @@ if [[ $debug == yes ]]; then
     echo "test.sh: running the suite again in a Debug build (-fcheck=all, floating-point traps) in $debug_dir/" >&2
     BUILD_TYPE=Debug BUILD_DIR="$debug_dir" "$repo_root/scripts/setup.sh" || exit 1
     debug_args=("${ctest_args[@]}")
-    ((${#ctest_args[@]} == 0)) && debug_args=(-LE '^slurm$')
+    ((${#ctest_args[@]} == 0)) && debug_args=(-LE '^(slurm|extension)$')
     ctest --test-dir "$debug_dir" --output-on-failure -j 2 "${debug_args[@]}"
     debug_status=$?
     if [[ $status -eq 0 && $debug_status -ne 0 ]]; then

@@ -18,7 +18,8 @@ program test_energy_monitor
     use, intrinsic :: iso_fortran_env, only: int64
     use kinds_m, only: dp
     use config_m, only: model_t
-    use contact_law_m, only: contact_law_t, contact_law
+    use contact_law_m, only: contact_law_t
+    use contact_laws_m, only: contact_law
     use time_scheme_m, only: time_scheme
     use state_m, only: state_t
     use energy_m, only: energy_monitor_t, linear_energy_by_nodes, energy_m_linear => linear_energy
@@ -32,7 +33,7 @@ program test_energy_monitor
     real(dp), parameter :: G = 0.1_dp, EPS = 0.01_dp, TOL = 1.0e-13_dp
     type(model_t), parameter :: MODEL = model_t(rho=1.5_dp, alpha=0.7_dp, varpi=0.1_dp, gamma1=0.3_dp, gamma2=0.2_dp, &
                                                 c=1.1_dp, d=0.2_dp, r=0.9_dp, hbar=0.8_dp, tau0=0.6_dp, tau=0.4_dp)
-    type(contact_law_t) :: law
+    class(contact_law_t), allocatable :: law
     type(state_t) :: x0
 
     law = contact_law('penalty', G, EPS)

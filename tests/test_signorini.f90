@@ -11,7 +11,7 @@ program test_signorini
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: discrete_energy
-    use contact_law_m, only: contact_law
+    use contact_laws_m, only: contact_law
     use shipped_inputs_m, only: load_input, command_arguments
     use testing_m, only: check_true, test_summary
     implicit none

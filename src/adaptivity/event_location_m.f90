@@ -22,13 +22,13 @@ contains
     !> multiplier. gap: the gap at the step's end the crossing time is interpolated to,
     !> u^n(1) - g (penalty) or the trial gap (Signorini, whose u^n(1) stops at g).
     subroutine contact_state(law, state, result, in_contact, gap)
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         type(state_t), intent(in) :: state
         type(step_result_t), intent(in) :: result
         logical, intent(out) :: in_contact
         real(dp), intent(out) :: gap
 
-        if (law%is_signorini()) then
+        if (law%is_constraint()) then
             in_contact = result%in_contact
             gap = result%trial_gap
         else

@@ -118,7 +118,7 @@ module step_driver_m
             class(step_driver_t), intent(in) :: self
             type(state_t), intent(in) :: state
             type(step_result_t), intent(in) :: result
-            type(contact_law_t), intent(in) :: law
+            class(contact_law_t), intent(in) :: law
             type(trial_t), intent(inout) :: trial
             logical, intent(out) :: cut
         end subroutine driver_landing
@@ -126,7 +126,7 @@ module step_driver_m
         module subroutine driver_accept(self, state, law, monitor, result, trial, failure)
             class(step_driver_t), intent(inout) :: self
             type(state_t), intent(inout) :: state
-            type(contact_law_t), intent(in) :: law
+            class(contact_law_t), intent(in) :: law
             type(energy_monitor_t), intent(inout) :: monitor
             type(step_result_t), intent(in) :: result
             type(trial_t), intent(in) :: trial

@@ -94,7 +94,7 @@ contains
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
         type(step_result_t), intent(in) :: result
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         type(trial_t), intent(inout) :: trial
         logical, intent(out) :: cut
         real(dp) :: t_lo, t_event
@@ -108,7 +108,7 @@ contains
             else
                 t_lo = t_before + dt
             end if
-            if (self%in_contact .and. law%is_signorini()) then
+            if (self%in_contact .and. law%is_constraint()) then
                 call release_time(self%estimator, self%model%alpha, state, t_before, dt, .not. flipped, t_lo, &
                                   t_bound, t_event, found)
             else
@@ -135,7 +135,7 @@ contains
     module subroutine driver_accept(self, state, law, monitor, result, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         type(energy_monitor_t), intent(inout) :: monitor
         type(step_result_t), intent(in) :: result
         type(trial_t), intent(in) :: trial
@@ -146,7 +146,7 @@ contains
         if (trial%lands .and. self%adaptive) call land_on(state, trial%target)
         if (trial%flipped) then
             associate (t0 => trial%t_before, dt => trial%dt, e => self%estimator)
-                if (self%adaptive .and. self%in_contact .and. law%is_signorini()) then
+                if (self%adaptive .and. self%in_contact .and. law%is_constraint()) then
                     call release_time(e, self%model%alpha, state, t0, dt, .false., t0, t0 + dt, t_event, found)
                 else
                     t_event = gap_event_time(e, self%adaptive, t0, dt, trial%gap_start, trial%gap_end, &

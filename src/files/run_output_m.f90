@@ -83,7 +83,7 @@ contains
     !> -lambda, the step's (normal compliance (3.4) or the Signorini multiplier), or with
     !> from_law the law's force at u(1,t).
     subroutine step_series(law, state, result, t, from_law, values)
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         type(state_t), intent(in) :: state
         type(step_result_t), intent(in) :: result
         real(dp), intent(in) :: t
@@ -153,7 +153,7 @@ contains
         do j = 2, n_rows
             values = values + weight(j) * rows(:, j)
         end do
-        call step_series(stepper%law, state, result, t, .not. stepper%law%is_signorini(), values)
+        call step_series(stepper%law, state, result, t, .not. stepper%law%is_constraint(), values)
     end subroutine dense_series
 
     !> rows(:, j) = level_series of the j-th most recent of the n levels of the last step's

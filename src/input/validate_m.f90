@@ -12,6 +12,7 @@ module validate_m
                         number_of_steps, MAX_COMPRESSION, LEN_NAME
     use strings_m, only: format_real, int_str
     use initial_data_m, only: profile
+    use contact_laws_m, only: contact_law_t, contact_law, law_names
     implicit none
     private
     public :: validate_config, scheme_rule_t
@@ -113,7 +114,7 @@ contains
 
         call require_real(contact%g, 'contact.g', POSITIVE)
         call require_real(contact%eps, 'contact.eps', DIVISOR)
-        call require_one_of(contact%law, [character(len=9) :: 'penalty', 'signorini'], 'contact.law')
+        call require_one_of(contact%law, law_names(), 'contact.law')
         call require_one_of(contact%mass, [character(len=13) :: 'consistent', 'redistributed'], 'contact.mass')
     end subroutine validate_contact
 
@@ -204,11 +205,12 @@ contains
             '; the initial displacement must satisfy the contact constraint u0(1) <= g')
     end subroutine validate_initial
 
-    !> The paper's Section 7 iteration is implicit Euler with a lagged penalty: it has no
-    !> Signorini form and runs one time scheme (implicit Euler).
+    !> The paper's Section 7 iteration is implicit Euler with a lagged contact force: it has
+    !> no form for a constraint law (Signorini) and runs one time scheme (implicit Euler).
     subroutine validate_combination(cfg, schemes)
         type(config_t), intent(in) :: cfg
         type(scheme_rule_t), intent(in) :: schemes(:)
+        class(contact_law_t), allocatable :: law
 
         if (cfg%solver%method /= 'paper') return
         if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with mesh.adaptive = " // &
@@ -217,9 +219,10 @@ contains
         if (cfg%time%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with time.adaptive = " // &
             ".true.: the paper's iteration runs with one fixed step; method must be 'monolithic' for " // &
             'adaptive steps')
-        if (cfg%contact%law /= 'penalty') call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
-            "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the penalty term and " // &
-            "has no Signorini form; method must be 'monolithic' with this law")
+        law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
+        if (law%is_constraint()) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
+            "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the contact force, " // &
+            "which a constraint has not (no Signorini form); method must be 'monolithic' with this law")
         if (.not. any(schemes%name == cfg%time%scheme .and. schemes%paper_iteration)) call fatal(EXIT_INPUT, &
             'solver.method', "got 'paper' with time.scheme = '" // trim(cfg%time%scheme) // "': the paper's " // &
             "iteration is implicit Euler; method must be 'monolithic' with this scheme")

@@ -33,7 +33,7 @@ module energy_m
         private
         type(model_t) :: model
         type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
-        type(contact_law_t) :: law
+        class(contact_law_t), allocatable :: law
         type(energy_law_t) :: scheme_law   !< the law the time scheme guarantees
         logical :: own_law_model = .false.   !< law_model differs from model
         real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
@@ -68,7 +68,7 @@ contains
     !> of the level (u, w) on mesh.
     pure function discrete_energy(model, law, u, w, mesh) result(energy)
         type(model_t), intent(in) :: model
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         real(dp), intent(in), contiguous :: u(0:)
         real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
@@ -170,7 +170,7 @@ contains
     !> grouped differently).
     pure function energy_parts(model, law, u, w, mesh) result(parts)
         type(model_t), intent(in) :: model
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         real(dp), intent(in), contiguous :: u(0:)
         real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
@@ -184,7 +184,7 @@ contains
     !> one pass over the elements.
     pure subroutine energy_and_parts(model, law, u, w, mesh, energy, parts)
         type(model_t), intent(in) :: model
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         real(dp), intent(in), contiguous :: u(0:)
         real(dp), intent(in), contiguous :: w(0:, :)
         type(mesh_t), intent(in) :: mesh
@@ -310,7 +310,7 @@ contains
     !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
     subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, energy, lin_now)
         type(model_t), intent(in) :: model
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         real(dp), intent(in), contiguous :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
         type(mesh_t), intent(in) :: mesh           !< the mesh of both levels
         real(dp), intent(inout), contiguous :: u_work(0:), w_work(0:, :)
@@ -334,7 +334,7 @@ contains
     subroutine monitor_init(self, model, step_model, law, scheme, state)
         class(energy_monitor_t), intent(inout) :: self
         type(model_t), intent(in) :: model, step_model
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
         integer :: stat

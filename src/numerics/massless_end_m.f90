@@ -26,7 +26,7 @@ contains
     !> passes v(0:s), the new velocity, and y_end, its half level's velocity at x = 1.
     pure subroutine settle_end(model, law, h_last, in_contact, u, v, y_end)
         type(model_t), intent(in) :: model
-        type(contact_law_t), intent(in) :: law
+        class(contact_law_t), intent(in) :: law
         real(dp), intent(in) :: h_last
         logical, intent(in) :: in_contact
         real(dp), intent(inout) :: u(0:)
@@ -36,7 +36,7 @@ contains
 
         if (.not. model%mass_end_moved) return
         s = ubound(u, 1)
-        if (law%is_signorini() .and. in_contact) u(s) = law%g
+        if (law%is_constraint() .and. in_contact) u(s) = law%g
         if (.not. (present(v) .and. present(y_end))) return
         v(s) = y_end
         if (.not. (model%rho > 0.0_dp .and. is_zero(model%varpi) .and. is_zero(model%gamma1) .and. &

@@ -28,7 +28,7 @@ module stepper_m
                         initial_data_present
     use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, slots_of, scatter_fields, gather_fields
     use block_tridiagonal_m, only: NB_MAX
-    use contact_law_m, only: contact_law_t, contact_law
+    use contact_laws_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
     use state_m, only: state_t, advance_time, accept_step, keep_copy
     use mesh_m, only: mesh_t, copy_mesh
@@ -58,7 +58,7 @@ module stepper_m
         type(model_t) :: model         !< the paper's coefficients (&model)
         type(model_t) :: step_model    !< what the steps use (time_scheme_m's stiff_limit)
         logical :: algebraic(N_FIELDS) = .false.   !< no time derivative in step_model
-        type(contact_law_t) :: law
+        class(contact_law_t), allocatable :: law
         type(time_scheme_t) :: scheme
         real(dp) :: dt = 0.0_dp        !< the step size when advance() is given none (&time dt)
         real(dp) :: tol = 0.0_dp

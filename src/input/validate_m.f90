@@ -12,7 +12,7 @@ module validate_m
                         number_of_steps, MAX_COMPRESSION, LEN_NAME
     use strings_m, only: format_real, int_str
     use initial_data_m, only: profile
-    use contact_laws_m, only: contact_law_t, contact_law, law_names
+    use contact_laws_m, only: law_names, constraint_law
     implicit none
     private
     public :: validate_config, scheme_rule_t
@@ -210,7 +210,6 @@ contains
     subroutine validate_combination(cfg, schemes)
         type(config_t), intent(in) :: cfg
         type(scheme_rule_t), intent(in) :: schemes(:)
-        class(contact_law_t), allocatable :: law
 
         if (cfg%solver%method /= 'paper') return
         if (cfg%mesh%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with mesh.adaptive = " // &
@@ -219,8 +218,7 @@ contains
         if (cfg%time%adaptive) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with time.adaptive = " // &
             ".true.: the paper's iteration runs with one fixed step; method must be 'monolithic' for " // &
             'adaptive steps')
-        law = contact_law(cfg%contact%law, cfg%contact%g, cfg%contact%eps)
-        if (law%is_constraint()) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
+        if (constraint_law(cfg%contact%law)) call fatal(EXIT_INPUT, 'solver.method', "got 'paper' with " // &
             "contact.law = '" // trim(cfg%contact%law) // "': the paper's iteration lags the contact force, " // &
             "which a constraint has not (no Signorini form); method must be 'monolithic' with this law")
         if (.not. any(schemes%name == cfg%time%scheme .and. schemes%paper_iteration)) call fatal(EXIT_INPUT, &

@@ -8,7 +8,7 @@ module contact_laws_m
     use contact_signorini_m, only: signorini_law_t
     implicit none
     private
-    public :: contact_law_t, contact_law, law_names
+    public :: contact_law_t, contact_law, law_names, constraint_law
 
 contains
 
@@ -64,5 +64,14 @@ contains
         end do
         names = found(:k - 1)
     end function law_names
+
+    !> Whether the law of this name is a constraint (its is_constraint), for validate_m.
+    logical function constraint_law(name)
+        character(len=*), intent(in) :: name
+        class(contact_law_t), allocatable :: law
+
+        law = contact_law(name, 0.0_dp, 1.0_dp)
+        constraint_law = law%is_constraint()
+    end function constraint_law
 
 end module contact_laws_m

@@ -13,7 +13,8 @@ cd "$scratch" && rm -rf ./* || exit 1
 . "$src/tests/lib/checks.sh"
 
 python3 "$src/tests/tools/doc_paths.py" "$src" > paths.out 2> paths.err
-check "every path the docs name exists, every script is indexed ($(head -c 600 paths.err))" equals 0 "$?"
+status=$?  # taken at once: the $(head) of the message below would reset $?
+check "every path the docs name exists, every script is indexed ($(head -c 600 paths.err))" equals 0 "$status"
 
 python3 "$src/tests/tools/layers.py" dot "$src/src" > uses.dot
 check "docs/uses.dot is the use graph of the sources (regenerate: python3 tests/tools/layers.py dot src > docs/uses.dot)" \

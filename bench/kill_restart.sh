@@ -46,7 +46,7 @@ g.visititems(lambda name, item: item[()] if isinstance(item, h5py.Dataset) else 
 for group in ('series', 'snapshots'):
     for name in f[group]:
         if isinstance(f[group][name], h5py.Dataset): f[group][name][()]
-print(int(g['state/step'][()]))" 2> read.err); then
+print(int(g['state/scalars']['step']))" 2> read.err); then
         unreadable=$((unreadable + 1))
         echo "kill $i at $wait_s s: unreadable: $(tail -n 1 read.err)"
         cp kill.h5.part "unreadable_$i.h5.part" 2> /dev/null

@@ -40,7 +40,7 @@ for level in 0 4; do
     step=$("$py" -c "
 import h5py
 f = h5py.File('full$level.h5.part', 'r', swmr=True)   # left open by its SWMR writer
-print(int(f['checkpoint/slot%d/state/step' % int(f['checkpoint/current'][0])][()]))" 2>&1)
+print(int(f['checkpoint/slot%d/state/scalars' % int(f['checkpoint/current'][0])]['step']))" 2>&1)
     check "compression $level: the .h5.part opens, its last checkpoint is at step 250" equals 250 "$step"
     run --set output.prefix=cont$level --set time.restart_from=full$level.h5.part --set output.compression=$level
     check "compression $level: restart from the .h5.part (normal limit) exits 0" equals 0 "$?"

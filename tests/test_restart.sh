@@ -102,7 +102,7 @@ import h5py
 f = h5py.File('long.h5.part', 'r', swmr=True)
 g = f['checkpoint/slot%d' % int(f['checkpoint/current'][0])]
 g.visititems(lambda name, item: item[()] if isinstance(item, h5py.Dataset) else None)
-n = int(g['state/step'][()])
+n = int(g['state/scalars']['step'])
 for group in ('series', 'snapshots'):
     for name in f[group]:
         if isinstance(f[group][name], h5py.Dataset): f[group][name][()]

@@ -50,7 +50,7 @@ for sig in TERM INT USR1 PENDING_TERM; do
     read -r file_status step < <("$py" -c "
 import h5py
 f = h5py.File('$name.h5.part', 'r')
-step = f['checkpoint/slot%d/state/step' % int(f['checkpoint/current'][0])][()]
+step = f['checkpoint/slot%d/state/scalars' % int(f['checkpoint/current'][0])]['step']
 print(f.attrs['status'].replace(' ', '_'), int(step))") || { fail "SIG$sig: .h5.part or its checkpoint unreadable"; continue; }
     [ "$file_status" = "interrupted:_SIG$sig" ] || fail "SIG$sig: status '$file_status', expected 'interrupted: SIG$sig'"
     echo "SIG$label: exit $status, status '$file_status', checkpoint at step $step"

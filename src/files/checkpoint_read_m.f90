@@ -5,6 +5,7 @@
 module checkpoint_read_m
     use iso_c_binding, only: c_loc, c_ptr
     use iso_fortran_env, only: int64
+    use kinds_m, only: dp
     use errors_m, only: fatal, check_allocation, EXIT_INPUT
     use checkpoint_m, only: checkpoint_t, entry_t
     use h5_read_m, only: h5_library_init
@@ -14,7 +15,8 @@ module checkpoint_read_m
                     h5iget_type_f, H5I_GROUP_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, h5tget_class_f, &
                     h5tclose_f, H5T_INTEGER_F, h5dget_space_f, h5sget_simple_extent_ndims_f, &
                     h5sget_simple_extent_dims_f, h5sclose_f, H5T_NATIVE_DOUBLE, h5kind_to_type, H5_INTEGER_KIND, &
-                    h5aexists_by_name_f
+                    h5aexists_by_name_f, h5tget_nmembers_f, h5tget_member_class_f, h5tget_member_name_f, &
+                    h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F, size_t
     implicit none
     private
     public :: read_entries, has_group_attribute
@@ -73,6 +75,8 @@ contains
             call h5oclose_f(obj_id, hdferr)
             if (obj_type == H5I_GROUP_F) then
                 call read_below(file, file_id, group, path//'/'//trim(name), ckpt)
+            else if (trim(name) == 'scalars') then
+                call read_scalars(file, group_id, here//'/scalars', path(2:)//'/', ckpt)
             else
                 call ckpt%add(read_entry(file, group_id, here//'/'//trim(name), path(2:)//'/'//trim(name)))
             end if
@@ -120,6 +124,63 @@ contains
         call require(hdferr, file, where, 'h5dread_f')
         call h5dclose_f(dset_id, hdferr)
     end function read_entry
+
+    !> An owner's scalars, the compound dataset `where`: each member as entry prefix//member
+    !> (every member 8 bytes: int64 or float64).
+    subroutine read_scalars(file, group_id, where, prefix, ckpt)
+        character(len=*), intent(in) :: file, where, prefix
+        integer(hid_t), intent(in) :: group_id
+        type(checkpoint_t), intent(inout) :: ckpt
+        integer(hid_t) :: dset_id, type_id, mem_type
+        integer(int64), allocatable, target :: values(:)
+        integer :: hdferr, n, m, member_class, stat
+        character(len=64) :: member
+        character(len=256) :: message
+        type(c_ptr) :: buf
+        logical, allocatable :: is_integer(:)
+
+        call h5dopen_f(group_id, 'scalars', dset_id, hdferr)
+        call require(hdferr, file, where, 'h5dopen_f')
+        call h5dget_type_f(dset_id, type_id, hdferr)
+        call h5tget_nmembers_f(type_id, n, hdferr)
+        call require(hdferr, file, where, 'h5tget_nmembers_f')
+        allocate (values(n), is_integer(n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'a checkpoint entry')
+        call h5tcreate_f(H5T_COMPOUND_F, int(8 * n, size_t), mem_type, hdferr)
+        do m = 1, n
+            call h5tget_member_class_f(type_id, m - 1, member_class, hdferr)
+            is_integer(m) = member_class == H5T_INTEGER_F
+            call h5tinsert_f(mem_type, member_name(type_id, m - 1), int(8 * (m - 1), size_t), &
+                             merge(h5kind_to_type(int64, H5_INTEGER_KIND), H5T_NATIVE_DOUBLE, is_integer(m)), hdferr)
+            call require(hdferr, file, where, 'h5tinsert_f')
+        end do
+        buf = c_loc(values)
+        call h5dread_f(dset_id, mem_type, buf, hdferr)
+        call require(hdferr, file, where, 'h5dread_f')
+        do m = 1, n
+            member = member_name(type_id, m - 1)
+            if (is_integer(m)) then
+                call ckpt%add(entry_t(prefix//trim(member), .true., 0, [1, 1], null(), [values(m)]))
+            else
+                call ckpt%add(entry_t(prefix//trim(member), .false., 0, [1, 1], [transfer(values(m), 1.0_dp)], null()))
+            end if
+        end do
+        call h5tclose_f(mem_type, hdferr)
+        call h5tclose_f(type_id, hdferr)
+        call h5dclose_f(dset_id, hdferr)
+    end subroutine read_scalars
+
+    !> Member m (from 0) of compound type type_id.
+    function member_name(type_id, m) result(name)
+        integer(hid_t), intent(in) :: type_id
+        integer, intent(in) :: m
+        character(len=:), allocatable :: name
+        character(len=64) :: buffer
+        integer :: length, hdferr
+
+        call h5tget_member_name_f(type_id, m, buffer, length, hdferr)
+        name = buffer(:min(length, len(buffer)))
+    end function member_name
 
     !> `file` opened for reading; the .h5.part of a killed run as a SWMR reader (h5_swmr_m).
     function open_file(file) result(file_id)

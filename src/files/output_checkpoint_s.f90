@@ -3,15 +3,17 @@
 submodule (output_m) output_checkpoint_s
     use iso_c_binding, only: c_loc, c_ptr
     use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f, h5screate_f, H5S_SCALAR_F, H5T_STD_I64LE, &
-                    h5kind_to_type, H5_INTEGER_KIND, h5gopen_f, H5P_DEFAULT_F
+                    h5kind_to_type, H5_INTEGER_KIND, h5gopen_f, H5P_DEFAULT_F, &
+                    h5tcreate_f, h5tinsert_f, h5tclose_f, H5T_COMPOUND_F
     use checkpoint_m, only: entry_t
     use errors_m, only: check_allocation
     implicit none
 
 contains
 
-    !> Write the checkpoint ckpt: entry 'owner/name' as dataset /checkpoint/slotN/owner/name
-    !> (restart_m), integers as 64-bit integers, scalars as scalar datasets; note says which
+    !> Write the checkpoint ckpt: entry 'owner/name' as dataset /checkpoint/slotN/owner/name, or
+    !> for a scalar as member name of the owner's compound dataset /checkpoint/slotN/owner/scalars
+    !> (docs/output.md), integers as 64-bit integers; note says which
     !> state it is ('step 250 (t = ...)', for the message of a later output failure). Raw
     !> data reach the file as they are written, so a kill in the middle of a checkpoint would
     !> leave a torn one; there are therefore two slots, /checkpoint/slot0 and
@@ -25,20 +27,22 @@ contains
         class(h5_writer_t), intent(inout) :: w
         type(checkpoint_t), intent(in) :: ckpt
         character(len=*), intent(in) :: note
-        integer :: k, slot
+        integer :: k, d, slot
         logical :: exists
         integer :: hdferr
 
         call w%need_open('write_checkpoint()')
         call h5lexists_f(w%file_id, 'checkpoint', exists, hdferr)
         call w%check(hdferr, 'h5lexists_f /checkpoint')
+        slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
         if (.not. exists) call create_slots(w, ckpt)
         if (size(w%ckpt_names) /= ckpt%n) call w%fail('internal error: a checkpoint of other entries than the first')
-        slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
         do k = 1, ckpt%n
             if (ckpt%entries(k)%name /= w%ckpt_names(k)) &
                 call w%fail('internal error: checkpoint entry '//ckpt%entries(k)%name//' out of order')
-            call put_entry(w, k, slot, ckpt%entries(k))
+        end do
+        do d = 1, size(w%ckpt_types)
+            if (exists) call put_set(w, d, slot, ckpt)   ! (create_slots wrote the first)
         end do
         call w%flush()
         call put_int64(w, w%ckpt_current_id, [int(slot, int64)], 'current')
@@ -49,16 +53,17 @@ contains
     end subroutine writer_write_checkpoint
 
     !> The first checkpoint creates everything later ones write into, SWMR writing being off
-    !> (output_file_s): the groups, each entry's dataset in both slots (written), the
-    !> pointer /checkpoint/current (-1: no checkpoint yet), the layout attribute that tells
-    !> this layout from the positional one of earlier versions, and for an adaptive mesh
-    !> /snapshots/native.
+    !> (output_file_s): the groups, the datasets of both slots (written), the pointer
+    !> /checkpoint/current (-1: no checkpoint yet), the layout attribute that tells this
+    !> layout from the positional one of earlier versions, and for an adaptive mesh
+    !> /snapshots/native. An owner's scalars share one dataset, `scalars`, a compound of
+    !> named members (one dataset each would cost its creation, ~0.15M instructions).
     subroutine create_slots(w, ckpt)
         class(h5_writer_t), intent(inout) :: w
         type(checkpoint_t), intent(in) :: ckpt
         integer(hid_t) :: group_id, space_id
         character(len=:), allocatable :: failed
-        integer :: k, slot, stat
+        integer :: k, d, slot, stat
         character(len=256) :: message
         integer :: hdferr
 
@@ -77,33 +82,71 @@ contains
         call w%check(hdferr, 'h5dcreate_f /checkpoint/current')
         call h5sclose_f(space_id, hdferr)
         call put_int64(w, w%ckpt_current_id, [-1_int64], 'current')
-        if (allocated(w%ckpt_ids)) deallocate (w%ckpt_ids, w%ckpt_dims, w%ckpt_names)
-        allocate (w%ckpt_ids(ckpt%n, 0:1), w%ckpt_dims(2, ckpt%n, 0:1), w%ckpt_names(ckpt%n), stat=stat, &
-                  errmsg=message)
+        if (allocated(w%ckpt_names)) deallocate (w%ckpt_ids, w%ckpt_dims, w%ckpt_names, w%ckpt_set, w%ckpt_types)
+        allocate (w%ckpt_names(ckpt%n), w%ckpt_set(ckpt%n), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the checkpoint writer')
-        w%ckpt_ids = -1
+        d = 0
         do k = 1, ckpt%n
             w%ckpt_names(k) = ckpt%entries(k)%name
+            w%ckpt_set(k) = scalars_of(ckpt, k)
+            if (w%ckpt_set(k) > 0) w%ckpt_set(k) = w%ckpt_set(w%ckpt_set(k))
+            if (w%ckpt_set(k) > 0) cycle
+            d = d + 1
+            w%ckpt_set(k) = d
+        end do
+        allocate (w%ckpt_ids(d, 0:1), w%ckpt_dims(2, d, 0:1), w%ckpt_types(d), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the checkpoint writer')
+        w%ckpt_ids = -1
+        w%ckpt_types = -1
+        do d = 1, size(w%ckpt_types)
+            k = findloc(w%ckpt_set, d, 1)
             do slot = 0, 1
-                ! an owner's entries come together: its groups are made at its first
-                if (k == 1) then
+                ! an owner's datasets come together: its groups are made at its first
+                if (d == 1) then
                     call make_groups(w, 'checkpoint/slot'//int_str(slot)//'/'//ckpt%entries(k)%name)
-                else if (parent(ckpt%entries(k)%name) /= parent(ckpt%entries(k - 1)%name)) then
+                else if (parent(ckpt%entries(k)%name) /= parent(w%ckpt_names(findloc(w%ckpt_set, d - 1, 1)))) then
                     call make_groups(w, 'checkpoint/slot'//int_str(slot)//'/'//ckpt%entries(k)%name)
                 end if
-                call create_entry(w, k, slot, ckpt%entries(k))
+                call create_set(w, d, slot, ckpt)
             end do
         end do
         if (ckpt%has('adaptive_mesh/keys') .and. .not. w%native_created) call writer_create_native(w)
     end subroutine create_slots
 
-    !> 'a/b' of 'a/b/c'.
+    !> A scalar entry k's first fellow (a scalar of the same owner before it), else 0.
+    pure integer function scalars_of(ckpt, k) result(j)
+        type(checkpoint_t), intent(in) :: ckpt
+        integer, intent(in) :: k
+
+        if (ckpt%entries(k)%rank == 0) then
+            do j = 1, k - 1
+                if (ckpt%entries(j)%rank > 0) cycle
+                if (parent(ckpt%entries(j)%name) == parent(ckpt%entries(k)%name)) return
+            end do
+        end if
+        j = 0
+    end function scalars_of
+
+    !> 'a/b/' of 'a/b/c'.
     pure function parent(path) result(head)
         character(len=*), intent(in) :: path
         character(len=:), allocatable :: head
 
         head = path(:index(path, '/', back=.true.))
     end function parent
+
+    !> The path of dataset d in a slot: an array entry's own name, or <owner>/scalars.
+    function set_path(w, d, slot, ckpt) result(path)
+        class(h5_writer_t), intent(in) :: w
+        integer, intent(in) :: d, slot
+        type(checkpoint_t), intent(in) :: ckpt
+        character(len=:), allocatable :: path
+
+        associate (entry => ckpt%entries(findloc(w%ckpt_set, d, 1)))
+            path = 'checkpoint/slot'//int_str(slot)//'/'//entry%name
+            if (entry%rank == 0) path = 'checkpoint/slot'//int_str(slot)//'/'//parent(entry%name)//'scalars'
+        end associate
+    end function set_path
 
     !> The groups on the path to dataset `path` that do not exist yet.
     subroutine make_groups(w, path)
@@ -121,74 +164,128 @@ contains
         end do
     end subroutine make_groups
 
-    !> Create entry k's dataset in a slot and write it: a scalar dataspace for a scalar, else
-    !> chunked and extendible (an adaptive mesh's arrays and the events change size, and a
-    !> later checkpoint resizes them in SWMR writing).
-    subroutine create_entry(w, k, slot, entry)
+    !> Create dataset d in a slot and write it: an owner's scalars as one compound of named
+    !> members (integers int64, reals float64), an array chunked and extendible (an adaptive
+    !> mesh's arrays and the events change size, and a later checkpoint resizes them in SWMR
+    !> writing).
+    subroutine create_set(w, d, slot, ckpt)
         class(h5_writer_t), intent(inout) :: w
-        integer, intent(in) :: k, slot
-        type(entry_t), intent(in) :: entry
+        integer, intent(in) :: d, slot
+        type(checkpoint_t), intent(in) :: ckpt
         integer(hid_t) :: space_id, dcpl_id, file_type
         integer(hsize_t) :: dims(2), maxdims(2)
         character(len=:), allocatable :: name
         integer :: hdferr
 
-        name = 'checkpoint/slot'//int_str(slot)//'/'//entry%name
-        dims = int(entry%dims, hsize_t)
-        maxdims = H5S_UNLIMITED_F
-        dcpl_id = H5P_DEFAULT_F
-        if (entry%rank == 0) then
-            call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
-        else
-            call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
-            call w%check(hdferr, 'h5pcreate_f (dataset creation) /'//name)
-            call h5pset_chunk_f(dcpl_id, entry%rank, max(dims(:entry%rank), 1_hsize_t), hdferr)
-            call w%check(hdferr, 'h5pset_chunk_f /'//name)
-            call h5screate_simple_f(entry%rank, dims, space_id, hdferr, maxdims)
-        end if
-        call w%check(hdferr, 'h5screate_f /'//name)
-        file_type = merge(H5T_STD_I64LE, H5T_IEEE_F64LE, entry%is_integer)
-        call h5dcreate_f(w%file_id, name, file_type, space_id, w%ckpt_ids(k, slot), hdferr, dcpl_id=dcpl_id)
-        call w%check(hdferr, 'h5dcreate_f /'//name)
-        if (entry%rank > 0) call h5pclose_f(dcpl_id, hdferr)
-        call w%check(hdferr, 'h5pclose_f (dataset creation) /'//name)
-        call h5sclose_f(space_id, hdferr)
-        call w%check(hdferr, 'h5sclose_f /'//name)
-        w%ckpt_dims(:, k, slot) = entry%dims
-        call put_entry(w, k, slot, entry)
-    end subroutine create_entry
+        name = set_path(w, d, slot, ckpt)
+        associate (entry => ckpt%entries(findloc(w%ckpt_set, d, 1)))
+            dims = int(entry%dims, hsize_t)
+            maxdims = H5S_UNLIMITED_F
+            dcpl_id = H5P_DEFAULT_F
+            if (entry%rank == 0) then
+                call scalar_types(w, d, ckpt, file_type)
+                call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+            else
+                file_type = merge(H5T_STD_I64LE, H5T_IEEE_F64LE, entry%is_integer)
+                call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
+                call w%check(hdferr, 'h5pcreate_f (dataset creation) /'//name)
+                call h5pset_chunk_f(dcpl_id, entry%rank, max(dims(:entry%rank), 1_hsize_t), hdferr)
+                call w%check(hdferr, 'h5pset_chunk_f /'//name)
+                call h5screate_simple_f(entry%rank, dims, space_id, hdferr, maxdims)
+            end if
+            call w%check(hdferr, 'h5screate_f /'//name)
+            call h5dcreate_f(w%file_id, name, file_type, space_id, w%ckpt_ids(d, slot), hdferr, dcpl_id=dcpl_id)
+            call w%check(hdferr, 'h5dcreate_f /'//name)
+            if (entry%rank > 0) call h5pclose_f(dcpl_id, hdferr)
+            if (entry%rank == 0) call h5tclose_f(file_type, hdferr)
+            call w%check(hdferr, 'h5pclose_f, h5tclose_f /'//name)
+            call h5sclose_f(space_id, hdferr)
+            call w%check(hdferr, 'h5sclose_f /'//name)
+            w%ckpt_dims(:, d, slot) = entry%dims
+        end associate
+        call put_set(w, d, slot, ckpt)
+    end subroutine create_set
 
-    !> Write entry k into its dataset of a slot (opened if leave_swmr closed it, resized if
-    !> its shape changed).
-    subroutine put_entry(w, k, slot, entry)
+    !> The compound types of dataset d, an owner's scalars: file_type (little-endian) and,
+    !> kept for the run, the writer's memory type (native), every member 8 bytes.
+    subroutine scalar_types(w, d, ckpt, file_type)
         class(h5_writer_t), intent(inout) :: w
-        integer, intent(in) :: k, slot
-        type(entry_t), intent(in), target :: entry
-        character(len=:), allocatable :: name
-        type(c_ptr) :: buf
-        integer :: hdferr
+        integer, intent(in) :: d
+        type(checkpoint_t), intent(in) :: ckpt
+        integer(hid_t), intent(out) :: file_type
+        integer(size_t) :: offset
+        integer :: k, hdferr
+        logical :: fresh
 
-        associate (id => w%ckpt_ids(k, slot))
-            name = 'checkpoint/slot'//int_str(slot)//'/'//entry%name
+        offset = 8 * count(w%ckpt_set == d)
+        call h5tcreate_f(H5T_COMPOUND_F, offset, file_type, hdferr)
+        call w%check(hdferr, 'h5tcreate_f (checkpoint scalars)')
+        fresh = w%ckpt_types(d) < 0
+        if (fresh) call h5tcreate_f(H5T_COMPOUND_F, offset, w%ckpt_types(d), hdferr)
+        call w%check(hdferr, 'h5tcreate_f (checkpoint scalars)')
+        offset = 0
+        do k = 1, ckpt%n
+            if (w%ckpt_set(k) /= d) cycle
+            associate (entry => ckpt%entries(k), member => ckpt%entries(k)%name(index(ckpt%entries(k)%name, '/', &
+                                                                                        back=.true.) + 1:))
+                call h5tinsert_f(file_type, member, offset, merge(H5T_STD_I64LE, H5T_IEEE_F64LE, entry%is_integer), &
+                                 hdferr)
+                call w%check(hdferr, 'h5tinsert_f '//entry%name)
+                if (fresh) call h5tinsert_f(w%ckpt_types(d), member, offset, &
+                                            merge(h5kind_to_type(int64, H5_INTEGER_KIND), H5T_NATIVE_DOUBLE, &
+                                                  entry%is_integer), hdferr)
+                call w%check(hdferr, 'h5tinsert_f '//entry%name)
+            end associate
+            offset = offset + 8
+        end do
+    end subroutine scalar_types
+
+    !> Write dataset d of a slot (opened if leave_swmr closed it; an array resized if its
+    !> shape changed).
+    subroutine put_set(w, d, slot, ckpt)
+        class(h5_writer_t), intent(inout) :: w
+        integer, intent(in) :: d, slot
+        type(checkpoint_t), intent(in), target :: ckpt
+        integer(int64), target :: scalars(count(w%ckpt_set == d))
+        type(c_ptr) :: buf
+        integer :: k, m, hdferr
+
+        k = findloc(w%ckpt_set, d, 1)
+        associate (id => w%ckpt_ids(d, slot), entry => ckpt%entries(k))
             if (id < 0) then
-                call h5dopen_f(w%file_id, name, id, hdferr)
-                call w%check(hdferr, 'h5dopen_f /'//name)
+                call h5dopen_f(w%file_id, set_path(w, d, slot, ckpt), id, hdferr)
+                call w%check(hdferr, 'h5dopen_f /'//set_path(w, d, slot, ckpt))
             end if
-            if (any(w%ckpt_dims(:, k, slot) /= entry%dims)) then
+            if (any(w%ckpt_dims(:, d, slot) /= entry%dims)) then
                 call h5dset_extent_f(id, int(entry%dims(:entry%rank), hsize_t), hdferr)
-                call w%check(hdferr, 'h5dset_extent_f /'//name)
-                w%ckpt_dims(:, k, slot) = entry%dims
+                call w%check(hdferr, 'h5dset_extent_f /'//set_path(w, d, slot, ckpt))
+                w%ckpt_dims(:, d, slot) = entry%dims
             end if
-            if (product(entry%dims) == 0) return
-            if (entry%is_integer) then
-                call put_int64(w, id, entry%ints, entry%name)
+            if (entry%rank == 0) then
+                m = 0
+                do k = k, ckpt%n
+                    if (w%ckpt_set(k) /= d) cycle
+                    m = m + 1
+                    if (ckpt%entries(k)%is_integer) then
+                        scalars(m) = ckpt%entries(k)%ints(1)
+                    else
+                        scalars(m) = transfer(ckpt%entries(k)%reals(1), 0_int64)
+                    end if
+                end do
+                buf = c_loc(scalars)
+                call h5dwrite_f(id, w%ckpt_types(d), buf, hdferr)
+            else if (product(entry%dims) == 0) then
+                return
+            else if (entry%is_integer) then
+                buf = c_loc(entry%ints)
+                call h5dwrite_f(id, h5kind_to_type(int64, H5_INTEGER_KIND), buf, hdferr)
             else
                 buf = c_loc(entry%reals)
                 call h5dwrite_f(id, H5T_NATIVE_DOUBLE, buf, hdferr)
-                call w%check(hdferr, 'h5dwrite_f /'//name)
             end if
+            call w%check(hdferr, 'h5dwrite_f /'//set_path(w, d, slot, ckpt))
         end associate
-    end subroutine put_entry
+    end subroutine put_set
 
     !> Write the whole integer dataset dset_id from values.
     subroutine put_int64(w, dset_id, values, name)
@@ -214,7 +311,7 @@ contains
         if (.not. allocated(w%ckpt_ids)) return
         do slot = 0, 1
             do k = 1, size(w%ckpt_ids, 1)
-                if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), w%ckpt_names(k))
+                if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
             end do
         end do
     end subroutine writer_close_checkpoint

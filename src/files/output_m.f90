@@ -50,8 +50,8 @@ module output_m
     !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
     !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
     integer, parameter :: SERIES_CHUNK = 256
-    !> Attribute layout of /checkpoint: its datasets are slotN/<owner>/<name> (restart_m)
-    character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name'
+    !> Attribute layout of /checkpoint: slotN/<owner>/<array>, slotN/<owner>/scalars (a compound)
+    character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name, slotN/owner/scalars'
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
 
@@ -95,10 +95,12 @@ module output_m
         logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
         logical :: native_created = .false.        !< /snapshots/native exists (output_native_s)
         integer :: n_checkpoints = 0               !< checkpoints written
-        !> the checkpoint's datasets (entry, slot), open from the first checkpoint (output_checkpoint_s)
-        integer(hid_t), allocatable :: ckpt_ids(:, :)
-        integer, allocatable :: ckpt_dims(:, :, :)            !< (2, entry, slot): their shapes
+        !> the checkpoint's datasets, open from the first checkpoint (output_checkpoint_s)
+        integer(hid_t), allocatable :: ckpt_ids(:, :)         !< (dataset, slot)
+        integer, allocatable :: ckpt_dims(:, :, :)            !< (2, dataset, slot): their shapes
         character(len=64), allocatable :: ckpt_names(:)       !< the entries' names
+        integer, allocatable :: ckpt_set(:)                   !< an entry's dataset
+        integer(hid_t), allocatable :: ckpt_types(:)          !< an owner's scalars' memory type
         integer(hid_t) :: ckpt_current_id = -1                !< /checkpoint/current
         real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
     contains

@@ -3,8 +3,9 @@
 !> A checkpoint lives in the group /checkpoint of the output file, in one of two slots
 !> (slot0, slot1; /checkpoint/current says which is complete, see output_checkpoint_s). A
 !> slot holds one group per owner, each with that owner's named datasets: entry
-!> 'owner/name' of checkpoint_m's record is /checkpoint/slotN/owner/name (integers as
-!> integers, a logical as 0/1 under a name ending in _flag; docs/output.md lists them).
+!> 'owner/name' of checkpoint_m's record is /checkpoint/slotN/owner/name, a scalar member
+!> name of the compound /checkpoint/slotN/owner/scalars (integers as integers, a logical as
+!> 0/1 under a name ending in _flag; docs/output.md lists them).
 !> /checkpoint's attribute layout (output_m's CHECKPOINT_LAYOUT) tells this layout from the
 !> positional one of earlier versions (slotN/counters, control, mesh, ...: arrays of reals
 !> told apart by position and length), which a restart refuses. A restart reads the last

@@ -7,7 +7,7 @@
 !> step_driver_t, adaptive_mesh_t, error_companions_t, run_t: docs/output.md lists them).
 !> An entry is reals or integers, a scalar or an array of rank 1 or 2; integers are kept as
 !> integers (int64), a logical as the integer 0 or 1 under a name ending in _flag.
-!> files/restart_m maps the record to the file's /checkpoint/slotN/<owner>/<name> and back.
+!> The files layer maps the record to the file's /checkpoint/slotN/<owner>/ and back.
 module checkpoint_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64

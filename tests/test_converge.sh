@@ -49,7 +49,8 @@ check "the figure is written" test -s exact/converge.png
 # 4096 modes: experiment 1's initial data are polynomials (the errors agree with 2^18 modes'
 # within 0.4 %, at a tenth of the time)
 "$PY" "$src/bench/converge_bands.py" compare exact --exact --modes 4096 --csv bands.csv > bands.out 2> bands.err
-check "converge_bands.py compare (exit 0): $(cat bands.err)" equals 0 "$?"
+status=$?  # taken at once: the $(...) in the message below would reset $?
+check "converge_bands.py compare (exit 0): $(cat bands.err)" equals 0 "$status"
 read -r n inside within u_out <<< "$("$PY" -c '
 import csv, sys
 rows = list(csv.DictReader(open("bands.csv")))

@@ -11,7 +11,8 @@ cd "$scratch" && rm -rf ./* || exit 1
 layers() { python3 "$src/tests/tools/layers.py" check "$@"; }
 
 layers "$src/src" > real.out 2> real.err
-check "src/ keeps the layer order (stderr: $(cat real.err))" equals 0 "$?"
+status=$?  # taken at once: the $(...) in the message below would reset $?
+check "src/ keeps the layer order (stderr: $(cat real.err))" equals 0 "$status"
 
 cp -r "$src/src" copy
 sed -i 's/^\(\s*module kinds_m\s*\)$/\1\n  use run_m, only: run_simulation/' copy/base/kinds_m.f90

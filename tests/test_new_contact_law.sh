@@ -46,7 +46,8 @@ open(table, "w").write("".join(text))
 listed = re.findall(r"^\d+\. `([^`]+)`", section, re.M)
 print("\n".join(p.replace("contact_<name>_m", name) for p in listed))
 PY
-check "the page's two blocks applied to the scratch tree ($(tail -3 edits.out))" equals 0 "$?"
+status=$?  # taken at once: the $(...) in the message below would reset $?
+check "the page's two blocks applied to the scratch tree ($(tail -3 edits.out))" equals 0 "$status"
 (cd tree && find . -type f | sort) > after.txt
 (cd "$src" && find src app tests bench docs input CMakeLists.txt -type f ! -path 'tests/reference/*' \
     | sed 's|^|./|' | sort) > before.txt
@@ -72,7 +73,8 @@ exe=build/rodcontact
 "$exe" "$src/input/impact.nml" --set contact.law="'spring3'" --set time.scheme="'euler'" \
     --set mesh.n_elements=100 --set time.t_end=0.3 --set output.prefix=spring3 --set output.quiet=.true. \
     > run.out 2> run.err
-check "the impact runs with contact.law = 'spring3' ($(tail -2 run.err))" equals 0 "$?"
+status=$?  # taken at once: the $(...) in the message below would reset $?
+check "the impact runs with contact.law = 'spring3' ($(tail -2 run.err))" equals 0 "$status"
 check "every series entry in contact has sigma(1,t) = -(3/eps)[u(1,t) - g]_+ (1e-10 relative)" \
     "$py" - spring3.h5 <<'PY'
 import sys, h5py, numpy as np

@@ -8,7 +8,7 @@
 !> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) comes back as
 !> values(s+1, n_snap), i.e. values(:, k) is snapshot k.
 module h5_read_m
-    use iso_c_binding, only: c_ptr, c_char, c_int, c_loc, c_associated
+    use iso_c_binding, only: c_ptr, c_char, c_loc
     use kinds_m, only: dp
     use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists, from_c_string
@@ -20,7 +20,7 @@ module h5_read_m
                     h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, h5aread_f, &
                     h5aexists_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tcopy_f, &
                     h5tget_class_f, h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, &
-                    H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, h5lexists_f, h5oopen_f, h5oclose_f, &
+                    H5T_NATIVE_DOUBLE, h5lexists_f, h5oopen_f, h5oclose_f, &
                     h5iget_type_f, H5I_DATASET_F
     implicit none
     private

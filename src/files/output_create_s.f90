@@ -178,9 +178,62 @@ contains
         call w%check(hdferr, 'h5dcreate_f '//path)
         call h5pclose_f(dcpl_id, hdferr)
         call w%check(hdferr, 'h5pclose_f (dataset creation) '//path)
-        call h5sclose_f(space_id, hdferr)
-        call w%check(hdferr, 'h5sclose_f '//path)
+        call close_spaces(w, path, space_id)
     end procedure writer_create_extendible
+
+    !> Grow extendible dataset dset_id (`what`) along its last dimension from `offset` to
+    !> offset + block(rank), and write values, block's elements in Fortran order, there; with
+    !> whole, as integers (whole numbers in values): an int32 dataset written from doubles
+    !> would make HDF5 allocate a conversion buffer at every write.
+    !> Arguments (w, dset_id, what, offset, block, values, whole): output_m's interface.
+    module procedure writer_append_rows
+        integer(hsize_t) :: new_dims(size(block)), start(size(block)), n
+        integer(hid_t) :: file_space, mem_space
+        integer :: hdferr, rank
+        logical :: integers
+
+        rank = size(block)
+        new_dims = block
+        new_dims(rank) = offset + block(rank)
+        start = 0
+        start(rank) = offset
+        call h5dset_extent_f(dset_id, new_dims, hdferr)
+        call w%check(hdferr, 'h5dset_extent_f '//what)
+        call h5dget_space_f(dset_id, file_space, hdferr)
+        call w%check(hdferr, 'h5dget_space_f '//what)
+        call h5sselect_hyperslab_f(file_space, H5S_SELECT_SET_F, start, block, hdferr)
+        call w%check(hdferr, 'h5sselect_hyperslab_f '//what)
+        call h5screate_simple_f(rank, block, mem_space, hdferr)
+        call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
+        n = product(block)
+        integers = .false.
+        if (present(whole)) integers = whole
+        if (integers) then
+            call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, nint(values(1:n)), block, hdferr, &
+                            mem_space_id=mem_space, file_space_id=file_space)
+        else
+            call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values(1:n), block, hdferr, &
+                            mem_space_id=mem_space, file_space_id=file_space)
+        end if
+        call w%check(hdferr, 'h5dwrite_f '//what)
+        call close_spaces(w, what, file_space, mem_space)
+    end procedure writer_append_rows
+
+    !> Close the dataspace space_id of `what` (for the message), and mem_space, a memory
+    !> dataspace for it.
+    subroutine close_spaces(w, what, space_id, mem_space)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: what
+        integer(hid_t), intent(in) :: space_id
+        integer(hid_t), intent(in), optional :: mem_space
+        integer :: hdferr
+
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f '//what)
+        if (.not. present(mem_space)) return
+        call h5sclose_f(mem_space, hdferr)
+        call w%check(hdferr, 'h5sclose_f (memory) '//what)
+    end subroutine close_spaces
 
     !> Create the group at `path` (its parent exists).
     module subroutine writer_make_group(w, path)
@@ -195,8 +248,8 @@ contains
         call w%check(hdferr, 'h5gclose_f '//path)
     end subroutine writer_make_group
 
-    !> A 1D dataset at `path` of type file_type (HDF5 converts the float64 values, whole
-    !> numbers for an integer type), written once and whole: dset_id, open.
+    !> A 1D dataset at `path` of type file_type (float64, or int32 from whole numbers),
+    !> written once and whole: dset_id, open.
     subroutine create_fixed(w, path, file_type, values, dset_id)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: path
@@ -211,11 +264,14 @@ contains
         call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr)
         call w%check(hdferr, 'h5dcreate_f '//path)
         if (size(values) > 0) then
-            call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values, [int(size(values), hsize_t)], hdferr)
+            if (file_type == H5T_STD_I32LE) then   ! no conversion buffer (append_rows)
+                call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, nint(values), [int(size(values), hsize_t)], hdferr)
+            else
+                call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values, [int(size(values), hsize_t)], hdferr)
+            end if
             call w%check(hdferr, 'h5dwrite_f '//path)
         end if
-        call h5sclose_f(space_id, hdferr)
-        call w%check(hdferr, 'h5sclose_f '//path)
+        call close_spaces(w, path, space_id)
     end subroutine create_fixed
 
     !> /events/t (float64) and /events/kind (int32, +1 onset, -1 release), n_events long

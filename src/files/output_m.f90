@@ -187,6 +187,15 @@ module output_m
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_create_native
 
+        module subroutine writer_append_rows(w, dset_id, what, offset, block, values, whole)
+            class(h5_writer_t), intent(inout) :: w
+            integer(hid_t), intent(in) :: dset_id
+            character(len=*), intent(in) :: what
+            integer(hsize_t), intent(in) :: offset, block(:)
+            real(dp), intent(in) :: values(*)
+            logical, intent(in), optional :: whole
+        end subroutine writer_append_rows
+
         module subroutine writer_make_group(w, path)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: path
@@ -393,8 +402,7 @@ contains
         if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: '//what//' on a closed writer')
     end subroutine writer_need_open
 
-    !> Append the buffered series entries to the /series datasets (an integer one converted
-    !> by HDF5 from the whole numbers of the buffer).
+    !> Append the buffered series entries to the /series datasets.
     subroutine writer_flush_series(w)
         class(h5_writer_t), intent(inout) :: w
         integer :: k
@@ -402,45 +410,10 @@ contains
         if (w%n_buf == 0) return
         do k = 1, N_SERIES
             call w%append_rows(w%series_ids(k), '/series/'//trim(SERIES(k)%name), w%n_series_written, &
-                               [int(w%n_buf, hsize_t)], w%buf(1:w%n_buf, k))
+                               [int(w%n_buf, hsize_t)], w%buf(1:w%n_buf, k), whole=SERIES(k)%is_integer)
         end do
         w%n_series_written = w%n_series_written + w%n_buf
         w%n_buf = 0
     end subroutine writer_flush_series
-
-    !> Grow extendible dataset dset_id (`what`) along its last dimension from `offset` to
-    !> offset + block(rank), and write values, block's elements in Fortran order, there.
-    subroutine writer_append_rows(w, dset_id, what, offset, block, values)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id
-        character(len=*), intent(in) :: what
-        integer(hsize_t), intent(in) :: offset
-        integer(hsize_t), intent(in) :: block(:)
-        real(dp), intent(in) :: values(*)
-        integer(hsize_t) :: new_dims(size(block)), start(size(block))
-        integer(hid_t) :: file_space, mem_space
-        integer :: hdferr, rank
-
-        rank = size(block)
-        new_dims = block
-        new_dims(rank) = offset + block(rank)
-        start = 0
-        start(rank) = offset
-        call h5dset_extent_f(dset_id, new_dims, hdferr)
-        call w%check(hdferr, 'h5dset_extent_f '//what)
-        call h5dget_space_f(dset_id, file_space, hdferr)
-        call w%check(hdferr, 'h5dget_space_f '//what)
-        call h5sselect_hyperslab_f(file_space, H5S_SELECT_SET_F, start, block, hdferr)
-        call w%check(hdferr, 'h5sselect_hyperslab_f '//what)
-        call h5screate_simple_f(rank, block, mem_space, hdferr)
-        call w%check(hdferr, 'h5screate_simple_f (memory) '//what)
-        call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values(1:product(block)), block, hdferr, &
-                        mem_space_id=mem_space, file_space_id=file_space)
-        call w%check(hdferr, 'h5dwrite_f '//what)
-        call h5sclose_f(mem_space, hdferr)
-        call w%check(hdferr, 'h5sclose_f (memory) '//what)
-        call h5sclose_f(file_space, hdferr)
-        call w%check(hdferr, 'h5sclose_f '//what)
-    end subroutine writer_append_rows
 
 end module output_m

@@ -339,7 +339,7 @@ contains
     subroutine writer_attr_array(w, name, values, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
-        real(dp), intent(in) :: values(:)
+        real(dp), intent(in), contiguous :: values(:)
         integer(hid_t), intent(in), optional :: on
         character(len=:), allocatable :: failed
 

@@ -12,12 +12,12 @@
 !> and on the end of the run. An accepted step adds its contact event to the event log,
 !> (adaptive steps) its level to the error estimator and its estimate to the controller's
 !> error sum, and its energy to the energy monitor. Fixed steps compute no estimate.
-!> Trying, judging and accepting one step: the submodule step_driver_trial_s.
+!> Choosing, trying, judging and accepting one step (take_step): the submodule
+!> step_driver_trial_s.
 module step_driver_m
     use kinds_m, only: dp
     use config_m, only: config_t, model_t, with_contact_mass
     use state_m, only: state_t, copy_state, keep_copy
-    use contact_law_m, only: contact_law_t
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t
@@ -25,7 +25,7 @@ module step_driver_m
     use error_estimator_m, only: error_estimator_t, energy_norm, MAX_LEVELS
     use step_control_m, only: step_controller_t
     use dense_output_m, only: lagrange_weights
-    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
+    use adaptive_mesh_m, only: adaptive_mesh_t, front_speed
     use remesh_m, only: remesh
     implicit none
     private
@@ -65,86 +65,27 @@ module step_driver_m
         procedure :: dense_level => driver_dense_level
         procedure :: dense_weights => driver_dense_weights
         procedure :: past_level => driver_past_level
-        procedure, private :: landing => driver_landing
-        procedure, private :: choose_step => driver_choose_step
-        procedure, private :: try_step => driver_try_step
-        procedure, private :: judge => driver_judge
-        procedure, private :: accept => driver_accept
-        procedure, private :: keep_level => driver_keep_level
-        procedure, private :: undo_step => driver_undo_step
     end type step_driver_t
 
-    !> One tried step of take_step: its size, where it started and ends, the contact state
-    !> it reached, its estimate and the contact event it crossed.
-    type :: trial_t
-        real(dp) :: dt = 0.0_dp             !< its size
-        real(dp) :: target = 0.0_dp         !< t_stop or the next snapshot time
-        logical :: lands = .false.          !< it ends on target
-        logical :: at_snapshot = .false.    !< it ends on a snapshot time
-        real(dp) :: t_before = 0.0_dp       !< the state's t before it
-        real(dp) :: dt_last = 0.0_dp        !< the state's dt_last before it
-        real(dp) :: gap_start = 0.0_dp      !< u(1) - g before it
-        real(dp) :: gap_end = 0.0_dp        !< the gap at its end (contact_state)
-        logical :: contact = .false.        !< the contact state at its end
-        logical :: flipped = .false.        !< it changed the contact state
-        real(dp) :: est = 0.0_dp            !< its error estimate
-        real(dp) :: err = -1.0_dp           !< est / (tol S); negative: no estimate
-        integer :: landings = 0             !< retries cut to end at a located event
-        real(dp) :: dt_land = 0.0_dp        !< the next such retry's size
-        !> the end of the last step that changed the contact state (landing)
-        real(dp) :: t_bound = 0.0_dp
-    end type trial_t
-
-    interface   ! trying one step and judging it (src/adaptivity/step_driver_trial_s.f90)
-        module subroutine driver_try_step(self, state, stepper, result, trial, failure)
+    interface   ! choosing, trying, judging and accepting one step (src/adaptivity/step_driver_trial_s.f90)
+        !> Take one accepted step from state towards t_stop (landing on it, or on t_snapshot
+        !> when that comes first; at_snapshot: the step ended there): choose a step, try it,
+        !> judge it (locate a contact event it crossed, reject it on its estimate) until one
+        !> is accepted. On a numerical failure, failure says which step and why ('' otherwise);
+        !> the state is then that of the failed step (a failed solve) or of the accepted step
+        !> (a non-finite energy).
+        module subroutine driver_take_step(self, state, stepper, monitor, result, t_stop, at_snapshot, failure, &
+                                           t_snapshot)
             class(step_driver_t), intent(inout) :: self
             type(state_t), intent(inout) :: state
             type(stepper_t), intent(inout) :: stepper
-            type(step_result_t), intent(inout) :: result
-            type(trial_t), intent(inout) :: trial
-            character(len=*), intent(inout) :: failure
-        end subroutine driver_try_step
-
-        module subroutine driver_judge(self, state, stepper, result, trial, retry)
-            class(step_driver_t), intent(inout) :: self
-            type(state_t), intent(inout) :: state
-            type(stepper_t), intent(inout) :: stepper
-            type(step_result_t), intent(in) :: result
-            type(trial_t), intent(inout) :: trial
-            logical, intent(out) :: retry
-        end subroutine driver_judge
-
-        module subroutine driver_landing(self, state, result, law, trial, cut)
-            class(step_driver_t), intent(in) :: self
-            type(state_t), intent(in) :: state
-            type(step_result_t), intent(in) :: result
-            class(contact_law_t), intent(in) :: law
-            type(trial_t), intent(inout) :: trial
-            logical, intent(out) :: cut
-        end subroutine driver_landing
-
-        module subroutine driver_accept(self, state, law, monitor, result, trial, failure)
-            class(step_driver_t), intent(inout) :: self
-            type(state_t), intent(inout) :: state
-            class(contact_law_t), intent(in) :: law
             type(energy_monitor_t), intent(inout) :: monitor
-            type(step_result_t), intent(in) :: result
-            type(trial_t), intent(in) :: trial
-            character(len=*), intent(inout) :: failure
-        end subroutine driver_accept
-
-        module subroutine driver_keep_level(self, state, trial)
-            class(step_driver_t), intent(inout) :: self
-            type(state_t), intent(in) :: state
-            type(trial_t), intent(in) :: trial
-        end subroutine driver_keep_level
-
-        module subroutine driver_undo_step(self, stepper, result, state)
-            class(step_driver_t), intent(in) :: self
-            type(stepper_t), intent(inout) :: stepper
-            type(step_result_t), intent(in) :: result
-            type(state_t), intent(inout) :: state
-        end subroutine driver_undo_step
+            type(step_result_t), intent(inout) :: result
+            real(dp), intent(in) :: t_stop
+            logical, intent(out) :: at_snapshot
+            character(len=*), intent(out) :: failure
+            real(dp), intent(in), optional :: t_snapshot   !< the next snapshot time (absent: none)
+        end subroutine driver_take_step
     end interface
 
 contains
@@ -218,86 +159,6 @@ contains
 
         control = self%control
     end function driver_controller
-
-    !> Take one accepted step from state towards t_stop (landing on it, or on t_snapshot
-    !> when that comes first; at_snapshot: the step ended there): choose a step, try it,
-    !> judge it (locate a contact event it crossed, reject it on its estimate) until one
-    !> is accepted. On a numerical failure, failure says which step and why ('' otherwise);
-    !> the state is then that of the failed step (a failed solve) or of the accepted step
-    !> (a non-finite energy).
-    subroutine driver_take_step(self, state, stepper, monitor, result, t_stop, at_snapshot, failure, t_snapshot)
-        class(step_driver_t), intent(inout) :: self
-        type(state_t), intent(inout) :: state
-        type(stepper_t), intent(inout) :: stepper
-        type(energy_monitor_t), intent(inout) :: monitor
-        type(step_result_t), intent(inout) :: result
-        real(dp), intent(in) :: t_stop
-        logical, intent(out) :: at_snapshot
-        character(len=*), intent(out) :: failure
-        real(dp), intent(in), optional :: t_snapshot   !< the next snapshot time (absent: none)
-        type(trial_t) :: trial
-        logical :: retry
-
-        failure = ''
-        do
-            call self%choose_step(state, t_stop, trial, t_snapshot)
-            call self%try_step(state, stepper, result, trial, failure)
-            at_snapshot = trial%at_snapshot
-            if (.not. result%ok) return   ! failure says why
-            ! fixed steps compute no estimate (the run's error: &output error_estimate)
-            if (.not. self%adaptive) exit
-            call self%judge(state, stepper, result, trial, retry)
-            if (.not. retry) exit
-        end do
-        call self%accept(state, stepper%law, monitor, result, trial, failure)
-    end subroutine driver_take_step
-
-    !> The next step (trial%dt): &time dt or the controller's proposal (at most the scheme's
-    !> step-ratio bound times the last step; on an adaptive mesh at most FRONT_CFL of its
-    !> smallest elements for the fastest front), shortened to end on the next snapshot time
-    !> or t_stop (target; lands). Adaptive steps that would leave less than a step to the
-    !> target take half the distance instead, so no tiny step follows. The retry of a step
-    !> that changed the contact state (landings > 0) ends at the located event (dt_land).
-    subroutine driver_choose_step(self, state, t_stop, trial, t_snapshot)
-        class(step_driver_t), intent(in) :: self
-        type(state_t), intent(in) :: state
-        real(dp), intent(in) :: t_stop
-        type(trial_t), intent(inout) :: trial
-        real(dp), intent(in), optional :: t_snapshot
-        real(dp) :: remaining, slack, dt
-
-        if (self%adaptive) then
-            dt = self%control%proposal(state%dt_last)
-            dt = min(max(dt, self%dt_min), self%dt_max)
-            if (self%mesh_adaptive .and. self%v_front > 0.0_dp) &
-                dt = max(min(dt, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)
-        else
-            dt = self%dt
-        end if
-        slack = 1.0e-9_dp * dt
-        trial%target = t_stop
-        trial%at_snapshot = .false.
-        if (present(t_snapshot)) then
-            ! a snapshot time that is t_stop to round-off is the target (not t_stop): so
-            ! a run to t_stop takes the steps a longer run takes up to there
-            trial%at_snapshot = t_snapshot <= t_stop + slack
-            if (trial%at_snapshot) trial%target = t_snapshot
-        end if
-        remaining = trial%target - state%t
-        trial%lands = dt >= remaining - slack
-        if (trial%lands) then
-            if (self%adaptive .or. dt > remaining + slack) dt = remaining
-        else if (self%adaptive .and. dt > 0.5_dp * remaining) then
-            dt = 0.5_dp * remaining
-        end if
-        trial%dt = dt
-        trial%at_snapshot = trial%at_snapshot .and. trial%lands
-        if (trial%landings > 0) then
-            trial%dt = trial%dt_land
-            trial%lands = .false.
-            trial%at_snapshot = .false.
-        end if
-    end subroutine driver_choose_step
 
     !> The interpolant at time t of the last accepted step [t_{n-1}, t_n] (state holds X^n;
     !> dense_output_m): the polynomial through the levels since the last contact event, p+1

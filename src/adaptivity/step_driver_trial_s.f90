@@ -1,7 +1,7 @@
-!> Trying one step and judging it (step_driver_m's take_step): try_step, judge (with
+!> Taking one step (step_driver_m's take_step): choose_step, try_step, judge (with
 !> landing: where a contact event the step crossed lies, and whether the step is cut to
 !> end there), accept and keep_level, undo_step. A submodule of step_driver_m, so that it
-!> works on the driver's private state.
+!> works on the driver's private state; only take_step is seen outside it.
 submodule (step_driver_m) step_driver_trial_s
     use reals_m, only: equal
     use iso_fortran_env, only: error_unit
@@ -9,14 +9,103 @@ submodule (step_driver_m) step_driver_trial_s
     use state_m, only: advance_time, land_on
     use events_m, only: EVENT_ONSET, EVENT_RELEASE, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
     use event_location_m, only: contact_state, gap_event_time, release_time
-    use error_estimator_m, only: energy_norm
+    use contact_law_m, only: contact_law_t
+    use adaptive_mesh_m, only: FRONT_CFL
     implicit none
+
+    !> One tried step of take_step: its size, where it started and ends, the contact state
+    !> it reached, its estimate and the contact event it crossed.
+    type :: trial_t
+        real(dp) :: dt = 0.0_dp             !< its size
+        real(dp) :: target = 0.0_dp         !< t_stop or the next snapshot time
+        logical :: lands = .false.          !< it ends on target
+        logical :: at_snapshot = .false.    !< it ends on a snapshot time
+        real(dp) :: t_before = 0.0_dp       !< the state's t before it
+        real(dp) :: dt_last = 0.0_dp        !< the state's dt_last before it
+        real(dp) :: gap_start = 0.0_dp      !< u(1) - g before it
+        real(dp) :: gap_end = 0.0_dp        !< the gap at its end (contact_state)
+        logical :: contact = .false.        !< the contact state at its end
+        logical :: flipped = .false.        !< it changed the contact state
+        real(dp) :: est = 0.0_dp            !< its error estimate
+        real(dp) :: err = -1.0_dp           !< est / (tol S); negative: no estimate
+        integer :: landings = 0             !< retries cut to end at a located event
+        real(dp) :: dt_land = 0.0_dp        !< the next such retry's size
+        !> the end of the last step that changed the contact state (landing)
+        real(dp) :: t_bound = 0.0_dp
+    end type trial_t
 
 contains
 
+    !> take_step (step_driver_m's interface names its arguments): choose a step, try it and
+    !> judge it until one is accepted.
+    module procedure driver_take_step
+        type(trial_t) :: trial
+        logical :: retry
+
+        failure = ''
+        do
+            call choose_step(self, state, t_stop, trial, t_snapshot)
+            call try_step(self, state, stepper, result, trial, failure)
+            at_snapshot = trial%at_snapshot
+            if (.not. result%ok) return   ! failure says why
+            ! fixed steps compute no estimate (the run's error: &output error_estimate)
+            if (.not. self%adaptive) exit
+            call judge(self, state, stepper, result, trial, retry)
+            if (.not. retry) exit
+        end do
+        call accept(self, state, stepper%law, monitor, result, trial, failure)
+    end procedure driver_take_step
+
+    !> The next step (trial%dt): &time dt or the controller's proposal (at most the scheme's
+    !> step-ratio bound times the last step; on an adaptive mesh at most FRONT_CFL of its
+    !> smallest elements for the fastest front), shortened to end on the next snapshot time
+    !> or t_stop (target; lands). Adaptive steps that would leave less than a step to the
+    !> target take half the distance instead, so no tiny step follows. The retry of a step
+    !> that changed the contact state (landings > 0) ends at the located event (dt_land).
+    subroutine choose_step(self, state, t_stop, trial, t_snapshot)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: t_stop
+        type(trial_t), intent(inout) :: trial
+        real(dp), intent(in), optional :: t_snapshot
+        real(dp) :: remaining, slack, dt
+
+        if (self%adaptive) then
+            dt = self%control%proposal(state%dt_last)
+            dt = min(max(dt, self%dt_min), self%dt_max)
+            if (self%mesh_adaptive .and. self%v_front > 0.0_dp) &
+                dt = max(min(dt, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)
+        else
+            dt = self%dt
+        end if
+        slack = 1.0e-9_dp * dt
+        trial%target = t_stop
+        trial%at_snapshot = .false.
+        if (present(t_snapshot)) then
+            ! a snapshot time that is t_stop to round-off is the target (not t_stop): so
+            ! a run to t_stop takes the steps a longer run takes up to there
+            trial%at_snapshot = t_snapshot <= t_stop + slack
+            if (trial%at_snapshot) trial%target = t_snapshot
+        end if
+        remaining = trial%target - state%t
+        trial%lands = dt >= remaining - slack
+        if (trial%lands) then
+            if (self%adaptive .or. dt > remaining + slack) dt = remaining
+        else if (self%adaptive .and. dt > 0.5_dp * remaining) then
+            dt = 0.5_dp * remaining
+        end if
+        trial%dt = dt
+        trial%at_snapshot = trial%at_snapshot .and. trial%lands
+        if (trial%landings > 0) then
+            trial%dt = trial%dt_land
+            trial%lands = .false.
+            trial%at_snapshot = .false.
+        end if
+    end subroutine choose_step
+
     !> Try the step of trial%dt from state (adaptive steps: the state saved before it):
     !> where it started, and the contact state it reached; failure: the solve failed.
-    module subroutine driver_try_step(self, state, stepper, result, trial, failure)
+    subroutine try_step(self, state, stepper, result, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
         type(stepper_t), intent(inout) :: stepper
@@ -40,13 +129,13 @@ contains
         trial%flipped = trial%contact .neqv. self%in_contact
         trial%est = 0.0_dp
         trial%err = -1.0_dp
-    end subroutine driver_try_step
+    end subroutine try_step
 
     !> Judge a tried adaptive step: its estimate (none across a contact event); a contact
     !> event it crossed located (landing), the step taken back to end there (retry); a step
     !> whose estimate exceeds the tolerance taken back to be retried smaller (retry), unless
     !> it is at dt_min (then accepted and counted as forced).
-    module subroutine driver_judge(self, state, stepper, result, trial, retry)
+    subroutine judge(self, state, stepper, result, trial, retry)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
         type(stepper_t), intent(inout) :: stepper
@@ -61,15 +150,15 @@ contains
             trial%err = self%control%ratio(trial%est)
         end if
         if ((trial%flipped .or. trial%landings > 0) .and. trial%landings < MAX_LANDINGS) then
-            call self%landing(state, result, stepper%law, trial, cut)
+            call landing(self, state, result, stepper%law, trial, cut)
             if (cut) then
-                call self%undo_step(stepper, result, state)
+                call undo_step(self, stepper, result, state)
                 trial%landings = trial%landings + 1
                 return
             end if
         end if
         if (trial%err > 1.0_dp .and. trial%dt > self%dt_min) then
-            call self%undo_step(stepper, result, state)
+            call undo_step(self, stepper, result, state)
             call self%control%reject(trial%dt, trial%err)
             trial%landings = 0
             return
@@ -80,7 +169,7 @@ contains
             if (.not. self%warned_forced) call warn_forced(state%t, self%dt_min)
             self%warned_forced = .true.
         end if
-    end subroutine driver_judge
+    end subroutine judge
 
     !> A tried adaptive step from t_before of size dt that changed the contact state (flipped),
     !> or a step cut to end at an event that did not (the event is later): locate the event
@@ -90,7 +179,7 @@ contains
     !> step to its start).
     !> t_bound: the end of the last step that changed the contact state (set on a flipped
     !> step), beyond which the event is not sought.
-    module subroutine driver_landing(self, state, result, law, trial, cut)
+    subroutine landing(self, state, result, law, trial, cut)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
         type(step_result_t), intent(in) :: result
@@ -128,11 +217,11 @@ contains
                 cut = cut .and. found .and. t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
             end if
         end associate
-    end subroutine driver_landing
+    end subroutine landing
 
     !> The tried step is accepted: its contact event into the log, its level into the
     !> estimator and its estimate to the controller (keep_level), its energy to the monitor.
-    module subroutine driver_accept(self, state, law, monitor, result, trial, failure)
+    subroutine accept(self, state, law, monitor, result, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
         class(contact_law_t), intent(in) :: law
@@ -157,18 +246,18 @@ contains
             if (self%adaptive) call self%estimator%reset()
         end if
         self%in_contact = trial%contact
-        call self%keep_level(state, trial)
+        call keep_level(self, state, trial)
         call monitor%observe(state, step_changed=.not. equal(trial%dt, trial%dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
             failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
             return
         end if
         if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))
-    end subroutine driver_accept
+    end subroutine accept
 
     !> The accepted level into the estimator (adaptive steps; fixed steps with dense output)
     !> and the step's estimate and size to the controller (adaptive steps).
-    module subroutine driver_keep_level(self, state, trial)
+    subroutine keep_level(self, state, trial)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         type(trial_t), intent(in) :: trial
@@ -191,10 +280,10 @@ contains
         if (trial%err >= 0.0_dp) call self%control%add_estimate(trial%est)
         ! a step cut to end at an event, and the event's step, keep the proposal made before it
         call self%control%accept(trial%dt, trial%err, shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
-    end subroutine driver_keep_level
+    end subroutine keep_level
 
     !> A rejected step: the state as before it, and the step's contact count taken back.
-    module subroutine driver_undo_step(self, stepper, result, state)
+    subroutine undo_step(self, stepper, result, state)
         class(step_driver_t), intent(in) :: self
         type(stepper_t), intent(inout) :: stepper
         type(step_result_t), intent(in) :: result
@@ -208,7 +297,7 @@ contains
                 state%w = e%levels(:, 1:, newest)
             end associate
         end if
-    end subroutine driver_undo_step
+    end subroutine undo_step
 
     !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
     subroutine warn_forced(t, dt_min)

@@ -68,7 +68,8 @@ module error_companion_m
         integer :: p = 1                   !< the scheme's order
         real(dp) :: dt_fixed = 0.0_dp      !< &time dt of fixed steps (0: adaptive steps)
         type(companion_t) :: pair(N_COMPANIONS)
-        !> why a companion has stopped ('': none has): the estimates are NaN from then on
+        !> a companion has stopped (failure says why): the estimates are NaN from then on
+        logical :: failed = .false.
         character(len=320) :: failure = ''
         integer :: n_since = 0             !< the run's steps since the last snapshot
         !> the last estimate (values(k, part): field OUTPUT_ORDER(k))
@@ -214,7 +215,7 @@ contains
         type(state_t), intent(inout) :: level
         real(dp) :: dt
 
-        if (self%failure /= '') return
+        if (self%failed) return
         associate (c => self%pair(j))
             ! fixed steps: exactly m dt, so that every step over m reuses one factored system
             if (self%dt_fixed > 0.0_dp) then
@@ -248,7 +249,9 @@ contains
         type(error_companions_t), intent(inout) :: self
         character(len=*), intent(in) :: message
 
-        if (self%failure == '') self%failure = message
+        if (self%failed) return
+        self%failed = .true.
+        self%failure = message
     end subroutine stop_companions
 
     !> The estimate for the run's level in state (a snapshot): values(k, part), the relative
@@ -267,7 +270,7 @@ contains
                     call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
             end associate
         end do
-        if (self%failure /= '') then
+        if (self%failed) then
             values = ieee_value(1.0_dp, ieee_quiet_nan)
             self%last = values
             return
@@ -285,16 +288,6 @@ contains
         end if
         self%last = values
     end subroutine companions_estimate
-
-    !> log2(coarse / fine) of two successive differences of a ladder refined by 2, clamped to
-    !> [ORDER_MIN, ORDER_MAX] (ORDER_MIN: also when they vanish).
-    pure real(dp) function observed_order(fine, coarse) result(order)
-        real(dp), intent(in) :: fine, coarse
-
-        order = ORDER_MIN
-        if (fine > 0.0_dp .and. coarse > 0.0_dp) &
-            order = min(max(log(coarse / fine) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
-    end function observed_order
 
     !> The L2 norm over the rod of the P1 function with nodal values x: on a uniform mesh
     !> (weights absent) up to the factor sqrt(h) (the trapezoidal rule; the factor cancels in
@@ -342,7 +335,7 @@ contains
                 call ckpt%put(p//'/queue_t', c%queue_t)
             end associate
         end do
-        call ckpt%put('error_companions/failed', self%failure /= '')
+        call ckpt%put('error_companions/failed', self%failed)
         call ckpt%put('error_companions/n_since', self%n_since)
     end subroutine companions_save_checkpoint
 
@@ -430,7 +423,9 @@ contains
             d = field_values(self%pair(COMP_D)%ahead, OUTPUT_ORDER(k))
             d1 = norm(a(a_on_c) - x(x_on_c), weights_c)
             d2 = norm(c - a(a_on_c), weights_c)
-            r = observed_order(d1, d2)
+            ! the observed order log2(d2 / d1), ORDER_MIN also when a difference vanishes
+            r = ORDER_MIN
+            if (d1 > 0.0_dp .and. d2 > 0.0_dp) r = min(max(log(d2 / d1) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
             ! a fine difference smaller than the coarse one allows (r clamped at ORDER_MAX):
             ! the coarse pair's extrapolation, d2 / 2^r, is the estimate's size
             total = (a - x(x_on_a)) / (2.0_dp**r - 1.0_dp)

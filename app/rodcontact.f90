@@ -4,7 +4,9 @@
 !>   rodcontact < input.nml      namelist on standard input
 !>   rodcontact input.nml        namelist file as argument ('-' for standard input)
 !>   rodcontact input.nml --set group.variable=value ...   overrides after the file
-!>   rodcontact --summary file.h5 ... | --summary-header   one CSV row per run
+!>   rodcontact --summary file.h5 ... | --summary-header [file.h5]   one CSV row per run
+!>   rodcontact --events file.h5 ...                       one CSV row per contact event
+!>     (in the run's units: SI with &material; --nondimensional: the file's own values)
 !>   rodcontact --check input.nml [--set ...]              read and validate only: exit 0 or 2
 !>   rodcontact --help | --version
 program rodcontact
@@ -14,34 +16,20 @@ program rodcontact
     use validate_m, only: validate_config
     use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
-    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, write_event_rows
+    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, write_event_rows, &
+                         file_in_si
     use errors_m, only: fatal, EXIT_INPUT
     use version_m, only: PROGRAM_VERSION, VERSION_LINE
     implicit none
     type(config_t) :: cfg
-    character(len=:), allocatable :: source, file, problem
+    character(len=:), allocatable :: source, table
     integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
     integer :: k, max_len
-    logical :: check_only, events
+    logical :: check_only, nondimensional
 
-    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, events)
-    if (size(summary_args) > 0) then
-        ! every file is checked before any row is written: a bad one is an input error
-        do k = 1, size(summary_args)
-            file = argument(summary_args(k))
-            problem = summary_problem(file)
-            if (problem /= '') call fatal(EXIT_INPUT, 'command line', "--summary: '" // file // "': " // &
-                problem // '; give rodcontact output files (<prefix>.h5 or <prefix>.h5.part)')
-        end do
-        ! --events: a header, then one row per contact event of each file
-        if (events) write (output_unit, '(a)') events_header()
-        do k = 1, size(summary_args)
-            if (events) then
-                call write_event_rows(output_unit, summarise_file(argument(summary_args(k))))
-            else
-                write (output_unit, '(a)') summary_row(summarise_file(argument(summary_args(k))))
-            end if
-        end do
+    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
+    if (table /= '') then
+        call write_table(table, summary_args, nondimensional)
         stop
     end if
     max_len = max_argument_length()
@@ -62,16 +50,51 @@ program rodcontact
 
 contains
 
+    !> --summary, --events or --summary-header (table) of the files args, in their input's
+    !> units (file_in_si), or nondimensional. Every file is checked before any row is
+    !> written: a bad one, or one of the other unit system than the first, is an input error.
+    subroutine write_table(table, args, nondimensional)
+        character(len=*), intent(in) :: table
+        integer, intent(in) :: args(:)
+        logical, intent(in) :: nondimensional
+        character(len=:), allocatable :: file, problem
+        character(len=*), parameter :: SYSTEM(0:1) = ['nondimensional', 'SI            ']
+        logical :: si(size(args))
+        integer :: k
+
+        do k = 1, size(args)
+            file = argument(args(k))
+            problem = summary_problem(file)
+            if (problem /= '') call fatal(EXIT_INPUT, 'command line', table // ": '" // file // "': " // &
+                problem // '; give rodcontact output files (<prefix>.h5 or <prefix>.h5.part)')
+            si(k) = file_in_si(file) .and. .not. nondimensional
+            if (si(k) .neqv. si(1)) call fatal(EXIT_INPUT, 'command line', table // ": '" // file // "' is " // &
+                trim(SYSTEM(merge(1, 0, si(k)))) // ", '" // argument(args(1)) // "' " // &
+                trim(SYSTEM(merge(1, 0, si(1)))) // '; one table holds one unit system: give --nondimensional')
+        end do
+        if (table == '--summary-header') write (output_unit, '(a)') summary_header(any(si))
+        if (table == '--events') write (output_unit, '(a)') events_header(any(si))
+        do k = 1, size(args)
+            if (table == '--events') then
+                call write_event_rows(output_unit, summarise_file(argument(args(k)), nondimensional))
+            else if (table == '--summary') then
+                write (output_unit, '(a)') summary_row(summarise_file(argument(args(k)), nondimensional))
+            end if
+        end do
+    end subroutine write_table
+
     !> The input source ('-' = standard input), where the --set values are (argument
     !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
-    !> the arguments that are files of --summary (every argument after it; none without it),
-    !> and whether --check was given. --help, --version and --summary-header print and stop.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, events)
+    !> the arguments that are files of --summary, --events or --summary-header (table: which;
+    !> every argument after it but --nondimensional; none without it), and whether --check
+    !> was given. --help and --version print and stop.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
         character(len=:), allocatable, intent(out) :: source
         integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
         integer, allocatable, intent(out) :: summary_args(:)
         logical, intent(out) :: check_only
-        logical, intent(out) :: events     !< --events: the files' event rows instead of --summary
+        character(len=:), allocatable, intent(out) :: table
+        logical, intent(out) :: nondimensional
         character(len=:), allocatable :: arg
         integer :: n_args, i, k
         logical :: source_given
@@ -80,7 +103,8 @@ contains
         source = '-'
         source_given = .false.
         check_only = .false.
-        events = .false.
+        table = ''
+        nondimensional = .false.
         allocate (set_arg(0), set_skip(0), summary_args(0))
         i = 1
         do while (i <= n_args)
@@ -92,17 +116,19 @@ contains
             case ('-V', '--version')
                 write (output_unit, '(a)') VERSION_LINE
                 stop
-            case ('--summary-header')
-                write (output_unit, '(a)') summary_header()
-                stop
-            case ('--summary', '--events')
-                if (i == n_args) call fatal(EXIT_INPUT, 'command line', arg // ' needs a file: ' // &
-                                            'rodcontact ' // arg // ' <prefix>.h5 [more files ...]')
+            case ('--summary', '--events', '--summary-header')
                 if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
                     arg // ' takes only HDF5 files, no input file, --set or --check')
-                events = arg == '--events'
-                summary_args = [(k, k = i + 1, n_args)]
+                table = arg
+                do k = i + 1, n_args
+                    if (argument(k) == '--nondimensional') nondimensional = .true.
+                    if (argument(k) /= '--nondimensional') summary_args = [summary_args, k]
+                end do
+                if (size(summary_args) == 0 .and. arg /= '--summary-header') call fatal(EXIT_INPUT, &
+                    'command line', arg // ' needs a file: rodcontact ' // arg // ' <prefix>.h5 [more files ...]')
                 exit
+            case ('--nondimensional')
+                nondimensional = .true.
             case ('--check')
                 check_only = .true.
             case ('--set')
@@ -116,6 +142,8 @@ contains
             end select
             i = i + 1
         end do
+        if (nondimensional .and. table == '') call fatal(EXIT_INPUT, 'command line', &
+            '--nondimensional is for --summary, --events and --summary-header')
     end subroutine parse_command_line
 
     !> Argument i, `arg`, names no option: '--set=X' (appended to set_arg, set_skip), or the
@@ -134,7 +162,7 @@ contains
         end if
         if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', "unknown option '" // &
             arg // "'; allowed: --set group.variable=value, --summary file.h5, --summary-header, --events " // &
-            'file.h5, --check, --help, --version, and one input file')
+            'file.h5, --nondimensional, --check, --help, --version, and one input file')
         if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
             "' after '" // source // "'; give one input file (or none: standard input)")
         source = arg
@@ -183,10 +211,12 @@ contains
             '                             time error estimate, contact onsets and releases (count,', &
             '                             first and last time);', &
             '                             a missing, unreadable or non-rodcontact file exits 2', &
-            '  rodcontact --summary-header  the CSV header of --summary (see docs/scans.md)', &
+            '  rodcontact --summary-header [f.h5]  the CSV header of --summary (see docs/scans.md)', &
             '  rodcontact --events f.h5 [g.h5 ...]', &
             '                             the contact events of /events, one CSV row each:', &
-            '                             file,event,kind,t (kind: onset or release)', &
+            '                             file,event,kind,t [s] (kind: onset or release)', &
+            '                             units named per column: SI with &material, else [1];', &
+            '                             --nondimensional: the file''s own values', &
             '  rodcontact --help          this text', &
             '  rodcontact --version       the program version', &
             '', &

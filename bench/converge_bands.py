@@ -42,7 +42,7 @@ def read_rows(path):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     for r in rows:
-        for c in converge.COLUMNS[1:-1]:
+        for c in converge.COLUMNS[1:-2]:     # the numbers: not status, units
             r[c] = float(r[c])
     return rows
 

@@ -5,7 +5,7 @@
 # scripts/converge.sh".
 #
 #   scripts/converge.sh INPUT [--set group.variable=value ...] [--refine space|time|both]
-#                       [--levels N] [--ratio R] [--out DIR] [-j J]
+#                       [--levels N] [--ratio R] [--out DIR] [-j J] [--nondimensional]
 #
 # Level k = 0 .. N-1 is INPUT (with the --set values) with
 #   space:  mesh.n_elements = n * R^k (rounded)
@@ -24,11 +24,13 @@
 #          --ratio R       refinement ratio, > 1 (default 2)
 #          --out DIR       where the levels and the results go (default out/converge_<input>)
 #          -j J            runs at once (default: the number of cores)
+#          --nondimensional  the table and figure in the files' own nondimensional values
+#                          (default: the input's units, SI with &material, named in each row)
 #          --exe PATH      the rodcontact executable (default: $RODCONTACT, else build/rodcontact
 #                          in a source tree, PREFIX/bin/rodcontact installed: scripts/lib/find_rodcontact.sh)
 # Each level is a one-point scan of scripts/scan.sh in DIR/level_<k>/ (its file
 # point_0000.h5); a rerun of the same command reuses the levels that are complete.
-# Writes DIR/converge.csv (quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status)
+# Writes DIR/converge.csv (quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status,units)
 # and DIR/converge.png, and prints the table (scalars, and each field's largest band).
 # Exit status: 0 done; 1 a level failed (see DIR/level_<k>/); 2 bad usage or input; 130/143
 # interrupted by INT/TERM (the running levels are stopped; rerun the same command to resume).
@@ -55,6 +57,7 @@ levels=3
 ratio=2
 exe=$("$repo_root/scripts/lib/find_rodcontact.sh")
 user_sets=()
+nondimensional=()
 while (($# > 0)); do
     case $1 in
         --set) (($# >= 2)) || die "--set needs group.variable=value"; user_sets+=("$2"); shift 2 ;;
@@ -72,6 +75,7 @@ while (($# > 0)); do
         --jobs=*) jobs=${1#--jobs=}; shift ;;
         --exe) (($# >= 2)) || die "--exe needs a path"; exe=$2; shift 2 ;;
         --exe=*) exe=${1#--exe=}; shift ;;
+        --nondimensional) nondimensional=(--nondimensional); shift ;;
         -h|--help) usage; exit 0 ;;
         -*) die "unknown option '$1'; see scripts/converge.sh --help" ;;
         *) [[ -z $input ]] || die "a second input file '$1' after '$input'"
@@ -242,4 +246,4 @@ files=()
 for ((k = 0; k < levels; k++)); do
     files+=("$out/level_$k/point_0000.h5")
 done
-"$PY" "$repo_root/scripts/lib/converge.py" "$out" --refine "$refine" "${files[@]}"
+"$PY" "$repo_root/scripts/lib/converge.py" "$out" --refine "$refine" "${nondimensional[@]}" "${files[@]}"

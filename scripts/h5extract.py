@@ -2,32 +2,38 @@
 """Text export of rodcontact HDF5 files for gnuplot and other tools (any run file: complete,
 failed, interrupted or still running), and the data of the paper's Figures 2-7.
 
-    <python with h5py> scripts/h5extract.py series   RUN.h5 [--datasets t,energy,...] [--every K] [--si]
-    <python with h5py> scripts/h5extract.py snapshot RUN.h5 --time T [--fields u,theta,...] [--si]
+    <python with h5py> scripts/h5extract.py series   RUN.h5 [--datasets t,energy,...] [--every K] [UNITS]
+    <python with h5py> scripts/h5extract.py snapshot RUN.h5 --time T [--fields u,theta,...] [UNITS]
+    <python with h5py> scripts/h5extract.py events   RUN.h5 [UNITS]
     <python with h5py> scripts/h5extract.py matrix   RUN.h5 --field F [--format columns|nonuniform]
-                                                     [--t-max T] [--si]
+                                                     [--t-max T] [UNITS]
     <python with h5py> scripts/h5extract.py figures  OUT_DIR DATA_DIR
     <python with h5py> scripts/h5extract.py OUT_DIR DATA_DIR          (the same as figures)
 
 series    the /series datasets as columns (all, in the file's order with t first, or the
           chosen ones), one row per entry; --every K keeps every K-th row (and the last).
-snapshot  the snapshot nearest to time T: x, then one column per field (all of /snapshots,
-          or the chosen ones). The header and stderr say which time was taken.
+snapshot  the snapshot nearest to time T (in the output's units: seconds for a run with
+          &material): x, then one column per field (all of /snapshots, or the chosen ones).
+          The header and stderr say which time was taken.
+events    the contact events (/events): t and kind (+1 onset, -1 release), one row each.
 matrix    one field over (x, t), for gnuplot's splot. --format columns (default): lines
           'x t value', one block per snapshot, blocks separated by a blank line:
               splot 'theta.dat' using 1:2:3 with pm3d
           --format nonuniform: gnuplot's nonuniform matrix (first line: the number of nodes
           and x; then one line per snapshot: t and the values):
               splot 'theta.mat' nonuniform matrix using 1:2:3 with pm3d
-          --t-max T keeps the snapshots at t <= T.
---si      values in SI units (si_factor and si_units of each dataset; files of runs with
-          &material only).
+          --t-max T keeps the snapshots at t <= T (in the output's units).
+UNITS     the values in the units of the run's input, by default: SI for a run with
+          &material (si_factor and si_units of each dataset), else nondimensional.
+          --nondimensional: the file's own (nondimensional) values; --si: SI, refused for a
+          file without SI scales.
 -o FILE   write to FILE instead of standard output.
 
 The text modes start with comment lines ('#': gnuplot and numpy.loadtxt skip them): the
-file, its status, and one line naming every column with its units, e.g.
+file, its status, each column's long_name and one line naming every column with its units,
+e.g. (a run without &material; with it: # t [s] energy [J/m^2] u_end [m])
     # t [1] energy [1] u_end [1]
-('1': nondimensional; the long_name of each dataset says its scale, see docs/output.md).
+('1': nondimensional; the long_name says which scale of docs/output.md it is measured in).
 
 figures   OUT_DIR holds exp1.h5, exp1_varpi05.h5, exp1_varpi1.h5, exp2.h5, exp3.h5 (as
 written by scripts/paper/figures.sh). DATA_DIR receives
@@ -70,7 +76,7 @@ from plotdata import colours  # noqa: E402
 import rodrun  # noqa: E402
 from textfiles import fmt_time, gnuplot_assignment, write_columns  # noqa: E402
 
-MODES = ("series", "snapshot", "matrix", "figures")
+MODES = ("series", "snapshot", "events", "matrix", "figures")
 
 
 class UsageError(Exception):
@@ -96,6 +102,13 @@ def units_of(d, si):
         return rodrun.units(d, si)
     except rodrun.RunFileError as exc:
         raise UsageError(f"--si: {exc}")
+
+
+def in_si(f, a):
+    """Whether the values go out in SI: --si, --nondimensional, else the run's input units."""
+    if a.si and a.nondimensional:
+        raise UsageError("--si and --nondimensional exclude each other")
+    return a.si or (not a.nondimensional and rodrun.in_si(f))
 
 
 def header(out, f, path, what, names, units, long_names):
@@ -129,7 +142,7 @@ def parse_time(text, what):
 
 
 def fmt_row(values):
-    return " ".join("%.17g" % v for v in values) + "\n"
+    return " ".join("%.17g" % (v + 0.0) for v in values) + "\n"     # + 0.0: no '-0'
 
 
 def write_series(f, path, a, out):
@@ -139,40 +152,54 @@ def write_series(f, path, a, out):
         raise UsageError(f"--every: got {a.every}; must be an integer >= 1")
     n = series["t"].shape[0]
     keep = np.unique(np.r_[np.arange(0, n, a.every), n - 1]) if n > 0 else np.arange(0)
-    cols, units = [], []
+    cols, units, si = [], [], in_si(f, a)
     for k in names:
-        factor, u = units_of(series[k], a.si)
+        factor, u = units_of(series[k], si)
         cols.append(series[k][:][keep] * factor if factor != 1.0 else series[k][:][keep])
         units.append(u)
-    header(out, f, path, "series", names, units, [rodrun.long_name(series[k], k) for k in names])
+    header(out, f, path, "series", names, units, [rodrun.describe(series[k], k, si) for k in names])
     for row in zip(*cols):
         out.write(fmt_row(row))
 
 
 def write_snapshot(f, path, a, out):
     t_req = parse_time(a.time, "--time")
-    ts = f["snapshots/t"][:]
+    si = in_si(f, a)
+    ft, ut = units_of(f["snapshots/t"], si)
+    ts = f["snapshots/t"][:] * ft             # --time is in the output's units
     if ts.size == 0:
         raise UsageError(f"{path} holds no snapshot")
-    tol = 1e-9 * max(1.0, abs(t_req))
+    tol = 1e-9 * max(abs(ts[-1]), abs(t_req))
     if t_req < ts[0] - tol or t_req > ts[-1] + tol:
-        raise UsageError(f"--time: got {t_req:g}; the snapshots of {path} are at {ts[0]:g} <= t <= {ts[-1]:g}")
+        raise UsageError(f"--time: got {t_req:g} [{ut}]; the snapshots of {path} are at "
+                         f"{ts[0]:g} <= t <= {ts[-1]:g} [{ut}]")
     k = rodrun.nearest(ts, t_req)
     fields = chosen(a.fields, rodrun.snapshot_fields(f), "field(s)", path)
     x = f["mesh/x"]
-    fx, ux = units_of(x, a.si)
-    ft, ut = units_of(f["snapshots/t"], a.si)
+    fx, ux = units_of(x, si)
     cols, units = [x[:] * fx], [ux]
     for name in fields:
         d = f["snapshots/" + name]
-        factor, u = units_of(d, a.si)
+        factor, u = units_of(d, si)
         cols.append(d[k, :] * factor)
         units.append(u)
-    note = f"snapshot {k} of {ts.size} at t = {ts[k] * ft:.17g} [{ut}] (nearest to the requested t = {t_req:g})"
+    note = f"snapshot {k} of {ts.size} at t = {ts[k]:.17g} [{ut}] (nearest to the requested t = {t_req:g} [{ut}])"
     sys.stderr.write(f"h5extract.py: {note}\n")
     header(out, f, path, note, ["x"] + fields, units,
-           [rodrun.long_name(x, "x")] + [rodrun.long_name(f["snapshots/" + n], n) for n in fields])
+           [rodrun.describe(x, "x", si)] + [rodrun.describe(f["snapshots/" + n], n, si) for n in fields])
     for row in zip(*cols):
+        out.write(fmt_row(row))
+
+
+def write_events(f, path, a, out):
+    if "events/t" not in f:
+        raise UsageError(f"{path} has no /events (a run still going, or of an older version)")
+    si = in_si(f, a)
+    ft, ut = units_of(f["events/t"], si)
+    t, kind = rodrun.events(f)
+    header(out, f, path, "contact events", ["t", "kind"], [ut, "1"],
+           [rodrun.describe(f["events/t"], "t", si), "+1 onset, -1 release"])
+    for row in zip(t * ft, kind):
         out.write(fmt_row(row))
 
 
@@ -180,23 +207,25 @@ def write_matrix(f, path, a, out):
     fields = rodrun.snapshot_fields(f)
     if a.field not in fields:
         raise UsageError(f"{path} has no field {a.field}; it has: {', '.join(fields)}")
-    ts = f["snapshots/t"][:]
+    si = in_si(f, a)
+    ft, ut = units_of(f["snapshots/t"], si)
+    ts = f["snapshots/t"][:] * ft             # --t-max is in the output's units
     keep = np.arange(ts.size)
     if a.t_max is not None:
         t_max = parse_time(a.t_max, "--t-max")
         keep = np.nonzero(ts <= t_max * (1 + 1e-12) + 1e-300)[0]
         if keep.size == 0:
-            raise UsageError(f"--t-max: got {t_max:g}; the first snapshot of {path} is at t = {ts[0]:g}")
+            raise UsageError(f"--t-max: got {t_max:g} [{ut}]; the first snapshot of {path} is at t = {ts[0]:g} [{ut}]")
     d, x = f["snapshots/" + a.field], f["mesh/x"]
-    fv, uv = units_of(d, a.si)
-    fx, ux = units_of(x, a.si)
-    ft, ut = units_of(f["snapshots/t"], a.si)
+    fv, uv = units_of(d, si)
+    fx, ux = units_of(x, si)
     xs = x[:] * fx
     values = d[keep[0]:keep[-1] + 1, :] * fv
-    times = ts[keep] * ft
+    times = ts[keep]
     names = ["x", "t", a.field]
     units = [ux, ut, uv]
-    long_names = [rodrun.long_name(x, "x"), rodrun.long_name(f["snapshots/t"], "t"), rodrun.long_name(d, a.field)]
+    long_names = [rodrun.describe(x, "x", si), rodrun.describe(f["snapshots/t"], "t", si),
+                  rodrun.describe(d, a.field, si)]
     if a.format == "columns":
         header(out, f, path, f"field {a.field} over (x, t): one block per snapshot "
                "(splot FILE using 1:2:3 with pm3d)", names, units, long_names)
@@ -220,13 +249,14 @@ def run_mode(argv):
     p.add_argument("run")
     p.add_argument("-o", "--output", default=None)
     p.add_argument("--si", action="store_true")
+    p.add_argument("--nondimensional", action="store_true")
     if mode == "series":
         p.add_argument("--datasets", default=None)
         p.add_argument("--every", type=int, default=1)
     elif mode == "snapshot":
         p.add_argument("--time", required=True)
         p.add_argument("--fields", default=None)
-    else:
+    elif mode == "matrix":
         p.add_argument("--field", required=True)
         p.add_argument("--format", choices=("columns", "nonuniform"), default="columns")
         p.add_argument("--t-max", default=None)
@@ -234,7 +264,8 @@ def run_mode(argv):
     with open_any(a.run) as f:
         target = open(a.output, "w", encoding="utf-8") if a.output else sys.stdout
         try:
-            {"series": write_series, "snapshot": write_snapshot, "matrix": write_matrix}[mode](f, a.run, a, target)
+            {"series": write_series, "snapshot": write_snapshot, "events": write_events,
+             "matrix": write_matrix}[mode](f, a.run, a, target)
         finally:
             if a.output:
                 target.close()
@@ -247,7 +278,7 @@ def main(argv):
         (sys.stdout if args else sys.stderr).write(__doc__)
         return 0 if args else 2
     try:
-        if args[0] in ("series", "snapshot", "matrix"):
+        if args[0] in ("series", "snapshot", "events", "matrix"):
             if any(x in ("-h", "--help") for x in args[1:]):
                 sys.stdout.write(__doc__)
                 return 0

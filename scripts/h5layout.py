@@ -1,24 +1,28 @@
+#!/usr/bin/env python3
 """Print the layout of a rodcontact HDF5 file: every group, every dataset with its shape
 and dtype, and every root attribute with its value, one per line, sorted by name.
 
-    <python with h5py> scripts/h5layout.py out/run.h5
+    scripts/h5layout.py out/run.h5
 
-The script does not choose an interpreter (no shebang): run it with one that can import
-h5py (on the project machine /usr/bin/python3). Output lines look like
+Run it directly, as scripts/h5extract.py: when the python3 on PATH cannot import h5py, it
+runs itself again with the Python of scripts/lib/find_python.sh. Output lines look like
 
     group /series
     dataset /series/t (10000,) float64
     attr model.rho = 1.2298e-17
     attr status = 'complete'
 
-Exit status: 0 success, 1 file cannot be read, 2 usage error, 77 h5py not importable
-(so that a shell test can report a skip).
+Exit status: 0 success, 1 file cannot be read, or no Python here has h5py (the message
+names the packages), 2 usage error.
 """
 
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), 'lib'))
+import interpreter  # noqa: E402
+
+interpreter.ensure_h5py(__file__)
 
 
 def format_value(value):
@@ -28,14 +32,10 @@ def format_value(value):
 
 def main(argv):
     if len(argv) != 2 or argv[1] in ("-h", "--help"):
-        sys.stderr.write("usage: python3 h5layout.py FILE.h5\n")
+        sys.stderr.write("usage: scripts/h5layout.py FILE.h5\n")
         return 2
-    try:
-        import h5py
-        import rodrun
-    except ImportError as exc:
-        sys.stderr.write(f"h5layout.py: h5py cannot be imported by {sys.executable}: {exc}\n")
-        return 77
+    import h5py
+    import rodrun
 
     try:
         f = rodrun.open_run(argv[1], checked=False)

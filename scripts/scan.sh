@@ -35,6 +35,8 @@
 #                            points T*B .. T*B+B-1
 #          --exe PATH        the rodcontact executable (default: $RODCONTACT, else build/rodcontact
 #                            in a source tree, PREFIX/bin/rodcontact installed: scripts/lib/find_rodcontact.sh)
+#          --nondimensional  summary.csv in the files' own nondimensional values (default: the
+#                            input's units: SI with &material, each column's unit in its name)
 # The points run under GNU parallel (Debian package 'parallel'); DIR/joblog is its job log
 # of the latest run. A rerun of the same command skips the points whose .h5 has status
 # 'complete' and runs the others (failed, never run, or interrupted); an interrupted point
@@ -220,6 +222,7 @@ task=""
 specs=()
 sbatch_options=()
 exe_given=""
+nondimensional=()
 while (($# > 0)); do
     case $1 in
         --set) (($# >= 2)) || die "--set needs TARGET=VALUES, e.g. --set model.varpi=0:1:11"
@@ -235,6 +238,7 @@ while (($# > 0)); do
         --exe) (($# >= 2)) || die "--exe needs a path"; exe=$2; exe_given=1; shift 2 ;;
         --exe=*) exe=${1#--exe=}; exe_given=1; shift ;;
         --list) mode=list; shift ;;
+        --nondimensional) nondimensional=(--nondimensional); shift ;;
         --collect) mode=collect; shift ;;
         --array) mode=array; shift ;;
         --task) (($# >= 2)) || die "--task needs a task number"; mode=task; task=$2; shift 2 ;;
@@ -498,7 +502,13 @@ hms() {
 collect() {
     local csv="$out/summary.csv" tmp header k i stem status exit_status row rest n_rest
     local n_complete=0 n_failed=0 n_missing=0 n_stopped=0
-    header=$("$exe" --summary-header) && parse_csv "$header" ||
+    # the header in the units of the points' files (the first one there is; SI with &material)
+    local first_file=()
+    for ((k = 0; k < n_points; k++)); do
+        point_stem "$k"
+        [[ -f $STEM.h5 ]] && "$exe" --summary "$STEM.h5" > /dev/null 2>&1 && { first_file=("$STEM.h5"); break; }
+    done
+    header=$("$exe" --summary-header "${first_file[@]}" "${nondimensional[@]}") && parse_csv "$header" ||
         die "'$exe --summary-header' failed: is it an older rodcontact without --summary?"
     local -a summary_columns=("${CSV[@]}")
     n_rest=$((${#summary_columns[@]} - 2))
@@ -531,7 +541,7 @@ collect() {
             { IFS= read -r exit_status; IFS= read -r message; } < "$stem.status"
         fi
         rest=""
-        if [[ -f $stem.h5 ]] && summary=$("$exe" --summary "$stem.h5" 2>&1) && parse_csv "$summary"; then
+        if [[ -f $stem.h5 ]] && summary=$("$exe" --summary "$stem.h5" "${nondimensional[@]}" 2>&1) && parse_csv "$summary"; then
             status=${CSV[1]}
             csv_escape "${CSV[0]}"
             rest=",$FIELD"
@@ -728,7 +738,7 @@ if [[ $mode == slurm ]]; then
     for spec in "${specs[@]}"; do
         scan_argv+=(--set "$spec")
     done
-    scan_argv+=(--out "$out" --batch "$batch" --exe "$exe")
+    scan_argv+=(--out "$out" --batch "$batch" --exe "$exe" "${nondimensional[@]}")
     export RODCONTACT_ROOT=$repo_root RODCONTACT=$exe
     if ((n_run > 0)); then
         task_ranges

@@ -65,7 +65,7 @@ done
 row=$("$exe" --summary midpoint_1e-6.h5 | tail -1)
 check "--summary: onset and release times and step_control_err of midpoint_1e-6.h5 ($row)" \
     "$py" -c "import csv, sys; r = list(csv.reader([sys.argv[1]]))[0]; h = list(csv.reader([sys.argv[2]]))[0]
-d = dict(zip(h, r)); sys.exit(0 if d['n_onsets'] == '1' and d['n_releases'] == '1' and abs(float(d['first_onset_t']) - 0.1906) < 1e-3 and abs(float(d['first_release_t']) - 1.447) < 1e-3 and float(d['step_control_err']) > 0 else 1)" "$row" "$("$exe" --summary-header)"
+d = dict(zip(h, r)); sys.exit(0 if d['n_onsets'] == '1' and d['n_releases'] == '1' and abs(float(d['first_onset_t [1]']) - 0.1906) < 1e-3 and abs(float(d['first_release_t [1]']) - 1.447) < 1e-3 and float(d['step_control_err']) > 0 else 1)" "$row" "$("$exe" --summary-header)"
 check "--events: one row per event (the onset, then the release)" equals "1,onset 2,release" \
     "$("$exe" --events midpoint_1e-6.h5 | tail -n +2 | cut -d, -f2,3 | tr '\n' ' ' | sed 's/ $//')"
 

@@ -38,7 +38,7 @@ rc=$?
 check "converge.sh runs (exit 0)" equals 0 "$rc"
 ((rc == 0)) || tail -n 5 exact.err
 check "converge.csv has the columns of the issue" equals \
-    "quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status" "$(head -n 1 exact/converge.csv)"
+    "quantity,fine,extrapolated,observed_order,gci_abs,gci_rel,status,units" "$(head -n 1 exact/converge.csv)"
 check "the scalar rows are there" grep -q '^energy_end,' exact/converge.csv
 check "a field row per snapshot and field (7 fields with sigma x 6 snapshots)" equals 42 "$(grep -c '^error_' exact/converge.csv)"
 check "the level files: n = 40, 80, 160" equals "40 80 160" \

@@ -36,7 +36,7 @@ sys.exit(0 if np.array_equal(d, np.column_stack([f['series/t'][:][keep], f['seri
 # snapshot: the nearest one, said on stderr and in the header
 x snapshot run.h5 --time 0.012 --fields u,theta > snap.txt 2> snap.err
 check "snapshot: exit 0" equals 0 "$?"
-check "snapshot: stderr says which time was taken (t = 0.01)" grep -q "at t = 0.01[0-9]* \[1\] (nearest to the requested t = 0.012)" snap.err
+check "snapshot: stderr says which time was taken (t = 0.01)" grep -q "at t = 0.01[0-9]* \[1\] (nearest to the requested t = 0.012 \[1\])" snap.err
 check "snapshot: x, u, theta of snapshot 1" "$py" -c "
 import h5py, numpy as np, sys
 f = h5py.File('run.h5', 'r'); d = np.loadtxt('snap.txt')
@@ -118,11 +118,14 @@ usage "figures with a file as OUT_DIR" "is not a directory" figures run.h5 data
 # run directly: executable (git mode 100755 when in a git checkout), and with a python3 first
 # on PATH that cannot import h5py (here: Debian's own without its site packages, -S), it runs
 # itself again with the Python of find_python.sh; with none, it names the packages, exit 1
-check "h5extract.py is executable" test -x "$src/scripts/h5extract.py"
-if git -C "$src" rev-parse --git-dir > /dev/null 2>&1; then
-    check "h5extract.py has git mode 100755" equals 100755 \
-        "$(git -C "$src" ls-files -s scripts/h5extract.py | cut -d' ' -f1)"
-fi
+for tool in h5extract.py h5layout.py; do   # the two Python tools of the index
+    check "$tool is executable" test -x "$src/scripts/$tool"
+    if git -C "$src" rev-parse --git-dir > /dev/null 2>&1; then
+        check "$tool has git mode 100755" equals 100755 \
+            "$(git -C "$src" ls-files -s scripts/$tool | cut -d' ' -f1)"
+    fi
+done
+check "h5layout.py run directly lists the file" grep -q '^attr status = ' <("$src/scripts/h5layout.py" run.h5)
 mkdir -p nopy
 printf '#!/bin/sh\nexec %s -S "$@"\n' "$py" > nopy/python3
 chmod +x nopy/python3

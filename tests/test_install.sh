@@ -35,11 +35,11 @@ fi
 cmake --install "$build" --prefix "$prefix" > install.log 2>&1
 check "cmake --install $build --prefix P" ran $? install.log
 for f in bin/rodcontact share/rodcontact/scripts/plot.sh share/rodcontact/scripts/h5extract.py \
-         share/rodcontact/scripts/scan.sh share/rodcontact/scripts/converge.sh \
+         share/rodcontact/scripts/h5layout.py share/rodcontact/scripts/scan.sh share/rodcontact/scripts/converge.sh \
          share/rodcontact/scripts/lib/find_rodcontact.sh share/rodcontact/scripts/lib/find_python.sh; do
     check "P/$f is installed, executable" test -x "$prefix/$f"
 done
-for f in scripts/h5layout.py scripts/lib/rodrun.py scripts/lib/plotdata.py scripts/lib/converge.py \
+for f in scripts/lib/rodrun.py scripts/lib/plotdata.py scripts/lib/converge.py \
          scripts/gnuplot/run_surface.gp scripts/slurm/scan_array.sbatch input/exp1.nml input/impact.nml \
          docs/output.md README.md CHANGELOG.md LICENSE CITATION.cff; do
     check "P/share/rodcontact/$f is installed" test -s "$share/$f"

@@ -48,7 +48,7 @@ PY
 done
 
 check "the run's last stderr line: file, status, contact events, steps, wall time" \
-    grep -Eq '^rodcontact: run\.h5 complete; contact: 1 onset \(first t = 0\.[0-9]+\), no releases; 2500 steps, t = 0\.25, wall [0-9.eE+-]+ s$' \
+    grep -Eq '^rodcontact: run\.h5 complete; contact: 1 onset \(first t = 0\.[0-9]+\), no releases; 2500 steps, t = 0\.25, wall [0-9.eE+-]+ s; times nondimensional$' \
     <(tail -n 1 run.err)
 check "no end line with quiet" bash -c "! grep -q ^rodcontact: am.err"   # (a Debug build may print runtime warnings)
 

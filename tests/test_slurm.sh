@@ -198,7 +198,7 @@ without_wall() {
     python3 -c 'import csv, sys
 w = csv.writer(sys.stdout, lineterminator="\n")
 for row in csv.DictReader(open(sys.argv[1])):
-    row.pop("wall_seconds")
+    row.pop("wall_seconds [s]")
     w.writerow(row.keys()) if row["point"] == "0" else None
     w.writerow(row.values())' "$1"
 }
@@ -267,7 +267,7 @@ check "cluster summary.csv: every point complete but point 0 (numerical failure,
     "0:failed 1:complete 2:complete 3:complete 4:complete 5:complete" "$(statuses scan/summary.csv)"
 check "cluster summary.csv: point 0 'failed: step ... did not converge', exit status 3" \
     grep -q '^0,0.1,paper,200,1e-3,16,100000,10,"\{0,1\}failed: step [0-9]* (t = .*did not converge.*,3,' scan/summary.csv
-check "the header has a wall_seconds column" grep -q ',wall_seconds,' scan/summary.csv
+check "the header has a wall_seconds column" grep -q ',wall_seconds \[s\],' scan/summary.csv
 check "cluster summary.csv = local summary.csv (every column but wall_seconds)" \
     diff <(without_wall ../local/scan/summary.csv) <(without_wall scan/summary.csv)
 cd "$scratch" || exit 1

@@ -81,7 +81,7 @@ contains
         call known_series(t, energy, u_end)
         call write_file('known', t, energy, u_end, 'complete', .true.)
         file = scratch // '/known.h5'
-        s = summarise_file(file)
+        s = summarise_file(file, .false.)
         call check_true('file', s%file == file, 'got ' // s%file)
         call check_true('status', s%status == 'complete', 'got ' // s%status)
         call check_true('contact', s%contact)
@@ -103,9 +103,13 @@ contains
 
         ! the row: the same numbers in the header's order, 15 significant digits
         row = summary_row(s)
-        call check_true('header has 31 columns', count_commas(summary_header()) == 30, summary_header())
+        call check_true('header has 31 columns', count_commas(summary_header(.false.)) == 30, summary_header(.false.))
         call check_true('header starts with file,status,contact', &
-                        index(summary_header(), 'file,status,contact,first_contact_t,') == 1, summary_header())
+                        index(summary_header(.false.), 'file,status,contact,first_contact_t [1],') == 1, &
+                        summary_header(.false.))
+        call check_true('SI header: decay_rate [1/s], wall_seconds [s], g [m]', index(summary_header(.true.), &
+                        ',decay_rate [1/s],') > 0 .and. index(summary_header(.true.), ',wall_seconds [s],g [m],') > 0, &
+                        summary_header(.true.))
         expected = file // ',complete,yes,0.2,0.64,0.17,0.06,0.16,0.6,1.6,' // &
                    '0.0273237224472926,3,0.6,1.2,1.2,120,1.25,0.1,,,,,,,,,,,,,'
         call check_true('row', row == expected, 'expected ' // expected // new_line('a') // '  got      ' // row)
@@ -125,7 +129,7 @@ contains
         u_end = [0.0_dp, 0.02_dp, 0.1_dp, 0.03_dp]   ! u = g exactly is not contact
         call write_file('failed', t, energy, u_end, 'failed: step 4 (t = 2), no "convergence"', .false.)
         file = scratch // '/failed.h5'
-        s = summarise_file(file)
+        s = summarise_file(file, .false.)
         call check_true('failed: status', s%status == 'failed: step 4 (t = 2), no "convergence"', 'got ' // s%status)
         call check_true('failed: no contact at u = g', .not. s%contact)
         call check_true('failed: first_contact_t NaN', ieee_is_nan(s%first_contact_t))

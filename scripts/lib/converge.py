@@ -15,6 +15,11 @@ with scripts/converge.sh"):
 Fields are compared on the coarsest level's grid /mesh/x (the coarse nodes are nodes of every
 finer uniform mesh when the ratio is an integer; otherwise the finer levels are interpolated
 there, linearly: the P1 solution).
+Units: those of the run's input (rodrun.in_si): SI for a run with &material (times in s,
+lengths in m, each field in its SI unit, the L2 norms of fields in that unit times m^(1/2)),
+else the files' own nondimensional values ('1'); --nondimensional: those always. The column
+'units' of converge.csv and the table name them.
+An event in the first time step of every level gets the status first_step (converge_gci.py).
 Exit status: 0 written; 2 usage or a file that cannot be read.
 """
 
@@ -30,30 +35,40 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import converge_gci  # noqa: E402
 import rodrun  # noqa: E402
 
-COLUMNS = ("quantity", "fine", "extrapolated", "observed_order", "gci_abs", "gci_rel", "status")
+COLUMNS = ("quantity", "fine", "extrapolated", "observed_order", "gci_abs", "gci_rel", "status", "units")
 SCHEME_ORDER = {"euler": 1, "bdf2": 2, "midpoint": 2}   # time_scheme_m's SCHEMES(:)%order
 SPACE_ORDER = 2                                          # P1 elements, L2 norm
 
 
 class Level:
-    """One level of the ladder: its h, dt, series maxima, events and snapshots."""
+    """One level of the ladder: its h, dt, series maxima, events and snapshots, in SI (si)
+    or nondimensional; units: {quantity or field: its unit}."""
 
-    def __init__(self, path):
+    def __init__(self, path, nondimensional=False):
         with rodrun.open_run(path) as f:
             st = rodrun.status(f)
             if st != "complete":
                 raise rodrun.RunFileError(f"{path}: status '{st}', not 'complete'")
+            self.si = rodrun.in_si(f) and not nondimensional
+            self.units = {}
+
+            def read(path, name):
+                factor, self.units[name] = rodrun.units(f[path], self.si)
+                return f[path][:] * factor
             self.attrs = rodrun.attributes(f)
-            self.x = f["mesh/x"][:]
-            self.u_end = rodrun.series(f, "u_end")
-            self.pen = rodrun.series(f, "penetration")
-            self.energy = rodrun.series(f, "energy")
+            self.x = read("mesh/x", "x")
+            self.u_end = read("series/u_end", "max_u_end")
+            self.pen = read("series/penetration", "max_penetration")
+            self.energy = read("series/energy", "energy_end")
+            t = read("series/t", "t")
             self.t_events, self.kinds = rodrun.events(f)
-            self.ts = f["snapshots/t"][:]
+            if "events/t" in f:
+                self.t_events = read("events/t", "t")
+            self.ts = read("snapshots/t", "t")
             self.fields = rodrun.snapshot_fields(f)
-            self.snap = {n: f["snapshots/" + n][:] for n in self.fields}
-        self.h = 1.0 / int(self.attrs["mesh.n_elements"])
-        self.dt = float(self.attrs["time.dt"])
+            self.snap = {n: read("snapshots/" + n, n) for n in self.fields}
+        self.h = (self.x[-1] - self.x[0]) / int(self.attrs["mesh.n_elements"])
+        self.dt = float(t[1] - t[0])          # fixed steps, a series entry at every step
         self.scheme = str(self.attrs.get("time.scheme", "euler")).strip().lower()
 
     def scalars(self):
@@ -62,6 +77,7 @@ class Level:
         for name, kind in (("onset", 1), ("release", -1)):
             for i, t in enumerate(self.t_events[self.kinds == kind]):
                 q[f"{name}_{i + 1}"] = float(t)
+                self.units[f"{name}_{i + 1}"] = self.units["t"]
         q["max_u_end"] = float(np.max(self.u_end))
         q["max_penetration"] = float(np.max(self.pen))
         q["energy_end"] = float(self.energy[-1])
@@ -143,13 +159,19 @@ def study(levels, refine, warn=print):
                 del q[name]
     names = list(scal[-1].keys())
     rows, values = [], {}
+    units = levels[-1].units
     for name in names:
         if not all(name in q for q in scal):
             continue
         phis = [q[name] for q in scal]
         values[name] = phis
-        rows.append({"quantity": name, **converge_gci.scalar(phis, hs, p_formal, not bad)})
+        row = converge_gci.scalar(phis, hs, p_formal, not bad)
+        if name.startswith(("onset_", "release_")) and all(phi <= lv.dt * (1 + 1e-9) for phi, lv in zip(phis, levels)):
+            row.update(extrapolated=math.nan, observed_order=math.nan, gci_abs=math.nan, gci_rel=math.nan,
+                       status="first_step")     # the step's time, not the solution's: no band
+        rows.append({"quantity": name, **row, "units": units[name]})
     coarse = levels[0]
+    half = " m^(1/2)" if coarse.si else ""
     for k0, t in enumerate(coarse.ts):
         ks = [match_time(lv.ts, t) for lv in levels]
         if any(k is None for k in ks):
@@ -157,7 +179,7 @@ def study(levels, refine, warn=print):
         for field in coarse.fields:
             fs = [lv.snapshot_on(field, k, coarse.x) for lv, k in zip(levels, ks)]
             row = converge_gci.field(fs, hs, coarse.x, p_formal, not bad)
-            rows.append({"quantity": f"error_{field}@{t:.10g}", **row})
+            rows.append({"quantity": f"error_{field}@{t:.10g}", **row, "units": units[field] + half})
     return rows, values, hs, p_formal
 
 
@@ -166,13 +188,14 @@ def write_csv(path, rows):
         w = csv.writer(out, lineterminator="\n")
         w.writerow(COLUMNS)
         for r in rows:
-            w.writerow([r["quantity"]] + [f"{r[c]:.10g}" for c in COLUMNS[1:-1]] + [r["status"]])
+            w.writerow([r["quantity"]] + [f"{r[c]:.15g}" for c in COLUMNS[1:-2]] + [r["status"], r["units"]])
 
 
-def print_table(rows, out=sys.stdout):
-    """The scalar rows, then per field the largest relative band over the snapshots."""
-    fmt = "{:<22} {:>14} {:>14} {:>7} {:>11} {:>9}  {}"
-    print(fmt.format("quantity", "fine", "extrapolated", "order", "gci_abs", "gci_rel", "status"), file=out)
+def print_table(rows, t_unit, out=sys.stdout):
+    """The scalar rows, then per field the largest relative band over the snapshots; the
+    quantities' units in the last column, t_unit: that of the snapshot times."""
+    fmt = "{:<22} {:>14} {:>14} {:>7} {:>11} {:>9}  {:<14} {}"
+    print(fmt.format("quantity", "fine", "extrapolated", "order", "gci_abs", "gci_rel", "status", "units"), file=out)
     scalars = [r for r in rows if not r["quantity"].startswith("error_")]
     worst = {}
     for r in rows:
@@ -184,14 +207,14 @@ def print_table(rows, out=sys.stdout):
     for r in scalars + [worst[f] for f in worst]:
         print(fmt.format(r["quantity"], f"{r['fine']:.7g}", f"{r['extrapolated']:.7g}",
                          f"{r['observed_order']:.2f}", f"{r['gci_abs']:.3g}",
-                         f"{100 * r['gci_rel']:.3g}%", r["status"]), file=out)
+                         f"{100 * r['gci_rel']:.3g}%", r["status"], r["units"]), file=out)
     statuses = [r["status"] for r in rows]
     counts = ", ".join(f"{statuses.count(s)} {s}" for s in converge_gci.STATUSES if statuses.count(s))
     print(f"({len(rows)} rows: {counts}; the field rows above are each field's largest band "
-          "over the snapshots)", file=out)
+          f"over the snapshots, error_<field>@<t> at t in [{t_unit}])", file=out)
 
 
-def draw(path, rows, values, hs, refine, p_formal):
+def draw(path, rows, values, hs, refine, p_formal, t_unit):
     """converge.png: each scalar against h or dt with the band of the finest level and the
     extrapolate; one panel of the fields' relative bands against the snapshot time."""
     import matplotlib
@@ -204,7 +227,8 @@ def draw(path, rows, values, hs, refine, p_formal):
     nrow = (n + ncol - 1) // ncol
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.3 * nrow), squeeze=False)
     axes = axes.ravel()
-    label = {"space": "h", "time": "dt", "both": "sqrt(h dt)"}[refine]
+    x_unit = {"s": {"space": "m", "time": "s", "both": "(m s)^(1/2)"}[refine]}.get(t_unit, t_unit)
+    label = {"space": "h", "time": "dt", "both": "sqrt(h dt)"}[refine] + f" [{x_unit}]"
     for ax, name in zip(axes, names):
         r = byname[name]
         ax.semilogx(hs, values[name], "o-", color="C0", label="levels")
@@ -215,7 +239,7 @@ def draw(path, rows, values, hs, refine, p_formal):
             ax.axhline(r["extrapolated"], color="C2", ls="--", lw=1, label="extrapolate")
         p = r["observed_order"]
         order = f"p = {p:.2f}" if math.isfinite(p) else ("no change" if r["gci_abs"] == 0 else "p undefined")
-        ax.set_title(f"{name}: {r['status']}, {order}", fontsize=9)
+        ax.set_title(f"{name} [{r['units']}]: {r['status']}, {order}", fontsize=9)
         ax.set_xlabel(label)
         ax.ticklabel_format(axis="y", useOffset=False)
         ax.tick_params(labelsize=8)
@@ -232,7 +256,7 @@ def draw(path, rows, values, hs, refine, p_formal):
     for field, (t, g) in fields.items():
         if t:
             ax.semilogy(t, g, ".-", ms=3, lw=1, label=field)
-    ax.set_xlabel("t")
+    ax.set_xlabel(f"t [{t_unit}]")
     ax.set_title(f"fields: band on ||f_fine - f|| / ||f_fine|| (formal order {p_formal:g})", fontsize=9)
     ax.legend(fontsize=7, ncol=2)
     ax.tick_params(labelsize=8)
@@ -248,23 +272,27 @@ def main(argv):
     ap.add_argument("dir")
     ap.add_argument("--refine", choices=("space", "time", "both"), required=True)
     ap.add_argument("--no-figure", action="store_true")
+    ap.add_argument("--nondimensional", action="store_true")
     ap.add_argument("files", nargs="+")
     a = ap.parse_args(argv)
     if len(a.files) < 2:
         ap.error("at least two levels")
     try:
-        levels = [Level(p) for p in a.files]
+        levels = [Level(p, a.nondimensional) for p in a.files]
+        if len({lv.si for lv in levels}) > 1:
+            raise ValueError("the levels are in different unit systems (SI and nondimensional): "
+                             "give --nondimensional")
         rows, values, hs, p_formal = study(levels, a.refine, warn=lambda m: print(m, file=sys.stderr))
     except (rodrun.RunFileError, ValueError, KeyError) as exc:
         print(f"converge: error: {exc}", file=sys.stderr)
         return 2
     csv_path = os.path.join(a.dir, "converge.csv")
     write_csv(csv_path, rows)
-    print_table(rows)
+    print_table(rows, levels[0].units["t"])
     print(f"converge: {csv_path}", file=sys.stderr)
     if not a.no_figure:
         png = os.path.join(a.dir, "converge.png")
-        draw(png, rows, values, hs, a.refine, p_formal)
+        draw(png, rows, values, hs, a.refine, p_formal, levels[0].units["t"])
         print(f"converge: {png}", file=sys.stderr)
     return 0
 

@@ -20,6 +20,12 @@ The verdict (status), from the three finest levels:
   oscillatory     eps21/eps32 < 0 (the differences change sign), and |eps21| < |eps32|: Fs = 3,
                   and the band at most Fs |eps21| (below)
   diverging       |eps21| >= |eps32|: the differences do not shrink; no extrapolate, no band
+  unchanged       the three finest levels agree to round-off (|eps21|, |eps32| <= ROUNDOFF
+                  |phi|): no order can be observed (it is nan), nothing is converging at any
+                  order; the band is of the differences' size (Fs = 1.25 with the formal order)
+  first_step      (converge.py, event times) the event lies in the first time step on every
+                  level: its time is the step's, not the solution's (the contact starts at
+                  t = 0 or within the first step); no order, extrapolate or band
 In the Fs = 3 cases the order used is p_used = min(max(P_MIN, p), p_formal) (never more
 than the formal order, the lower one of a range, never below P_MIN), applied to the larger of |eps21| and
 |eps32| / r32^p_used (the next difference scaled to the finest level), so that a ladder whose
@@ -48,7 +54,7 @@ ORDER_WINDOW = 0.25      # |p - p_formal| <= ORDER_WINDOW * p_formal counts as a
 P_MIN = 0.5              # the smallest order a Fs = 3 band assumes
 ROUNDOFF = 1e-11         # differences below ROUNDOFF * |phi| are round-off: converged
 
-STATUSES = ("asymptotic", "not_asymptotic", "oscillatory", "diverging")
+STATUSES = ("asymptotic", "not_asymptotic", "oscillatory", "diverging", "unchanged", "first_step")
 
 
 def observed_order(e21, e32, r21, r32, s=None, iterations=200, tol=1e-12):
@@ -88,8 +94,8 @@ def verdict(e21, e32, s, r21, r32, p_formal, scale, trusted=True):
     tiny = ROUNDOFF * scale
     if e32 is None:                                   # two levels: formal order, Fs = 3
         return "not_asymptotic", math.nan, formal_range(p_formal)[0], FS_TWO, e21
-    if e21 <= tiny and e32 <= tiny:                   # identical to round-off
-        return ("asymptotic" if trusted else "not_asymptotic"), math.nan, formal_range(p_formal)[0], FS_THREE, e21
+    if e21 <= tiny and e32 <= tiny:                   # identical to round-off: no order to observe
+        return ("unchanged" if trusted else "not_asymptotic"), math.nan, formal_range(p_formal)[0], FS_THREE, e21
     if e21 <= tiny:                                   # the two finest agree, the next do not
         p = math.inf
     else:

@@ -105,6 +105,23 @@ def status(f):
     return attr(f, "status", "")
 
 
+def in_si(f):
+    """Whether the run's input was in SI units (with &material), so that its tools show SI:
+    the root attribute 'units' ('SI' or 'nondimensional'); a file without it (older
+    versions): whether its datasets have si_factor."""
+    u = attr(f, "units")
+    if u is not None:
+        return u == "SI"
+    return "series/t" in f and "si_factor" in f["series/t"].attrs
+
+
+def describe(d, default, si):
+    """long_name of dataset d for a reader of its values in SI (si) or as stored: in SI,
+    the '(nondimensional, scale: X)' it ends with says the scale applied instead."""
+    name = long_name(d, default)
+    return name.replace("(nondimensional, scale: ", "(SI: the stored value times scale.") if si else name
+
+
 def units(d, si=False):
     """(factor, units) of dataset d: (1, its units), or with si (si_factor, si_units);
     RunFileError when d has no SI scale (runs without &material)."""

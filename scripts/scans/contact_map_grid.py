@@ -49,7 +49,8 @@ def main(argv):
         return 2
     csv_path, out_dir = argv[1], argv[2]
     with open(csv_path, newline="") as f:
-        rows = list(csv.DictReader(f))
+        # the columns by name without their unit ('first_contact_t [1]': first_contact_t)
+        rows = [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(f)]
     for column in (VARPI, AMP, "status", "max_u_end_over_g", "contact_time", "contact", "first_contact_t"):
         if rows and column not in rows[0]:
             print(f"contact_map_grid: {csv_path} has no column '{column}'", file=sys.stderr)

@@ -17,7 +17,8 @@ module run_m
     use checkpoint_m, only: checkpoint_t
     use step_driver_m, only: step_driver_t, step_failure
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
-    use strings_m, only: int_str
+    use strings_m, only: int_str, format_real
+    use material_m, only: nondim_t, nondim_groups
     use reals_m, only: is_zero
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, copy_history
@@ -109,8 +110,7 @@ contains
         end if
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
-            call run%state%restore_checkpoint(ckpt, 'state')
-            call run%state%mesh%restore_checkpoint(ckpt)
+            call run%state%restore_checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
                 call run%mesh%restore_checkpoint(ckpt)
                 call ckpt%get('run/n_elements_max', run%n_elements_max)
@@ -268,9 +268,10 @@ contains
     end subroutine close_output
 
     !> The run's last line on stderr (unless &output quiet): where its file is, its status,
-    !> the contact onsets and releases (how many, the first of each) and the wall time, e.g.
-    !>   rodcontact: out/exp1.h5 complete; contact: 1 onset (first t = 0.1973), 1 release
-    !>   (first t = 0.5812); 30000 steps, t = 3, wall 12 s
+    !> the contact onsets and releases (how many, the first of each, to 15 digits as
+    !> --summary prints it) and the wall time, with &material in seconds, e.g.
+    !>   rodcontact: out/exp1.h5 complete; contact: 1 onset (first t = 0.197312345678901), 1
+    !>   release (first t = 0.58123456789012); 30000 steps, t = 3, wall 12 s; times nondimensional
     !> (one line). suffix: '.h5', or '.h5.part' for a file left to be continued.
     subroutine report_end(run, cfg, suffix, status, wall)
         type(run_t), intent(in) :: run
@@ -278,21 +279,34 @@ contains
         character(len=*), intent(in) :: suffix, status
         real(dp), intent(in) :: wall
         type(event_log_t) :: events
+        type(nondim_t) :: groups
+        real(dp) :: scale
+        character(len=:), allocatable :: unit, system
 
         if (cfg%output%quiet) return
+        scale = 1.0_dp
+        unit = ''
+        system = '; times nondimensional'
+        if (cfg%material%present) then   ! SI: the time scale omega of (2.10)
+            groups = nondim_groups(cfg%material)
+            scale = groups%omega
+            unit = ' s'
+            system = ''
+        end if
         events = run%driver%events_log()
         write (error_unit, '(a)') 'rodcontact: '//trim(cfg%output%prefix)//suffix//' '//status//'; contact: '// &
-            event_summary(events%times(), events%kinds(), EVENT_ONSET, 'onset')//', '// &
-            event_summary(events%times(), events%kinds(), EVENT_RELEASE, 'release')//'; '// &
-            int_str(run%state%step)//' steps, t = '//short_real(run%state%t)//', wall '//short_real(wall)//' s'
+            event_summary(scale * events%times(), events%kinds(), EVENT_ONSET, 'onset', unit)//', '// &
+            event_summary(scale * events%times(), events%kinds(), EVENT_RELEASE, 'release', unit)//'; '// &
+            int_str(run%state%step)//' steps, t = '//short_real(scale * run%state%t)//unit// &
+            ', wall '//short_real(wall)//' s'//system
         flush (error_unit)
     end subroutine report_end
 
-    !> '<n> <name>s (first t = <t>)' of the events of kind `kind` ('no <name>s' when none).
-    pure function event_summary(times, kinds, kind, name) result(text)
+    !> '<n> <name>s (first t = <t><unit>)' of the events of kind `kind` ('no <name>s' when none).
+    pure function event_summary(times, kinds, kind, name, unit) result(text)
         real(dp), intent(in) :: times(:)
         integer, intent(in) :: kinds(:), kind
-        character(len=*), intent(in) :: name
+        character(len=*), intent(in) :: name, unit
         character(len=:), allocatable :: text
         integer :: n, first
 
@@ -303,7 +317,7 @@ contains
         end if
         first = findloc(kinds, kind, dim=1)
         text = int_str(n)//' '//name//merge('s', ' ', n > 1)
-        text = trim(text)//' (first t = '//short_real(times(first))//')'
+        text = trim(text)//' (first t = '//format_real(times(first))//unit//')'
     end function event_summary
 
     !> x with 4 significant digits and no padding: 0.1973, 12.5, 3, 1.234E-05.
@@ -341,8 +355,7 @@ contains
         type(config_t), intent(in) :: cfg
         type(checkpoint_t) :: ckpt
 
-        call run%state%save_checkpoint(ckpt, 'state')
-        call run%state%mesh%save_checkpoint(ckpt)
+        call run%state%save_checkpoint(ckpt)
         call run%stepper%save_checkpoint(ckpt)
         call run%monitor%save_checkpoint(ckpt)
         call run%driver%save_checkpoint(ckpt)

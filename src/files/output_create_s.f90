@@ -287,7 +287,7 @@ contains
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call w%make_group('/events')
         call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id)
-        call w%describe(t_id, '/events/t', described(SERIES(S_T)%long_name//' of a change of the '// &
+        call w%describe(t_id, '/events/t', described(trim(SERIES(S_T)%long_name)//' of a change of the '// &
                         'contact state (interpolated in the step that crosses it)', SERIES(S_T)%scale), &
                         SERIES(S_T)%units, si=SERIES(S_T)%scale)
         call w%make_scale(t_id, 't', '/events/t')

@@ -19,6 +19,9 @@
 !>   there; the fit window is reported as decay_fit_from_t, decay_fit_to_t.
 !> A value that does not apply (no contact, fewer than two points to fit, E_0 = 0, an
 !> attribute the file lacks) is NaN in summary_t and an empty field in the CSV row.
+!> Units: those of the run's input (file_in_si): a run with &material in SI (times in s,
+!> lengths in m, the decay rate in 1/s; the root attributes scale.time, scale.displacement),
+!> else the file's own nondimensional values ('[1]'); each column's name says which.
 module summary_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use kinds_m, only: dp
@@ -31,7 +34,7 @@ module summary_m
     public :: summary_t
     public :: summarise_series, summarise_file, summary_problem
     public :: summary_header, summary_row, csv_field
-    public :: events_header, write_event_rows
+    public :: events_header, write_event_rows, file_in_si
 
     !> The numbers of one run. NaN (or steps < 0) where a value does not apply.
     type :: summary_t
@@ -60,6 +63,7 @@ module summary_m
         !> /events: the onset and the release times (none when absent: has_events false)
         logical :: has_events = .false.
         real(dp), allocatable :: onset_t(:), release_t(:)
+        logical :: si = .false.                        !< times in s, lengths in m (else nondimensional)
     end type summary_t
 
     integer, parameter :: N_COLUMNS = 31
@@ -70,6 +74,8 @@ module summary_m
         'decay_rate', 'decay_fit_from_t', 'decay_fit_to_t', 't_final', 'steps', 'wall_seconds', 'g', &
         'step_control_err', 'n_onsets', 'first_onset_t', 'last_onset_t', 'n_releases', 'first_release_t', &
         'last_release_t', 'error_u', 'error_v', 'error_theta', 'error_P', 'error_q', 'error_eta']
+    !> Each column's quantity: T a time, L a length, R a rate, W wall seconds, ' ' no unit.
+    character(len=N_COLUMNS), parameter :: KINDS = '   TTTLLT  RTTT WL  TT TT      '
 
 contains
 
@@ -144,8 +150,9 @@ contains
     !> Summary of the rodcontact HDF5 file `file`: series from /series, 'status', 'steps',
     !> 'wall_seconds' and 'contact.g' from the root attributes when present (a run killed
     !> before the end leaves a .h5.part without 'steps' and 'wall_seconds').
-    function summarise_file(file) result(s)
+    function summarise_file(file, nondimensional) result(s)
         character(len=*), intent(in) :: file
+        logical, intent(in) :: nondimensional   !< the file's own values, not SI
         type(summary_t) :: s
         real(dp), allocatable :: t(:), energy(:), u_end(:), penetration(:), contact_stress(:)
         real(dp) :: g
@@ -178,7 +185,58 @@ contains
                 call read_attr_real(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)), s%error_estimate(k))
         end do
         call read_events(file, s)
+        if (.not. nondimensional) s%si = file_in_si(file)
+        if (s%si) call to_si(file, s)
     end function summarise_file
+
+    !> Whether the file of a run is read in SI: its root attribute 'units' ('SI' or
+    !> 'nondimensional'), or in a file without it, whether it has SI scales (&material).
+    function file_in_si(file) result(si)
+        character(len=*), intent(in) :: file
+        logical :: si
+        character(len=:), allocatable :: units
+
+        si = attr_exists(file, 'scale.time')
+        if (.not. attr_exists(file, 'units')) return
+        call read_attr_str(file, 'units', units)
+        si = units == 'SI'
+    end function file_in_si
+
+    !> s's times and lengths in SI: scale.time (omega of (2.10), s), scale.displacement (m).
+    subroutine to_si(file, s)
+        character(len=*), intent(in) :: file
+        type(summary_t), intent(inout) :: s
+        real(dp) :: tf, lf
+
+        call read_attr_real(file, 'scale.time', tf)
+        call read_attr_real(file, 'scale.displacement', lf)
+        s%first_contact_t = tf * s%first_contact_t; s%last_contact_t = tf * s%last_contact_t
+        s%contact_time = tf * s%contact_time; s%t_max_u_end = tf * s%t_max_u_end
+        s%decay_fit_from_t = tf * s%decay_fit_from_t; s%decay_fit_to_t = tf * s%decay_fit_to_t
+        s%t_final = tf * s%t_final; s%decay_rate = s%decay_rate / tf
+        s%onset_t = tf * s%onset_t; s%release_t = tf * s%release_t
+        s%max_penetration = lf * s%max_penetration; s%max_u_end = lf * s%max_u_end; s%g = lf * s%g
+    end subroutine to_si
+
+    !> The unit of a column of quantity kind (KINDS) in a table in SI or nondimensional.
+    pure function unit_label(kind, si) result(label)
+        character, intent(in) :: kind
+        logical, intent(in) :: si
+        character(len=:), allocatable :: label
+
+        select case (kind)
+        case ('T')
+            label = merge(' [s]', ' [1]', si)
+        case ('L')
+            label = merge(' [m]', ' [1]', si)
+        case ('R')
+            label = trim(merge(' [1/s]', ' [1]  ', si))
+        case ('W')
+            label = ' [s]'
+        case default
+            label = ''
+        end select
+    end function unit_label
 
     !> The onset and release times of /events (absent in files of older versions).
     subroutine read_events(file, s)
@@ -200,11 +258,12 @@ contains
         s%release_t = pack(t(1:n), kind(1:n) <= 0)
     end subroutine read_events
 
-    !> 'file,event,kind,t': the CSV header of write_event_rows.
-    pure function events_header() result(line)
+    !> 'file,event,kind,t [s]' (or t [1]): the CSV header of write_event_rows.
+    pure function events_header(si) result(line)
+        logical, intent(in) :: si
         character(len=:), allocatable :: line
 
-        line = 'file,event,kind,t'
+        line = 'file,event,kind,t' // unit_label('T', si)
     end function events_header
 
     !> One CSV row per contact event of s, in time order: the file, the event's number (1, 2,
@@ -272,14 +331,16 @@ contains
         end if
     end function summary_problem
 
-    !> 'file,status,contact,...': the CSV header of summary_row.
-    pure function summary_header() result(line)
+    !> 'file,status,contact,first_contact_t [s],...': the CSV header of summary_row, the
+    !> units those of a summary in SI (si) or nondimensional.
+    pure function summary_header(si) result(line)
+        logical, intent(in) :: si
         character(len=:), allocatable :: line
         integer :: k
 
         line = trim(COLUMNS(1))
         do k = 2, N_COLUMNS
-            line = line // ',' // trim(COLUMNS(k))
+            line = line // ',' // trim(COLUMNS(k)) // unit_label(KINDS(k:k), si)
         end do
     end function summary_header
 

@@ -12,7 +12,8 @@
 #   --style    surface (default), profiles or series; 'all' draws the three
 #   --fields   comma-separated among u, v, theta, P, q, eta, sigma (default: u P theta q eta,
 #              and sigma when the file has /snapshots/sigma)
-#   --t-max    last time drawn in surfaces and profiles (default: the run's last snapshot)
+#   --t-max    last time drawn in surfaces and profiles, in the units drawn (seconds for SI
+#              axes; default: the run's last snapshot)
 #   --out DIR  where to write <run>_<style>.png and .pdf (default: the directory of RUN.h5);
 #              relative paths are taken from the current directory, as for RUN.h5. Nothing
 #              else is written (the data for gnuplot go to a temporary directory).
@@ -20,12 +21,17 @@
 #              si_units): the default for a run with &material, which has the scales
 #   --nondimensional  the file's nondimensional values (the default without &material); the
 #              labels say so
+# Each axis is in a power of ten of its unit that keeps its tick labels short (mm for a 1 cm
+# rod, '[10^6 K]'), named in its label. A file still being written (a running or killed run's
+# .h5.part, status 'incomplete') is drawn as far as it goes, with a message saying how far; a
+# surface needs two snapshots and the series two rows (until then: the profiles, or nothing).
 # Names are drawn as they are (no gnuplot markup: point_0001 stays point_0001). The files
 # written are printed on stdout, one per line.
 #
 # Needs a Python with h5py (scripts/lib/find_python.sh) and gnuplot with pngcairo and pdfcairo.
 # Exit status: 0 drawn; 1 a tool is missing or gnuplot failed; 2 usage error, or RUN.h5 is
-# not a rodcontact output file.
+# not a rodcontact output file; 3 nothing to draw yet (a run file with one snapshot and one
+# series row).
 
 set -euo pipefail
 
@@ -85,6 +91,26 @@ if ((status != 0)); then
     say "reading $run failed"; exit 1
 fi
 title="$name"
+param() { awk -F' = ' -v k="$1" '$1 == k { gsub(/"/, "", $2); print $2 }' "$data/params.gp"; }
+# A file still being written (or the .part of a killed run): say how far it goes, draw what it
+# can (a surface needs two snapshots, the series two rows: gnuplot's 'empty range' otherwise)
+n_snap=$(param n_snap) n_series=$(param n_series) run_status=$(param status)
+if [[ "$run_status" != complete ]]; then
+    say "$(basename "$run"): status '$run_status': drawn as far as it goes, $n_snap snapshot(s) up to t = $(param t_max)$(param t_plain | sed 's/^./ &/') and $n_series series row(s)"
+fi
+drawable=()
+for st in "${styles[@]}"; do
+    if [[ "$st" == surface ]] && ((n_snap < 2)); then
+        say "no surface: $n_snap snapshot so far (a surface needs two)"
+        [[ "$style" == surface ]] && { say "drawing the profiles instead"; drawable+=(profiles); }
+    elif [[ "$st" == series ]] && ((n_series < 2)); then
+        say "no series: $n_series row so far (a time series needs two)"
+    else
+        drawable+=("$st")
+    fi
+done
+((${#drawable[@]} > 0)) || { say "nothing to draw yet"; exit 3; }
+styles=("${drawable[@]}")
 written=()
 for st in "${styles[@]}"; do
     case "$st" in

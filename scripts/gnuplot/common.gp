@@ -32,6 +32,10 @@ field_label(f) = it(f).'('.it('x').', '.it('t').')'
 # Usage: @fronts with fr_times, fr_colours, fr_n, fr_v set.
 fronts = 'do for [k=1:fr_n] { xf = pulse_end + fr_v*word(fr_times, k); if (word(fr_times, k) > 0 && xf <= 1.0) { set arrow from xf, graph 0 to xf, graph 1 nohead dt (6,4) lw 1.5 lc rgb word(fr_colours, k) back } }'
 
+# The contact intervals of scripts/lib/plotdata.py (n_contact, contact_on, contact_off: word
+# lists in the time axis' units) shaded grey behind the next plot. Usage: @shade_contact
+shade_contact = 'do for [k=1:n_contact] { set object 100 + k rect from real(word(contact_on, k)), graph 0 to real(word(contact_off, k)), graph 1 behind fc rgb "#e6e6e6" fs solid 1.0 noborder }'
+
 # Panel placement in screen coordinates: columns c = 0..nc-1 between x0 and x1 with gap
 # gx; rows r = 0..nr-1 (0 at the top) between y1 (top) and y0 (bottom) with gap gy.
 px0 = 0.09; px1 = 0.985; pgx = 0.085
@@ -45,6 +49,7 @@ figtitle_literal(s) = figtitle(s).' noenhanced'
 # A key of its own across the whole width, between the title and the panels: an empty
 # plot whose curves are never drawn (NaN) but are listed in its key. Usage: set
 # key_plot to the plot command's curve list, key_y0/key_y1 (and key_x0/key_x1) to its
-# screen band, then @keyrow (key_plot is read when the line runs).
-key_x0 = 0.0; key_x1 = 1.0; key_samplen = 2.5
-keyrow = 'set lmargin at screen key_x0; set rmargin at screen key_x1; set tmargin at screen key_y1; set bmargin at screen key_y0; unset border; unset xtics; unset ytics; unset mxtics; unset mytics; unset xlabel; unset ylabel; unset grid; set xrange [0:1]; set yrange [0:1]; set key inside center center horizontal reverse Left samplen key_samplen width 0; eval "plot ".key_plot; unset key; set border; set xtics out nomirror; set ytics out nomirror; set mxtics 2; set mytics 2; set grid; set autoscale'
+# screen band (key_spacing: more room between its rows, for subscripts), then @keyrow
+# (key_plot is read when the line runs).
+key_x0 = 0.0; key_x1 = 1.0; key_samplen = 2.5; key_spacing = 1.0
+keyrow = 'set lmargin at screen key_x0; set rmargin at screen key_x1; set tmargin at screen key_y1; set bmargin at screen key_y0; unset border; unset xtics; unset ytics; unset mxtics; unset mytics; unset xlabel; unset ylabel; unset grid; set xrange [0:1]; set yrange [0:1]; set key inside center center horizontal reverse Left samplen key_samplen spacing key_spacing width 0; eval "plot ".key_plot; unset key; set border; set xtics out nomirror; set ytics out nomirror; set mxtics 2; set mytics 2; set grid; set autoscale'

@@ -23,9 +23,9 @@ div_palette = "set palette defined (0 '#2140a0', 0.25 '#6f9bd9', 0.5 '#f7f7f7', 
 # panel (pr, pc) occupies the box [ox, ox + sx] x [oy, oy + sy] of the screen below the title
 top = 0.93
 sx = 1.0/pnc; sy = top/pnr
-# without SI units the figure's title says 'nondimensional' once: the axes and panels name
-# only the variable (the long '(nondimensional)' ran into the tick labels)
-nondim(unit) = (strstrt(unit, 'nondimensional') > 0) ? '' : unit
+# the short labels of plotdata.py (x_short, t_short, short_<field>): without SI units the
+# figure's title says 'nondimensional' once, the axes and panels name the variable and the
+# power of ten drawn (the long '(nondimensional)' ran into the tick labels)
 do for [i=0:n_fields-1] {
     pr = int(i/3); pc = i - 3*pr
     fld = word(fields, i + 1)
@@ -36,17 +36,18 @@ do for [i=0:n_fields-1] {
     set xyplane 0
     set border 31 lw 0.8 lc rgb '#606060'
     unset grid
-    set xtics x_max/4. offset 0, -0.2 nomirror
-    set ytics auto offset 0.5, -0.2 nomirror
+    # about four ticks on each axis: the t axis, foreshortened by the view, ran its labels together
+    set xtics xs_step offset 0, -0.2 nomirror
+    set ytics t_step offset 0.5, -0.2 nomirror
     unset ztics   # the colour bar beside the panel gives the values
     unset mxtics; unset mytics
-    set xlabel it('x').nondim(x_unit) offset 0, -0.3
-    set ylabel it('t').nondim(t_unit) offset 0, 0
+    set xlabel it('x').x_short offset 0, -0.3
+    set ylabel it('t').t_short offset 0, 0
     set zlabel ''
     set format z '%g'
     tmin = value('t_min_'.fld)
     # tmin > 0: the field at t = 0 is off the colour scale, drawn from t = tmin
-    set title field_label(word(symbols, i + 1)).(exists('unit_'.fld) ? nondim(value('unit_'.fld)) : '').(tmin > 0 ? sprintf('   (from {/:Italic t} = %g)', tmin) : '') offset 0, -1
+    set title field_label(word(symbols, i + 1)).value('short_'.fld).(tmin > 0 ? sprintf('   (from {/:Italic t} = %.3g%s)', tmin, t_plain eq '' ? '' : ' '.t_plain) : '') offset 0, -1
     set xrange [0:x_max]
     set yrange [0:t_max]
     lo = value('cb_lo_'.fld); hi = value('cb_hi_'.fld)
@@ -76,16 +77,14 @@ if (with_uend) {
     set grid xtics ytics
     set xrange [0:t_end_series]
     set yrange [0:*]
-    set xlabel it('t').t_unit offset 0, 0
+    set xlabel it('t').ts_unit offset 0, 0
     set ylabel it('u').'(1, '.it('t').')'.u_unit offset 0, 0
-    if (t_on == t_on) {
-        set object 1 rect from t_on, graph 0 to t_off, graph 1 behind fc rgb '#e6e6e6' fs solid 1.0 noborder
-    }
+    @shade_contact
     set arrow 1 from graph 0, first g to graph 1, first g nohead lw 1.5 dt (8,5) lc rgb '#c00000' front
     set key inside right bottom reverse Left samplen 2.5 box opaque width 1
     set style fill solid 1.0 noborder
     plot datadir.'/series.dat' skip 1 using 1:3 with lines lw 2.2 lc rgb '#30123b' title it('u').'(1, '.it('t').')', \
          NaN with lines lw 1.5 dt (8,5) lc rgb '#c00000' title 'obstacle '.it('g').sprintf(' = %g', g), \
-         NaN with boxes lc rgb '#e6e6e6' title 'contact'
+         NaN with boxes lc rgb '#e6e6e6' title 'in contact'
 }
 unset multiplot

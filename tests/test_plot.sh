@@ -125,14 +125,16 @@ sed -e '/^&model/,/tau=0.2 \//d' -e "s|&time|\&material ell=1.0 /\n\&time|" -e '
 "$prog" "$dir/alu.nml" >/dev/null 2>&1 || fail "the &material run failed"
 "$py" "$src/scripts/lib/plotdata.py" "$dir/alu.h5" "$dir/si-data" >"$dir/si.log" 2>&1 || fail "plotdata.py on alu.h5: $(cat "$dir/si.log")"
 grep -q '^x_unit = " \[m\]"$' "$dir/si-data/params.gp" && grep -q '^t_unit = " \[s\]"$' "$dir/si-data/params.gp" &&
-    grep -q '^unit_theta = " \[K\]"$' "$dir/si-data/params.gp" || fail "SI units missing in params.gp: $(grep unit "$dir/si-data/params.gp")"
-"$py" - "$dir/alu.h5" "$dir/si-data" <<'PY' || fail "the SI profiles are not si_factor times the file's values"
-import sys, h5py, numpy as np
+    grep -Eq '^unit_theta = " \[(10\^\{[0-9]+\} )?K\]"$' "$dir/si-data/params.gp" || fail "SI units missing in params.gp: $(grep unit "$dir/si-data/params.gp")"
+"$py" - "$dir/alu.h5" "$dir/si-data" <<'PY' || fail "the SI profiles are not si_factor times the file's values (in the power of ten of their label)"
+import re, sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], "r")
 p = np.loadtxt(sys.argv[2] + "/prof.theta.dat", skiprows=1)
+label = re.search(r'^unit_theta = "(.*)"$', open(sys.argv[2] + "/params.gp").read(), re.M).group(1)
+power = 10.0 ** int(re.search(r"10\^\{(-?[0-9]+)\}", label).group(1)) if "10^" in label else 1.0
 th, x = f["snapshots/theta"], f["mesh/x"]
 ok = np.allclose(p[:, 0], x.attrs["si_factor"] * x[:], rtol=1e-6) and \
-     np.allclose(p[:, -1], th.attrs["si_factor"] * th[-1, :], rtol=1e-6, atol=1e-6 * abs(th.attrs["si_factor"] * th[-1, :]).max())
+     np.allclose(power * p[:, -1], th.attrs["si_factor"] * th[-1, :], rtol=1e-6, atol=1e-6 * abs(th.attrs["si_factor"] * th[-1, :]).max())
 sys.exit(0 if ok else 1)
 PY
 "$src/scripts/plot.sh" "$dir/alu.h5" --style all --out "$dir/si-figs" >"$dir/si2.log" 2>&1 || fail "plot.sh on a &material run: $(cat "$dir/si2.log")"

@@ -25,6 +25,8 @@ do for [i=0:n_fields-1] {
     fld = word(fields, i + 1)
     set ylabel field_label(word(symbols, i + 1)).value('short_'.fld)
     k0 = value('clip0_'.fld) ? 2 : 1
+    flat = value('flat_'.fld)
+    if (flat == flat) { set yrange [flat - (flat == 0 ? 1 : abs(flat)):flat + (flat == 0 ? 1 : abs(flat))] } else { set autoscale y }
     if (k0 == 2) {
         set label 1 it('t').' = 0: off scale' at graph 1, graph 1.03 right font ','.sprintf('%.2f', (font_px - 3)*font_scale) textcolor rgb word(prof_colours, 1)
     } else {

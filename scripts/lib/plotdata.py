@@ -268,6 +268,10 @@ def write_fields(f, a, units, fields, n_snap, params):
         params[f"cb_lo_{fld}"], params[f"cb_hi_{fld}"] = ((-m, m) if signed else (lo, hi if hi > lo else lo + 1))
         params[f"z_lo_{fld}"], params[f"z_hi_{fld}"] = (lo, hi if hi > lo else lo + 1)
         params[f"signed_{fld}"] = int(signed)
+        # the y range of the profiles when they are all one value (a run's first snapshot, u = 0):
+        # gnuplot would warn of an empty range
+        flat = ff * data[ip[1:] if params[f"clip0_{fld}"] else ip, :]
+        params[f"flat_{fld}"] = float(flat.min()) if flat.min() == flat.max() else math.nan
     return None
 
 

@@ -33,7 +33,8 @@ REQUIRED_PACKAGES=(gfortran cmake make liblapack-dev libblas-dev libhdf5-dev
                    python3-xarray python3-h5netcdf netcdf-bin
                    valgrind parallel graphviz)
 
-# poppler-utils: pdftotext, with which tests/test_plot.sh reads the title of a figure
+# poppler-utils: pdftotext, with which tests/test_plot.sh reads the title of a figure and
+# tests/test_figure_layout.sh the text boxes of every figure (tests/tools/figure_layout.py)
 REQUIRED_PACKAGES+=(poppler-utils)
 # python3-yaml: tests/test_version.sh reads CITATION.cff
 REQUIRED_PACKAGES+=(python3-yaml)

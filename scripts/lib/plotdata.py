@@ -93,9 +93,10 @@ def sample(n, m=MAX_SAMPLES):
 
 def power_of_ten(m):
     """The exponent (a multiple of 3) in which a quantity of largest magnitude m is drawn: 0
-    when 0.05 <= m < 10^4, else the one that brings m into [1, 1000): tick labels of at most
-    five characters ('1.5e+06' ran off the page beside the colour bars)."""
-    if not (m > 0 and math.isfinite(m)) or 0.05 <= m < 1e4:
+    when 0.1 <= m < 10^4, else the one that brings m into [1, 1000): tick labels of at most
+    five characters ('1.5e+06' ran off the page beside the colour bars, '-0.035' into the
+    next panel)."""
+    if not (m > 0 and math.isfinite(m)) or 0.1 <= m < 1e4:
         return 0
     return 3 * math.floor(math.log10(m) / 3)
 

@@ -21,17 +21,16 @@ DATA_DIR receives
     params.gp          gnuplot assignments: fields, labels, times, colours, status, g, the
                        contact intervals, ...
 
-Units: with --units si (the default 'auto' when the file's root attribute `units` is 'SI', or,
-in files without it, when the datasets have SI scales: runs with &material) every value is in
-SI units (the si_factor of its dataset); a dataset without si_factor stays nondimensional and
-its label says so. --units nondimensional (the default otherwise): the file's values, labelled
-'(nondimensional)'; --units paper: the file's values, no units in the labels (the paper's
-figures, in its variables). Each quantity is drawn in a power of ten of its unit chosen so that
-the tick labels have at most five characters (power_of_ten): a 1 cm rod in mm, a temperature of
-2e6 K as 2 in '[10^{6} K]', nondimensional values as '(×10^{-3}, nondimensional)'; the data files
-hold the values so divided, and the labels in params.gp name the power. Times given with
---t-max and --times are in the units drawn without that power (seconds for SI, the file's time
-otherwise).
+Units: with --units si (the default 'auto' when the run's input was in SI, rodrun.in_si: runs
+with &material) every value is in SI units (the si_factor of its dataset); a dataset without
+si_factor stays nondimensional and its label says so. --units nondimensional (the default
+otherwise): the file's values, labelled '(nondimensional)'; --units paper: the file's values,
+no units in the labels (the paper's figures, in its variables). Each quantity is drawn in a
+power of ten of its unit chosen so that the tick labels have at most five characters
+(power_of_ten): a 1 cm rod in mm, a temperature of 2e6 K as 2 in '[10^{6} K]', nondimensional
+values as '(×10^{-3}, nondimensional)'; the data files hold the values so divided, and the
+labels in params.gp name the power. Times given with --t-max and --times are in the units drawn
+without that power (seconds for SI, the file's time otherwise).
 
 A file still being written (a running or killed run's .h5.part, status 'incomplete') is read as
 far as its datasets go: n_snap and n_series in params.gp say how many snapshots and series rows
@@ -199,8 +198,7 @@ def choose_units(f, a):
         return f"--si: {a.run} has no SI scales (only runs with &material have them)"
     if a.units != "auto":
         return Units(a.units)
-    system = rodrun.attr(f, "units", "SI" if has_scales else "nondimensional")
-    return Units("si" if str(system).lower() == "si" and has_scales else "nondimensional")
+    return Units("si" if rodrun.in_si(f) and has_scales else "nondimensional")
 
 
 def choose_fields(f, a):

@@ -15,8 +15,13 @@
 #     mass = 'redistributed') on impact.nml through both impacts' onsets and the release
 #     (Euler, BDF2, midpoint; Signorini; fixed steps) the remesh check as well (it was up to
 #     1.4e-5 (Euler), 2.0e-6 (midpoint), 1.3e-7 (BDF2) with the consistent L2 projection of v);
-#  4. a front is followed: on exp2 (BDF2, adaptive steps) the finest elements sit within 4
-#     of them of x = 0.1 + t v_P at the snapshots t = 0.01 .. 0.04;
+#  4. a front is followed: on exp2 (BDF2, adaptive steps, 250 coarse elements, 3 levels) at
+#     the snapshots t = 0.01 .. 0.04 every element within 0.01 of x = 0.1 + t v_P is refined
+#     (h <= 1/500), some at least twice (h <= 1/1000), and the mesh holds fewer than half the
+#     2000 elements of the finest uniform mesh (measured 756, 925, 886, 730). (Before the
+#     pulses' jump node got the mean of its two sides, the full amplitude there was a
+#     grid-scale spike whose oscillation trains had the whole rod behind the front at the
+#     finest level, 819 to 1758 elements, and the finest elements sat at the front.)
 #  5. the contact claims: exp1, exp2, exp3 on adaptive meshes (coarse mesh 1/100, 2 levels,
 #     fixed steps dt = 1e-3) have one contact interval whose onset and release are within
 #     0.01 of the paper's (0.19-1.45, 0.30-1.36, 0.31-1.40); /snapshots stay on /mesh/x.
@@ -172,7 +177,7 @@ PY
 "$exe" "$src/input/exp2.nml" --set mesh.n_elements=250 --set mesh.adaptive=.true. --set mesh.max_level=3 \
     --set time.scheme="'bdf2'" --set time.adaptive=.true. --set time.error_tol=1e-4 --set time.t_end=0.04 \
     --set output.snapshot_dt=0.01 --set output.quiet=.true. --set output.prefix="'front'" || check "front run" false
-check "exp2: the finest elements sit within 4 of them of x = 0.1 + t v_P at t = 0.01 .. 0.04" "$py" - <<'PY'
+check "exp2: within 0.01 of x = 0.1 + t v_P refined, some twice, at t = 0.01 .. 0.04, < 1000 elements" "$py" - <<'PY'
 import sys, h5py, numpy as np
 f = h5py.File('front.h5', 'r'); a = f.attrs
 v_P = np.sqrt(a['model.hbar'] / (a['model.r'] * a['model.tau']))
@@ -180,12 +185,12 @@ ok = True
 for k, t in enumerate(f['snapshots/t'][:]):
     if t <= 0: continue
     o, c = int(f['snapshots/native/offset'][k]), int(f['snapshots/native/count'][k])
-    x = f['snapshots/native/x'][o:o + c]; h = np.diff(x); h_min = h.min()
-    centres = 0.5 * (x[1:] + x[:-1])[h <= h_min * (1 + 1e-9)]
+    x = f['snapshots/native/x'][o:o + c]; h = np.diff(x)
     front = 0.1 + t * v_P
-    dist = np.min(np.abs(centres - front)) / h_min
-    print(f"t = {t:.2f}: front at {front:.4f}, nearest finest element {dist:.1f} of them away, {c - 1} elements")
-    ok &= dist <= 4 and h_min < 1.0 / 250 / 4
+    near = h[np.abs(0.5 * (x[1:] + x[:-1]) - front) < 0.01]
+    print(f"t = {t:.2f}: front at {front:.4f}, elements within 0.01 of it from 1/{1 / near.max():.0f} "
+          f"to 1/{1 / near.min():.0f}, {c - 1} elements")
+    ok &= near.max() <= 1.0 / 500 * (1 + 1e-9) and near.min() <= 1.0 / 1000 * (1 + 1e-9) and c - 1 < 1000
 sys.exit(0 if ok else 1)
 PY
 

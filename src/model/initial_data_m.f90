@@ -7,14 +7,16 @@ module initial_data_m
     private
     public :: profile, STEP_TOL
 
-    !> A point within STEP_TOL of the step's end x_end counts as inside [0, x_end], so a
-    !> node computed as i/s that should equal x_end is not lost to round-off.
+    !> A point within STEP_TOL of the step's end x_end is on the jump, so that a node
+    !> computed as i/s that should equal x_end is not lost to round-off.
     real(dp), parameter :: STEP_TOL = 1.0e-12_dp
 
 contains
 
-    !> y = sum_k poly(k) x**k (constant term first, Horner), plus step(1) if step is
-    !> present and x <= step(2): the step (amplitude, x_end) adds its amplitude on [0, x_end].
+    !> y = sum_k poly(k) x**k (constant term first, Horner), plus the step (amplitude,
+    !> x_end) if present: its amplitude on [0, x_end), half of it at x_end, the mean of the
+    !> jump's two sides, which keeps the pulse's integral exact in the nodal interpolant
+    !> when x_end is a node (docs/scheme.md, "Initial data").
     pure function profile(poly, x, step) result(y)
         real(dp), intent(in) :: poly(0:)
         real(dp), intent(in) :: x
@@ -27,7 +29,11 @@ contains
             y = y * x + poly(k)
         end do
         if (present(step)) then
-            if (x <= step(2) + STEP_TOL) y = y + step(1)
+            if (x < step(2) - STEP_TOL) then
+                y = y + step(1)
+            else if (x <= step(2) + STEP_TOL) then
+                y = y + 0.5_dp * step(1)
+            end if
         end if
     end function profile
 

@@ -1,9 +1,7 @@
 !> The built-in error estimate of a run (&output error_estimate = .true.; docs/scheme.md,
 !> "The error estimate of a run", has the reasons and the measurements): companion
-!> solutions integrated beside the run on coarser meshes with longer steps, and Richardson
-!> extrapolation with observed orders.
-!>
-!> The run X computes on s elements (size h) with steps dt. Beside it:
+!> solutions integrated beside the run X (s elements of size h, steps dt) on coarser meshes
+!> with longer steps, and Richardson extrapolation with observed orders:
 !>   A at (2 dt, 2 h)   every other node;   C at (4 dt, 4 h)   every fourth node;
 !>   D at (8 dt, 4 h)   C's mesh.
 !> Total, per field: with d1 = |A - X| and d2 = |C - A| at their common nodes the observed
@@ -12,31 +10,20 @@
 !> Time part: with p_t = min(p, r) (p the scheme's order) the error of X is
 !> (D - C) / (4^p_t (2^p_t - 1)) on C's nodes. Space part: sqrt(total^2 - time^2) (0 when
 !> the time part is larger). Relative L2 norms by the trapezoidal rule on the companion's
-!> nodes.
-!> Steps: a companion of k (2, 4, 8) takes each step over k consecutive steps of the run:
-!> the run's steps wait in a queue, and when 3k are queued the first k go into one step; at
-!> a snapshot the L queued steps go into one step over the last k and, before it, the
-!> r = L - k others in one step (r <= k) or two (k < r < 2k: r/2 and the rest). The
-!> companion itself so lands when the run has taken LAND_SPAN k steps or more since the
-!> last snapshot; otherwise a copy lands and the companion goes on with its queue, so that
-!> its own steps stay over k of the run's. The companions skip the stepper's per-step
-!> finiteness test (the estimate tests their levels).
-!> Meshes of a multiple of 4 (coarse) elements (validate_m). On an adaptive mesh (&mesh
-!> adaptive) "every other node" is the companion's own bisection mesh, coarser by 2 (A) and 4
-!> (C, D) where the run's level is the same, nested in the run's (companion_mesh_m); it is
-!> rebuilt when the run remeshes, the companion's levels moved onto it by transfer_m, and the
-!> norms are the trapezoidal rule on its nodes (companions_remesh, estimate_graded).
+!> nodes. A companion of k (2, 4, 8) steps over k of the run's (companions_follow,
+!> companions_land); on an adaptive mesh (&mesh adaptive) each has its own bisection mesh,
+!> nested in the run's (companion_mesh_m).
 module error_companion_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use config_m, only: config_t
-    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
+    use fields_m, only: N_OUTPUT_FIELDS, OUTPUT_ORDER
     use state_m, only: state_t, initial_state, field_values, land_on, copy_state, set_mesh
     use stepper_m, only: stepper_t, step_result_t
     use sources_m, only: source_t
     use checkpoint_m, only: checkpoint_t
-    use errors_m, only: check_allocation, fatal, EXIT_INPUT
+    use errors_m, only: fatal, EXIT_INPUT
     use adaptive_mesh_m, only: nodes_of_keys
     use companion_mesh_m, only: companion_keys, key_positions, trapezoid_weights
     use remesh_m, only: move_level
@@ -52,21 +39,20 @@ module error_companion_m
     integer, parameter :: ELEMENTS_PER_ELEMENT(N_COMPANIONS) = [2, 4, 4]
     !> observed orders are clamped to this range (below: not converging; above: cancellation)
     real(dp), parameter :: ORDER_MIN = 0.5_dp, ORDER_MAX = 2.0_dp
-    !> the estimate's parts: total, time, space
     character(len=*), parameter :: NAMES = 'ACD'
+    !> the estimate's parts: total, time, space
     integer, parameter :: PART_TOTAL = 1, PART_TIME = 2, PART_SPACE = 3, N_ESTIMATE_PARTS = 3
     !> a companion lands itself on a snapshot LAND_SPAN k or more of the run's steps after the
-    !> one before (closer snapshots: a copy lands; the module's header)
+    !> one before (closer snapshots: a copy lands; companions_land)
     integer, parameter :: LAND_SPAN = 8
-    !> the run's steps a companion holds at most (3 k: the module's header)
+    !> the run's steps a companion holds at most (3 k: companions_follow)
     integer, parameter :: QUEUE_MAX = 3 * maxval(STEPS_PER_STEP)
     !> One companion solution on its own mesh, with its own steps.
     type :: companion_t
         integer :: steps_per_step = 2      !< k: steps of the run per step of the companion
         type(state_t) :: state
-        !> a copy landed on the snapshot (snapshots closer than 2 k of the run's steps)
+        !> the level landed on the last snapshot (companions_land)
         type(state_t) :: ahead
-        logical :: on_copy = .false.       !< the last snapshot's level is in ahead
         type(stepper_t) :: stepper
         type(step_result_t) :: result
         !> the run's steps since the companion's last step: their sizes and end times
@@ -115,10 +101,17 @@ contains
         class(source_t), intent(in), optional :: source
         integer(int64), intent(in), optional :: keys(0:)
         type(config_t) :: coarse
-        integer :: j, k
+        integer, allocatable :: on_run(:)
+        integer :: i, j, k
 
         self%on = .true.
         if (.not. cfg%time%adaptive) self%dt_fixed = cfg%time%dt
+        self%adaptive = present(keys)
+        if (self%adaptive) then
+            self%n_coarse = cfg%mesh%n_elements
+            self%n_fine = int(cfg%mesh%n_elements, int64) * 2_int64**cfg%mesh%max_level
+            self%k_run = keys
+        end if
         coarse = cfg
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
@@ -126,15 +119,18 @@ contains
                 k = ELEMENTS_PER_ELEMENT(j)
                 coarse%mesh%n_elements = cfg%mesh%n_elements / k
                 coarse%time%dt = real(c%steps_per_step, dp) * cfg%time%dt
-                if (present(keys)) then
-                    call start_graded(self, j, cfg, coarse, keys, initial)
+                if (self%adaptive) then   ! its own mesh, nested in the run's (companion_mesh_m)
+                    call companion_keys(keys, self%n_coarse, self%n_fine, k, c%k)
+                    call initial_state(coarse, c%state, nodes_of_keys(c%k, self%n_fine))
+                    on_run = key_positions(c%k, keys)
                 else
                     call initial_state(coarse, c%state)
-                    c%state%u = initial%u(0::k)
-                    c%state%w = initial%w(0::k, :)
+                    on_run = [(k * i, i = 0, c%state%s)]
                 end if
+                c%state%u = initial%u(on_run)
+                c%state%w = initial%w(on_run, :)
                 call c%stepper%init(coarse, c%result, source)
-                if (present(keys)) call c%stepper%remesh(c%state)
+                if (self%adaptive) call c%stepper%remesh(c%state)
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
                 c%stepper%check_finite = .false.
                 if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
@@ -169,23 +165,23 @@ contains
     !> step over the run's last k steps, and the r steps queued before them in one step (r <= k)
     !> or two (k < r < 2k: r/2 and the rest). A companion lands itself (its queue empties) when
     !> the run has taken LAND_SPAN k steps or more since the last snapshot; otherwise a copy
-    !> lands (ahead; the r steps in one step) and the companion goes on with its queue (the
-    !> module's header).
+    !> lands (the r steps in one step) and the companion goes on with its queue, so that its
+    !> own steps stay over k of the run's. Either way the landed level is then in ahead.
     subroutine companions_land(self)
         type(error_companions_t), intent(inout) :: self
         integer :: j, k, r
+        logical :: on_copy
 
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 k = c%steps_per_step
-                c%on_copy = .not. (c%n_queued >= 2 * k .and. self%n_since >= LAND_SPAN * k)
-                if (c%on_copy) then
-                    call copy_state(c%state, c%ahead)
-                    call land_level(c%ahead)
-                else
+                on_copy = .not. (c%n_queued >= 2 * k .and. self%n_since >= LAND_SPAN * k)
+                if (.not. on_copy) then
                     call land_level(c%state)
                     call drop(c, c%n_queued)
                 end if
+                call copy_state(c%state, c%ahead)
+                call land_level(c%ahead)   ! (no step if the companion has landed itself)
             end associate
         end do
         self%n_since = 0
@@ -201,7 +197,7 @@ contains
             associate (c => self%pair(j))
                 r = c%n_queued - k
                 first = 1
-                if (r > k .and. .not. c%on_copy) then
+                if (r > k .and. .not. on_copy) then
                     call step_over(self, j, level, 1, r / 2)
                     first = r / 2 + 1
                 end if
@@ -269,16 +265,21 @@ contains
 
         call companions_land(self)
         do k = 1, N_COMPANIONS
-            if (.not. finite_level(self%pair(k))) &
-                call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
+            associate (level => self%pair(k)%ahead)
+                if (.not. (all(ieee_is_finite(level%u)) .and. all(ieee_is_finite(level%w)))) &
+                    call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
+            end associate
         end do
         if (self%failed) then
             values = ieee_value(1.0_dp, ieee_quiet_nan)
             self%last = values
             return
         end if
-        if (self%adaptive) then
-            call estimate_graded(self, state, values)
+        if (self%adaptive) then   ! C's nodes are A's, A's are the run's (companion_mesh_m)
+            associate (k_a => self%pair(COMP_A)%k, k_c => self%pair(COMP_C)%k)
+                call extrapolate(self, state, key_positions(k_a, self%k_run), key_positions(k_c, self%k_run), &
+                                 key_positions(k_c, k_a), values, trapezoid_weights(k_a), trapezoid_weights(k_c))
+            end associate
         else   ! A's nodes are every other of the run's, C's every other of A's
             associate (s_a => self%pair(COMP_A)%state%s, s_c => self%pair(COMP_C)%state%s)
                 call extrapolate(self, state, [(2 * i, i = 0, s_a)], [(4 * i, i = 0, s_c)], [(2 * i, i = 0, s_c)], &
@@ -287,41 +288,6 @@ contains
         end if
         self%last = values
     end subroutine companions_estimate
-
-    !> The nodal values of field f of companion c's level at the last snapshot (the companion's
-    !> or its copy's).
-    function landed_values(c, f) result(values)
-        type(companion_t), intent(in) :: c
-        integer, intent(in) :: f
-        real(dp) :: values(0:c%state%s)
-
-        if (c%on_copy) then
-            values = field_values(c%ahead, f)
-        else
-            values = field_values(c%state, f)
-        end if
-    end function landed_values
-
-    !> Companion c's level at the last snapshot holds finite values only.
-    logical function finite_level(c)
-        type(companion_t), intent(in) :: c
-
-        if (c%on_copy) then
-            finite_level = all(ieee_is_finite(c%ahead%u)) .and. all(ieee_is_finite(c%ahead%w))
-        else
-            finite_level = all(ieee_is_finite(c%state%u)) .and. all(ieee_is_finite(c%state%w))
-        end if
-    end function finite_level
-
-    !> log2(coarse / fine) of two successive differences of a ladder refined by 2, clamped to
-    !> [ORDER_MIN, ORDER_MAX] (ORDER_MIN: also when they vanish).
-    pure real(dp) function observed_order(fine, coarse) result(order)
-        real(dp), intent(in) :: fine, coarse
-
-        order = ORDER_MIN
-        if (fine > 0.0_dp .and. coarse > 0.0_dp) &
-            order = min(max(log(coarse / fine) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
-    end function observed_order
 
     !> The L2 norm over the rod of the P1 function with nodal values x: on a uniform mesh
     !> (weights absent) up to the factor sqrt(h) (the trapezoidal rule; the factor cancels in
@@ -349,11 +315,10 @@ contains
         if (norm > 0.0_dp) relative = error / norm
     end function relative
 
-    !> The companions into a checkpoint, each in error_companions/<A|C|D>/: level and previous
-    !> (nodes x (1+N_FIELDS), u then fields_m's F_*; previous with no rows for a single-step
-    !> scheme; an adaptive mesh's companion meshes are rebuilt from the run's), its counters
-    !> and its queue of the run's steps (QUEUE_MAX, n_queued in use); then whether they
-    !> failed, the run's steps since the last snapshot.
+    !> The companions into a checkpoint, each under error_companions/<A|C|D>: its state
+    !> (state_t's save_checkpoint; an adaptive mesh's companion meshes are rebuilt from the
+    !> run's), its solves and its queue of the run's steps (QUEUE_MAX, n_queued in use); then
+    !> whether they failed, the run's steps since the last snapshot.
     subroutine companions_save_checkpoint(self, ckpt)
         class(error_companions_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
@@ -361,24 +326,13 @@ contains
         integer :: j
 
         do j = 1, N_COMPANIONS
-            associate (c => self%pair(j), st => self%pair(j)%state)
-                p = 'error_companions/'//NAMES(j:j)//'/'
-                call ckpt%put(p//'level', reshape([st%u, st%w], [st%s + 1, 1 + N_FIELDS]))
-                if (allocated(st%u_prev)) then
-                    call ckpt%put(p//'previous', reshape([st%u_prev, st%w_prev], &
-                                                         [st%s + 1, 1 + N_FIELDS]))
-                else
-                    call ckpt%put(p//'previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
-                end if
-                call ckpt%put(p//'step', st%step)
-                call ckpt%put(p//'t', st%t)
-                call ckpt%put(p//'dt_last', st%dt_last)
-                call ckpt%put(p//'t_anchor', st%t_anchor)
-                call ckpt%put(p//'step_anchor', st%step_anchor)
-                call ckpt%put(p//'n_solves', c%stepper%n_solves)
-                call ckpt%put(p//'n_queued', c%n_queued)
-                call ckpt%put(p//'queue_dt', c%queue_dt)
-                call ckpt%put(p//'queue_t', c%queue_t)
+            associate (c => self%pair(j))
+                p = 'error_companions/'//NAMES(j:j)
+                call c%state%save_checkpoint(ckpt, p)
+                call ckpt%put(p//'/n_solves', c%stepper%n_solves)
+                call ckpt%put(p//'/n_queued', c%n_queued)
+                call ckpt%put(p//'/queue_dt', c%queue_dt)
+                call ckpt%put(p//'/queue_t', c%queue_t)
             end associate
         end do
         call ckpt%put('error_companions/failed', self%failed)
@@ -390,40 +344,26 @@ contains
         class(error_companions_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
         character(len=:), allocatable :: p
-        real(dp), allocatable :: level(:, :), previous(:, :), queue(:)
-        integer :: j, n, stat
-        character(len=256) :: message
+        real(dp), allocatable :: queue(:)
+        integer(int64), allocatable :: keys(:)
+        integer :: j
         logical :: failed
 
-        if (self%adaptive) call restore_graded(self, ckpt)
+        if (self%adaptive) then   ! the companions' meshes for the checkpoint's run mesh
+            call ckpt%get('adaptive_mesh/keys', keys)
+            call companions_remesh(self, keys)
+        end if
         do j = 1, N_COMPANIONS
-            associate (c => self%pair(j), st => self%pair(j)%state)
-                p = 'error_companions/'//NAMES(j:j)//'/'
-                n = st%s + 1
-                call ckpt%get(p//'level', level)
-                call ckpt%get(p//'previous', previous)
-                if (size(level, 1) /= n .or. all(size(previous, 1) /= [0, n])) call fatal(EXIT_INPUT, 'restart', &
+            associate (c => self%pair(j))
+                p = 'error_companions/'//NAMES(j:j)
+                call c%state%restore_checkpoint(ckpt, p)
+                if (c%state%s /= c%stepper%s) call fatal(EXIT_INPUT, 'restart', &
                     'the checkpoint''s error-estimate companion '//NAMES(j:j)//' does not fit its mesh')
-                st%u = level(:, 1)
-                st%w = level(:, 2:)
-                if (size(previous, 1) > 0) then
-                    if (.not. allocated(st%u_prev)) then
-                        allocate (st%u_prev(0:n - 1), st%w_prev(0:n - 1, N_FIELDS), stat=stat, errmsg=message)
-                        call check_allocation(stat, message, 'the error estimate''s previous level')
-                    end if
-                    st%u_prev = previous(:, 1)
-                    st%w_prev = previous(:, 2:)
-                end if
-                call ckpt%get(p//'step', st%step)
-                call ckpt%get(p//'t', st%t)
-                call ckpt%get(p//'dt_last', st%dt_last)
-                call ckpt%get(p//'t_anchor', st%t_anchor)
-                call ckpt%get(p//'step_anchor', st%step_anchor)
-                call ckpt%get(p//'n_solves', c%stepper%n_solves)
-                call ckpt%get(p//'n_queued', c%n_queued)
-                call ckpt%get(p//'queue_dt', queue)
+                call ckpt%get(p//'/n_solves', c%stepper%n_solves)
+                call ckpt%get(p//'/n_queued', c%n_queued)
+                call ckpt%get(p//'/queue_dt', queue)
                 c%queue_dt = queue
-                call ckpt%get(p//'queue_t', queue)
+                call ckpt%get(p//'/queue_t', queue)
                 c%queue_t = queue
             end associate
         end do
@@ -432,34 +372,11 @@ contains
         if (failed) call stop_companions(self, 'failed before the checkpoint')
     end subroutine companions_restore_checkpoint
 
-    !> Companion j of an adaptive mesh (&mesh adaptive): on its mesh for the run's mesh with
-    !> node keys `keys` (companion_mesh_m), holding the run's level `initial` at its nodes
-    !> (nodes of the run's mesh). cfg: the run's input, coarse: the companion's.
-    subroutine start_graded(self, j, cfg, coarse, keys, initial)
-        type(error_companions_t), intent(inout) :: self
-        integer, intent(in) :: j
-        type(config_t), intent(in) :: cfg, coarse
-        integer(int64), intent(in) :: keys(0:)
-        type(state_t), intent(in) :: initial
-        integer, allocatable :: on_run(:)
-
-        self%adaptive = .true.
-        self%n_coarse = cfg%mesh%n_elements
-        self%n_fine = int(cfg%mesh%n_elements, int64) * 2_int64**cfg%mesh%max_level
-        self%k_run = keys
-        associate (c => self%pair(j))
-            call companion_keys(keys, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), c%k)
-            call initial_state(coarse, c%state, nodes_of_keys(c%k, self%n_fine))
-            on_run = key_positions(c%k, keys)
-            c%state%u = initial%u(on_run)
-            c%state%w = initial%w(on_run, :)
-        end associate
-    end subroutine start_graded
-
     !> The run's adaptive mesh has changed (keys: its new node keys; remesh_m): each companion
     !> onto its mesh for the new one (companion_mesh_m), its level and the level before (a
     !> multistep scheme) moved as the run's are (remesh_m's move_level: transfer_m); a
-    !> companion whose mesh stays keeps its levels untouched.
+    !> companion whose mesh stays keeps its levels untouched. (A restart: before the
+    !> checkpoint's levels are read.)
     subroutine companions_remesh(self, keys)
         class(error_companions_t), intent(inout) :: self
         integer(int64), intent(in) :: keys(0:)
@@ -483,44 +400,6 @@ contains
         end do
     end subroutine companions_remesh
 
-    !> A restart on an adaptive mesh, before the companions' levels are read: each companion
-    !> on its mesh for the checkpoint's run mesh (adaptive_mesh/keys: the companions' meshes are a
-    !> function of it), with level arrays of its size.
-    subroutine restore_graded(self, ckpt)
-        type(error_companions_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-        integer :: j, s, stat
-        character(len=256) :: message
-
-        call ckpt%get('adaptive_mesh/keys', self%k_run)
-        do j = 1, N_COMPANIONS
-            associate (c => self%pair(j))
-                call companion_keys(self%k_run, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), c%k)
-                s = ubound(c%k, 1)
-                call set_mesh(c%state, nodes_of_keys(c%k, self%n_fine))
-                deallocate (c%state%u, c%state%w)
-                if (allocated(c%state%u_prev)) deallocate (c%state%u_prev, c%state%w_prev)
-                allocate (c%state%u(0:s), c%state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
-                call check_allocation(stat, message, 'the error estimate''s companions')
-                call c%stepper%remesh(c%state)
-            end associate
-        end do
-    end subroutine restore_graded
-
-    !> companions_estimate on an adaptive mesh: the same extrapolation, the run X and A
-    !> compared on A's nodes, and A - X, C - A, D - C on C's nodes (C's nodes are A's, A's are
-    !> the run's: companion_mesh_m), each norm the trapezoidal rule on those nodes.
-    subroutine estimate_graded(self, state, values)
-        type(error_companions_t), intent(in) :: self
-        type(state_t), intent(in) :: state
-        real(dp), intent(out) :: values(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS)
-
-        associate (k_a => self%pair(COMP_A)%k, k_c => self%pair(COMP_C)%k)
-            call extrapolate(self, state, key_positions(k_a, self%k_run), key_positions(k_c, self%k_run), &
-                             key_positions(k_c, k_a), values, trapezoid_weights(k_a), trapezoid_weights(k_c))
-        end associate
-    end subroutine estimate_graded
-
     !> The estimate (module header) of every field from the run's level (state) and the
     !> companions' landed levels: x_on_a, x_on_c the run's nodes at A's and C's, a_on_c A's
     !> at C's; weights_a, weights_c the trapezoidal rule's on A's and C's nodes (adaptive
@@ -539,12 +418,14 @@ contains
 
         do k = 1, N_OUTPUT_FIELDS
             x = field_values(state, OUTPUT_ORDER(k))
-            a = landed_values(self%pair(COMP_A), OUTPUT_ORDER(k))
-            c = landed_values(self%pair(COMP_C), OUTPUT_ORDER(k))
-            d = landed_values(self%pair(COMP_D), OUTPUT_ORDER(k))
+            a = field_values(self%pair(COMP_A)%ahead, OUTPUT_ORDER(k))
+            c = field_values(self%pair(COMP_C)%ahead, OUTPUT_ORDER(k))
+            d = field_values(self%pair(COMP_D)%ahead, OUTPUT_ORDER(k))
             d1 = norm(a(a_on_c) - x(x_on_c), weights_c)
             d2 = norm(c - a(a_on_c), weights_c)
-            r = observed_order(d1, d2)
+            ! the observed order log2(d2 / d1), ORDER_MIN also when a difference vanishes
+            r = ORDER_MIN
+            if (d1 > 0.0_dp .and. d2 > 0.0_dp) r = min(max(log(d2 / d1) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
             ! a fine difference smaller than the coarse one allows (r clamped at ORDER_MAX):
             ! the coarse pair's extrapolation, d2 / 2^r, is the estimate's size
             total = (a - x(x_on_a)) / (2.0_dp**r - 1.0_dp)

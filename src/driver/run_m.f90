@@ -110,7 +110,8 @@ contains
         end if
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
-            call run%state%restore_checkpoint(ckpt)
+            call run%state%restore_checkpoint(ckpt, 'state')
+            call run%state%mesh%restore_checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
                 call run%mesh%restore_checkpoint(ckpt)
                 call ckpt%get('run/n_elements_max', run%n_elements_max)
@@ -355,7 +356,8 @@ contains
         type(config_t), intent(in) :: cfg
         type(checkpoint_t) :: ckpt
 
-        call run%state%save_checkpoint(ckpt)
+        call run%state%save_checkpoint(ckpt, 'state')
+        call run%state%mesh%save_checkpoint(ckpt)
         call run%stepper%save_checkpoint(ckpt)
         call run%monitor%save_checkpoint(ckpt)
         call run%driver%save_checkpoint(ckpt)

@@ -6,7 +6,7 @@ module state_m
     use config_m, only: config_t
     use mesh_m, only: mesh_t, copy_mesh
     use initial_data_m, only: profile
-    use errors_m, only: check_allocation
+    use errors_m, only: check_allocation, fatal, EXIT_INPUT
     use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
     use checkpoint_m, only: checkpoint_t
     implicit none
@@ -205,55 +205,57 @@ contains
         w = 0.0_dp
     end subroutine sized_level
 
-    !> The level, the level before (multistep schemes) and the time counters into a
-    !> checkpoint: state/level and state/previous (s+1, 1+N_FIELDS; pack_level), state/step, t, ...
-    subroutine state_save_checkpoint(self, ckpt)
+    !> The level, the level before and the time counters into a checkpoint under owner (e.g.
+    !> 'state'): owner/level and owner/previous (s+1, 1+N_FIELDS; pack_level; previous with
+    !> no rows before a multistep scheme's first step or for a single-step scheme, so that
+    !> every checkpoint of a run has the same entries), owner/step, t, dt_last, t_anchor, ...
+    subroutine state_save_checkpoint(self, ckpt, owner)
         class(state_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
+        character(len=*), intent(in) :: owner
 
-        call ckpt%put('state/level', pack_level(self%u, self%w))
-        if (allocated(self%u_prev)) call ckpt%put('state/previous', pack_level(self%u_prev, self%w_prev))
-        call ckpt%put('state/step', self%step)
-        call ckpt%put('state/t', self%t)
-        call ckpt%put('state/dt_last', self%dt_last)
-        call ckpt%put('state/t_anchor', self%t_anchor)
-        call ckpt%put('state/step_anchor', self%step_anchor)
-        call self%mesh%save_checkpoint(ckpt)
+        call ckpt%put(owner//'/level', pack_level(self%u, self%w))
+        if (allocated(self%u_prev)) then
+            call ckpt%put(owner//'/previous', pack_level(self%u_prev, self%w_prev))
+        else
+            call ckpt%put(owner//'/previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
+        end if
+        call ckpt%put(owner//'/step', self%step)
+        call ckpt%put(owner//'/t', self%t)
+        call ckpt%put(owner//'/dt_last', self%dt_last)
+        call ckpt%put(owner//'/t_anchor', self%t_anchor)
+        call ckpt%put(owner//'/step_anchor', self%step_anchor)
     end subroutine state_save_checkpoint
 
     !> The inverse of save_checkpoint; the arrays take the checkpoint's number of elements
-    !> (its mesh is set afterwards: set_mesh).
-    subroutine state_restore_checkpoint(self, ckpt)
+    !> (a mesh of that many is set apart: set_mesh). A checkpoint of an earlier version may
+    !> lack previous (a single-step scheme).
+    subroutine state_restore_checkpoint(self, ckpt, owner)
         class(state_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
+        character(len=*), intent(in) :: owner
         real(dp), allocatable :: level(:, :)
-        integer :: s, stat
-        character(len=256) :: message
 
-        call ckpt%get('state/level', level)
-        s = size(level, 1) - 1
-        if (size(self%u) /= s + 1) then
-            deallocate (self%u, self%w)
-            allocate (self%u(0:s), self%w(0:s, N_FIELDS), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the state')
-            self%s = s
-        end if
+        call ckpt%get(owner//'/level', level)
+        self%s = size(level, 1) - 1
+        call sized_level(self%u, self%w, self%s, N_FIELDS, 'the state')
         self%u = level(:, 1)
         self%w = level(:, 2:)
-        if (ckpt%has('state/previous')) then
-            call ckpt%get('state/previous', level)
-            if (allocated(self%u_prev)) deallocate (self%u_prev, self%w_prev)
-            allocate (self%u_prev(0:s), self%w_prev(0:s, N_FIELDS), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the previous level')
-            self%u_prev = level(:, 1)
-            self%w_prev = level(:, 2:)
+        if (ckpt%has(owner//'/previous')) then
+            call ckpt%get(owner//'/previous', level)
+            if (all(size(level, 1) /= [0, self%s + 1])) &
+                call fatal(EXIT_INPUT, 'time.restart_from', 'the checkpoint''s '//owner//' levels differ in size')
+            if (size(level, 1) > 0) then
+                call sized_level(self%u_prev, self%w_prev, self%s, N_FIELDS, 'the previous level')
+                self%u_prev = level(:, 1)
+                self%w_prev = level(:, 2:)
+            end if
         end if
-        call ckpt%get('state/step', self%step)
-        call ckpt%get('state/t', self%t)
-        call ckpt%get('state/dt_last', self%dt_last)
-        call ckpt%get('state/t_anchor', self%t_anchor)
-        call ckpt%get('state/step_anchor', self%step_anchor)
-        call self%mesh%restore_checkpoint(ckpt)
+        call ckpt%get(owner//'/step', self%step)
+        call ckpt%get(owner//'/t', self%t)
+        call ckpt%get(owner//'/dt_last', self%dt_last)
+        call ckpt%get(owner//'/t_anchor', self%t_anchor)
+        call ckpt%get(owner//'/step_anchor', self%step_anchor)
     end subroutine state_restore_checkpoint
 
     !> (s+1, 1+N_FIELDS) array with the columns u and fields_m's F_* (the layout of a checkpoint's state).

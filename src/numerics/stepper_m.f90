@@ -9,24 +9,21 @@
 !>   z_s = e_s^T A^{-1} e_s > 0 because the symmetric part of A is positive definite (Theorem
 !>   6.1), so the semismooth equation has the closed-form root f = 0 if a <= 0, else
 !>   f = dt a / (eps + dt^2 z_s): the active-set step is exact, one solve per time step.
-!> 'paper': the Section 7 iteration: thermal block (q, theta, P, eta) with the velocity of
-!>   the previous iterate, then the mechanical block with the new theta, P and the lagged
-!>   penalty, until the largest change of any nodal value is <= tol * max(1, max |value|).
+!> 'paper': the Section 7 iteration (paper_method_m).
 !>
 !> &time scheme: every scheme is one Euler step (6.1) of size dt_eff from a combination of
 !> past levels (time_scheme_m's plan), so the same assembly, contact step and sources serve all.
 module stepper_m
     use kinds_m, only: dp
-    use reals_m, only: equal, is_zero
-    use ieee_arithmetic, only: ieee_is_finite
     use config_m, only: config_t, model_t, with_contact_mass
     use errors_m, only: check_allocation
     use banded_m, only: band_t, lapack_info_message
+    use step_result_m, only: step_result_t, fail
+    use paper_method_m, only: paper_method_t
     use system_cache_m, only: monolithic_system_t, system_cache_t
-    use fields_m, only: N_FIELDS, F_V, F_Q, F_THETA, F_P, F_ETA
-    use scheme_m, only: active_fields, assemble_matrix, assemble_blocks, old_state_rhs, add_lagged_coupling, &
-                        initial_data_present
-    use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, slots_of, scatter_fields, gather_fields
+    use fields_m, only: N_FIELDS, F_V
+    use scheme_m, only: active_fields, assemble_matrix, assemble_blocks, old_state_rhs, initial_data_present
+    use slots_m, only: MONOLITHIC_SLOTS, slots_of, gather_fields
     use block_tridiagonal_m, only: NB_MAX
     use contact_laws_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
@@ -41,19 +38,6 @@ module stepper_m
 
     integer, parameter :: METHOD_MONOLITHIC = 1, METHOD_PAPER = 2
 
-    !> What one step did; ok = .false. with a message on a numerical failure.
-    type :: step_result_t
-        logical :: ok = .true.
-        character(len=256) :: message = ''
-        integer :: iterations = 0        !< linear solves of the step (paper: iterations)
-        logical :: in_contact = .false.  !< the contact node is active after the step
-        !> u(1) - g at the step's end without contact force (monolithic): its sign decides the
-        !> contact state of the step; step_control locates contact events with it
-        real(dp) :: trial_gap = 0.0_dp
-        real(dp) :: contact_force = 0.0_dp  !< lambda = -sigma(1,t_n): (1/eps)[u^n(1)-g]_+, or the
-                                            !< Signorini multiplier
-    end type step_result_t
-
     type :: stepper_t
         type(model_t) :: model         !< the paper's coefficients (&model)
         type(model_t) :: step_model    !< what the steps use (time_scheme_m's stiff_limit)
@@ -61,8 +45,7 @@ module stepper_m
         class(contact_law_t), allocatable :: law
         type(time_scheme_t) :: scheme
         real(dp) :: dt = 0.0_dp        !< the step size when advance() is given none (&time dt)
-        real(dp) :: tol = 0.0_dp
-        integer :: s = 0, method = METHOD_MONOLITHIC, max_iter = 0
+        integer :: s = 0, method = METHOD_MONOLITHIC
         !> the mesh the factored systems belong to (s = mesh%s()): the uniform mesh of &mesh
         !> n_elements from init, a copy of the state's after remesh
         type(mesh_t) :: mesh
@@ -78,11 +61,9 @@ module stepper_m
         class(source_t), allocatable :: source   !< optional source terms (manufactured solutions)
         !> the factored systems of (6.1), by dt_eff and mesh (system_cache_m)
         type(system_cache_t) :: cache
-        real(dp) :: paper_dt = 0.0_dp  !< step the paper's blocks are factored for
-        type(band_t) :: thermal        !< paper: (q, theta, P, eta) block, factored
-        type(band_t) :: mechanical     !< paper: v block, factored
+        type(paper_method_t) :: paper  !< the Section 7 iteration (method = 'paper')
         ! work arrays, allocated once
-        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), x(:), xt(:)
+        real(dp), allocatable :: b(:, :), w_new(:, :), work(:), x(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
         !> the node blocks D_i, E_i, F_i of a system before its block LU (setup_monolithic)
         real(dp), allocatable :: d_blocks(:, :, :), e_blocks(:, :, :), f_blocks(:, :, :)
@@ -92,7 +73,6 @@ module stepper_m
         procedure :: init => stepper_init
         procedure :: advance => stepper_advance
         procedure :: uses_block_solver => stepper_uses_block_solver
-        procedure :: n_unknowns_per_node => stepper_n_unknowns_per_node
         procedure :: remesh => stepper_remesh
         procedure :: take_back => stepper_take_back
         procedure :: save_checkpoint => stepper_save_checkpoint
@@ -121,8 +101,8 @@ contains
         s_finest = cfg%mesh%n_elements
         if (cfg%mesh%adaptive) s_finest = cfg%mesh%n_elements * 2**cfg%mesh%max_level
         call self%scheme%stiff_limit(self%model, self%dt, s_finest, self%step_model, self%algebraic)
-        self%tol = cfg%solver%tol
-        self%max_iter = cfg%solver%max_iter
+        self%paper%tol = cfg%solver%tol
+        self%paper%max_iter = cfg%solver%max_iter
         call self%mesh%set_uniform(cfg%mesh%n_elements)
         self%s = cfg%mesh%n_elements
         stat = 0
@@ -132,7 +112,7 @@ contains
         case ('paper')
             self%method = METHOD_PAPER
             call allocate_work(self)
-            call setup_paper(self, self%dt, result)
+            call self%paper%setup(self%model, self%mesh, self%dt, result)
         case default
             self%method = METHOD_MONOLITHIC
             self%active = active_fields(self%step_model, initial_data_present(cfg) .or. present(source))
@@ -149,10 +129,8 @@ contains
         character(len=256) :: message
 
         s = self%s
-        if (allocated(self%b)) deallocate (self%b, self%b_old, self%w_lag, self%w_new, self%u_lag, self%work, &
-                                           self%u_star, self%w_star)
-        allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
-                  self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%u_star(0:s), &
+        if (allocated(self%b)) deallocate (self%b, self%w_new, self%work, self%u_star, self%w_star)
+        allocate (self%b(0:s, N_FIELDS), self%w_new(0:s, N_FIELDS), self%work(0:s), self%u_star(0:s), &
                   self%w_star(0:s, N_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the work arrays')
         self%w_new = 0.0_dp
@@ -173,27 +151,6 @@ contains
         call allocate_work(self)
         call self%cache%invalidate()
     end subroutine stepper_remesh
-
-    !> The paper's Section 7 blocks for step dt, factored.
-    subroutine setup_paper(self, dt, result)
-        type(stepper_t), intent(inout) :: self
-        real(dp), intent(in) :: dt
-        type(step_result_t), intent(inout) :: result
-        integer :: info, stat
-        character(len=256) :: message
-
-        self%paper_dt = dt
-        call assemble_matrix(self%model, self%mesh, dt, THERMAL_SLOTS, self%thermal)
-        call self%thermal%factor(info)
-        if (info /= 0) call fail(result, 'thermal block: '//lapack_info_message('dgbtrf', info))
-        call assemble_matrix(self%model, self%mesh, dt, MECHANICAL_SLOTS, self%mechanical)
-        call self%mechanical%factor(info)
-        if (info /= 0) call fail(result, 'mechanical block: '//lapack_info_message('dgbtrf', info))
-        if (.not. allocated(self%xt)) then
-            allocate (self%xt(self%thermal%n), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the paper iteration''s work arrays')
-        end if
-    end subroutine setup_paper
 
     !> The factored system of (6.1) with step dt_eff: one the cache holds for exactly this
     !> dt_eff and mesh, or a new assembly and factorisation in the entry it frees.
@@ -224,7 +181,7 @@ contains
         type(step_result_t), intent(inout) :: result
         type(band_t) :: unfactored
         integer :: info
-        logical :: fast
+        logical :: fast, blocks_ok
 
         fast = self%adaptive_steps .or. .not. self%mesh%is_uniform()
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
@@ -232,8 +189,9 @@ contains
         call require_blocks(self)
         call assemble_blocks(self%step_model, self%mesh, dt_eff, self%d_blocks, self%e_blocks, self%f_blocks)
         call sys%blocks%factor(self%d_blocks, self%e_blocks, self%f_blocks, info, fast, self%active)
-        sys%use_blocks = info == 0
-        if (.not. (sys%use_blocks .and. self%blocks_trusted)) then
+        blocks_ok = info == 0
+        sys%use_blocks = blocks_ok .and. self%blocks_trusted
+        if (.not. sys%use_blocks) then
             call assemble_matrix(self%step_model, self%mesh, dt_eff, self%slots, sys%a)
             unfactored = sys%a
             call sys%a%factor(info)
@@ -242,7 +200,7 @@ contains
                 return
             end if
             call contact_response(self, sys)
-            if (sys%use_blocks) sys%use_blocks = blocks_agree(sys, unfactored, self%x)
+            if (blocks_ok) sys%use_blocks = sys%blocks_agree(unfactored, self%x)
             self%blocks_trusted = sys%use_blocks .and. fast
         end if
         ! once trusted, z from the block LU for every system (a restart, which checks the
@@ -268,11 +226,7 @@ contains
         end if
         sys%z = 0.0_dp
         sys%z(sys%contact_dof) = 1.0_dp
-        if (sys%use_blocks .and. self%blocks_trusted) then
-            call sys%blocks%solve(sys%z)
-        else
-            call sys%a%solve(sys%z)
-        end if
+        call sys%solve(sys%z)
     end subroutine contact_response
 
     !> The work arrays of assemble_blocks for self%s elements: E_i, F_i kept, D_i anew (the
@@ -302,13 +256,6 @@ contains
         stepper_uses_block_solver = self%method == METHOD_MONOLITHIC .and. self%cache%all_use_blocks()
     end function stepper_uses_block_solver
 
-    !> Unknowns per node of the system solved each step (fields left out: scheme_m's active_fields).
-    integer function stepper_n_unknowns_per_node(self)
-        class(stepper_t), intent(in) :: self
-
-        stepper_n_unknowns_per_node = count(self%active)
-    end function stepper_n_unknowns_per_node
-
     !> Advance state from t_{n-1} by one step of size dt (default: &time dt). On failure
     !> the state is left unchanged.
     subroutine stepper_advance(self, state, result, dt)
@@ -325,11 +272,8 @@ contains
         t_new = advance_time(state, step_size)
         select case (self%method)
         case (METHOD_PAPER)
-            if (.not. equal(step_size, self%paper_dt)) call setup_paper(self, step_size, result)
-            if (.not. result%ok) return
             call start_rhs(self, self%model, step_size, t_new, state%u, state%w)
-            call gather_fields(self%slots, self%x, self%b_old)
-            call advance_paper(self, state, step_size, result)
+            call self%paper%advance(self%model, self%mesh, self%law, self%x, state, step_size, result)
         case default
             plan = self%scheme%plan(step_size, state%dt_last, allocated(state%u_prev), state%step)
             t_source = t_new - plan%source_back * step_size
@@ -378,7 +322,7 @@ contains
         type(step_result_t), intent(inout) :: result
         real(dp) :: gap, impulse, u_end_from
 
-        call solve_trial(self, sys)
+        call sys%solve(self%x)   ! the solution without contact force
         result%iterations = 1
         ! The trial gap without contact force decides the contact state; the contact row
         ! carries dt*lambda, so x = y - dt*lambda*z (contact_law_m's implicit_impulse).
@@ -394,7 +338,9 @@ contains
         result%trial_gap = gap
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
-        if (self%scheme%keeps_previous_level()) call keep_previous_level(state)
+        ! multistep schemes: X^{n-1} is kept before the step overwrites it
+        if (self%scheme%keeps_previous_level()) &
+            call keep_copy(state%u, state%w, state%u_prev, state%w_prev, 'the previous level')
         call gather_fields(self%slots, self%x, state%w)
         if (from_star) then
             state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
@@ -417,7 +363,7 @@ contains
         real(dp) :: impulse
         integer :: f
 
-        call solve_trial(self, sys)
+        call sys%solve(self%x)   ! the solution without contact force
         result%iterations = 1
         associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), u_old => state%u(self%s))
             impulse = self%law%midpoint_impulse(u_old + dt * self%x(sys%contact_dof), u_old, dt, z_s)
@@ -467,124 +413,6 @@ contains
         end do
         all_finite = n_bad == 0
     end function all_finite
-
-    !> x = A^{-1} x: the step's solution without contact force, from its right-hand side
-    !> (start_rhs).
-    subroutine solve_trial(self, sys)
-        type(stepper_t), intent(inout) :: self
-        type(monolithic_system_t), intent(in) :: sys
-
-        if (sys%use_blocks) then
-            call sys%blocks%solve(self%x)
-        else
-            call sys%a%solve(self%x)
-        end if
-    end subroutine solve_trial
-
-    !> The paper's Section 7 iteration for one Euler step of size dt.
-    subroutine advance_paper(self, state, dt, result)
-        type(stepper_t), intent(inout) :: self
-        type(state_t), intent(inout) :: state
-        real(dp), intent(in) :: dt
-        type(step_result_t), intent(inout) :: result
-        integer :: l, s
-        real(dp) :: change, scale
-
-        s = self%s
-        self%w_lag = state%w                 ! iterate l-1 (l = 0: the previous time level)
-        self%u_lag = state%u
-        scale = 1.0_dp
-        do l = 1, self%max_iter
-            ! thermal block with the lagged velocity
-            self%b = self%b_old
-            call add_lagged_coupling(self%model, dt, THERMAL_SLOTS, self%w_lag, self%b, self%work)
-            call scatter_fields(THERMAL_SLOTS, self%b, self%xt)
-            call self%thermal%solve(self%xt)
-            call gather_fields(THERMAL_SLOTS, self%xt, self%w_new)
-            ! mechanical block with the new theta, P and the lagged penalty
-            self%b(:, F_V) = self%b_old(:, F_V)
-            call add_lagged_coupling(self%model, dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work)
-            self%b(s, F_V) = self%b(s, F_V) - self%law%lagged_impulse(dt, self%u_lag(s))
-            self%x(1:s + 1) = self%b(:, F_V)
-            call self%mechanical%solve(self%x(1:s + 1))
-            self%w_new(:, F_V) = self%x(1:s + 1)
-            result%iterations = l
-            if (.not. all(ieee_is_finite(self%w_new))) then
-                call fail(result, 'non-finite value in the solution')
-                return
-            end if
-            change = maxval(abs(self%w_new - self%w_lag))
-            scale = max(1.0_dp, maxval(abs(self%w_new)))
-            if (change > 1.0e100_dp * max(1.0_dp, maxval(abs(state%w)))) then
-                ! stop before the iterates overflow: the lagged coupling is not a contraction
-                write (result%message, '(a,i0,a)') 'paper iteration diverged (iteration ', l, &
-                    '): the lagged penalty/velocity coupling does not contract here; use method = ''monolithic'''
-                result%ok = .false.
-                return
-            end if
-            self%w_lag = self%w_new
-            self%u_lag = state%u + dt * self%w_new(:, F_V)
-            if (change <= self%tol * scale) then
-                state%w = self%w_lag
-                state%u = self%u_lag
-                result%contact_force = self%law%force(state%u(s))
-                return
-            end if
-        end do
-        write (result%message, '(a,i0,a,es10.3,a,es10.3)') 'paper iteration did not converge in ', &
-            self%max_iter, ' iterations: last change ', change, ' > tol*scale = ', self%tol * scale
-        result%ok = .false.
-    end subroutine advance_paper
-
-    !> Multistep schemes need the level before: keep X^{n-1} before the step overwrites it (the arrays
-    !> are allocated on the first step only).
-    subroutine keep_previous_level(state)
-        type(state_t), intent(inout) :: state
-
-        call keep_copy(state%u, state%w, state%u_prev, state%w_prev, 'the previous level')
-    end subroutine keep_previous_level
-
-    !> The block LU has no pivoting across nodes; use it only if it solves as well as the
-    !> band LU with partial pivoting: on the unit contact force and on a smooth right-hand
-    !> side, its residual |A x - b| must be at most 10 times dgbtrf's (or 1e-13 |b|). (The
-    !> solutions themselves may differ by cond(A) times round-off, which grows with s.)
-    logical function blocks_agree(sys, a, x)
-        type(monolithic_system_t), intent(in) :: sys
-        type(band_t), intent(in) :: a                 !< the matrix, not factored
-        real(dp), intent(inout), contiguous :: x(:)   !< work array of the system's size
-        real(dp), allocatable :: b(:), reference(:)
-        integer :: k, trial
-        character(len=256) :: message
-
-        blocks_agree = .true.
-        allocate (b(size(x)), stat=trial, errmsg=message)
-        call check_allocation(trial, message, 'the block solver check')
-        do trial = 1, 2
-            if (trial == 1) then
-                b = 0.0_dp
-                b(sys%contact_dof) = 1.0_dp
-            else
-                do k = 1, size(b)
-                    b(k) = sin(0.1_dp * k)
-                end do
-            end if
-            reference = b
-            call sys%a%solve(reference)
-            x = b
-            call sys%blocks%solve(x)
-            blocks_agree = blocks_agree .and. all(ieee_is_finite(x)) .and. &
-                           maxval(abs(a%matvec(x) - b)) <= max(10.0_dp * maxval(abs(a%matvec(reference) - b)), &
-                                                               1.0e-13_dp * maxval(abs(b)))
-        end do
-    end function blocks_agree
-
-    subroutine fail(result, message)
-        type(step_result_t), intent(inout) :: result
-        character(len=*), intent(in) :: message
-
-        result%ok = .false.
-        result%message = message
-    end subroutine fail
 
     !> The step of result was rejected (the caller restores the state): its contact count is taken back.
     subroutine stepper_take_back(self, result)

@@ -17,6 +17,8 @@ module system_cache_m
     use reals_m, only: equal
     use banded_m, only: band_t
     use block_tridiagonal_m, only: block_tridiagonal_t
+    use ieee_arithmetic, only: ieee_is_finite
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: monolithic_system_t, system_cache_t, CACHE_SIZE
@@ -35,6 +37,9 @@ module system_cache_m
         logical :: use_blocks = .false.       !< block LU solves as well as dgbtrf (checked at set-up)
         real(dp), allocatable :: z(:)  !< A^{-1} e_s, the response to a unit contact force
         integer :: contact_dof = 0     !< row of the v equation at x = 1
+    contains
+        procedure :: solve => system_solve
+        procedure :: blocks_agree => system_blocks_agree
     end type monolithic_system_t
 
     type :: system_cache_t
@@ -99,6 +104,52 @@ contains
             self%systems(k)%last_used = 0
         end do
     end subroutine cache_invalidate
+
+    !> x = A^{-1} x, by the block LU if use_blocks, else by dgbtrf's factors.
+    subroutine system_solve(self, x)
+        class(monolithic_system_t), intent(in) :: self
+        real(dp), intent(inout), contiguous :: x(:)
+
+        if (self%use_blocks) then
+            call self%blocks%solve(x)
+        else
+            call self%a%solve(x)
+        end if
+    end subroutine system_solve
+
+    !> The block LU has no pivoting across nodes; use it only if it solves as well as the
+    !> band LU with partial pivoting: on the unit contact force and on a smooth right-hand
+    !> side, its residual |A x - b| must be at most 10 times dgbtrf's (or 1e-13 |b|). (The
+    !> solutions themselves may differ by cond(A) times round-off, which grows with s.)
+    logical function system_blocks_agree(sys, a, x) result(blocks_agree)
+        class(monolithic_system_t), intent(in) :: sys
+        type(band_t), intent(in) :: a                 !< the matrix, not factored
+        real(dp), intent(inout), contiguous :: x(:)   !< work array of the system's size
+        real(dp), allocatable :: b(:), reference(:)
+        integer :: k, trial
+        character(len=256) :: message
+
+        blocks_agree = .true.
+        allocate (b(size(x)), stat=trial, errmsg=message)
+        call check_allocation(trial, message, 'the block solver check')
+        do trial = 1, 2
+            if (trial == 1) then
+                b = 0.0_dp
+                b(sys%contact_dof) = 1.0_dp
+            else
+                do k = 1, size(b)
+                    b(k) = sin(0.1_dp * k)
+                end do
+            end if
+            reference = b
+            call sys%a%solve(reference)
+            x = b
+            call sys%blocks%solve(x)
+            blocks_agree = blocks_agree .and. all(ieee_is_finite(x)) .and. &
+                           maxval(abs(a%matvec(x) - b)) <= max(10.0_dp * maxval(abs(a%matvec(reference) - b)), &
+                                                               1.0e-13_dp * maxval(abs(b)))
+        end do
+    end function system_blocks_agree
 
     !> Every system held solves with the block LU (none held: .true.).
     pure logical function cache_all_use_blocks(self)

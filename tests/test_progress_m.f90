@@ -20,6 +20,9 @@ program test_progress_m
     call check_text('line, first step, free', &
                     format_progress_line(1, 10000, 1.0e-4_dp, .false., 3725.0_dp), &
                     'step     1/10000    0.0%  t = 0.000100  ETA 1h02m  free')
+    call check_text('line, SI run: the unit after t', &
+                    format_progress_line(5000, 10000, 0.5_dp, .true., 12.0_dp, ' s'), &
+                    'step  5000/10000   50.0%  t = 0.500000 s  ETA 12s  contact')
     call check_text('line, done', &
                     format_progress_line(10000, 10000, 1.0_dp, .false., 0.0_dp), &
                     'step 10000/10000  100.0%  t = 1.000000  ETA 0s  free')

@@ -39,6 +39,7 @@ module progress_m
         integer :: next_plain = 0        !< step of the next plain (file/pipe) line
         integer :: last_step = 0         !< last state seen by update(), for finish()
         real(dp) :: last_t = 0.0_dp
+        character(len=2) :: unit = ''       !< of the times reported: ' s' with &material
         logical :: last_contact = .false.
         integer :: line_length = 0       !< length of the live line on screen, to blank it
         integer(int64) :: count_start = 0_int64
@@ -60,13 +61,17 @@ module progress_m
 
 contains
 
-    !> Begin a report for a run of n_steps steps; quiet = .true. turns it off entirely.
-    subroutine start(this, n_steps, quiet)
+    !> Begin a report for a run of n_steps steps; quiet = .true. turns it off entirely;
+    !> unit: that of the times reported (' s'; none when absent).
+    subroutine start(this, n_steps, quiet, unit)
         class(progress_t), intent(inout) :: this
         integer, intent(in) :: n_steps
         logical, intent(in) :: quiet
+        character(len=*), intent(in), optional :: unit
 
         this%n_steps = n_steps
+        this%unit = ''
+        if (present(unit)) this%unit = unit
         this%enabled = (.not. quiet) .and. n_steps > 0
         this%shown = .false.
         this%live = .false.
@@ -113,9 +118,9 @@ contains
 
         if (this%shown) then
             if (this%live) then
-                call write_live(this, format_progress_line(step, this%n_steps, t, in_contact, eta))
+                call write_live(this, format_progress_line(step, this%n_steps, t, in_contact, eta, trim(this%unit)))
             else if (step >= this%next_plain) then
-                write (error_unit, '(a)') format_progress_line(step, this%n_steps, t, in_contact, eta)
+                write (error_unit, '(a)') format_progress_line(step, this%n_steps, t, in_contact, eta, trim(this%unit))
                 flush (error_unit)
             end if
         end if
@@ -147,11 +152,11 @@ contains
         if (this%enabled .and. this%shown) then
             if (this%live) then
                 call write_live(this, format_progress_line(this%last_step, this%n_steps, this%last_t, &
-                                                           this%last_contact, eta))
+                                                           this%last_contact, eta, trim(this%unit)))
                 write (error_unit, '(a)') ''
             else if (this%last_step < this%n_steps .or. this%next_plain <= this%n_steps) then
                 write (error_unit, '(a)') format_progress_line(this%last_step, this%n_steps, this%last_t, &
-                                                               this%last_contact, eta)
+                                                               this%last_contact, eta, trim(this%unit))
             end if
             flush (error_unit)
         end if
@@ -233,12 +238,13 @@ contains
     !> One report line, e.g.
     !>   'step  5000/10000   50.0%  t = 0.500000  ETA 12s  contact'
     !> The step field is as wide as n_steps, so the line keeps its length during a run.
-    pure function format_progress_line(step, n_steps, t, in_contact, eta_seconds) result(line)
+    pure function format_progress_line(step, n_steps, t, in_contact, eta_seconds, unit) result(line)
         integer, intent(in) :: step
         integer, intent(in) :: n_steps
         real(dp), intent(in) :: t
         logical, intent(in) :: in_contact
         real(dp), intent(in) :: eta_seconds   !< negative: unknown
+        character(len=*), intent(in), optional :: unit   !< of t, after it (' s')
         character(len=:), allocatable :: line
 
         character(len=16) :: n_text, step_text
@@ -273,8 +279,9 @@ contains
         end if
 
         line = 'step '//step_text(len(step_text) - width + 1:)//'/'//trim(n_text) &
-               //'  '//trim(percent_text)//'  t = '//trim(t_text) &
-               //'  ETA '//format_duration(eta_seconds)//'  '//trim(state)
+               //'  '//trim(percent_text)//'  t = '//trim(t_text)
+        if (present(unit)) line = line//unit
+        line = line//'  ETA '//format_duration(eta_seconds)//'  '//trim(state)
     end function format_progress_line
 
     !> A duration for people: '42s', '3m05s', '2h07m', '--' when unknown (negative or not finite).

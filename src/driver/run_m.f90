@@ -168,10 +168,12 @@ contains
         character(len=:), allocatable, intent(out) :: interrupted
         type(progress_t) :: progress
         logical :: at_snapshot, last, remeshed, dense_at_end
-        real(dp) :: t_before
+        real(dp) :: t_before, scale
 
         interrupted = stop_signal_name()
-        call progress%start(merge(PROGRESS_UNITS, run%n_steps, cfg%time%adaptive), cfg%output%quiet)
+        scale = time_scale(cfg)
+        call progress%start(merge(PROGRESS_UNITS, run%n_steps, cfg%time%adaptive), cfg%output%quiet, &
+                            merge(' s', '  ', cfg%material%present))
         do
             if (failure /= '' .or. interrupted /= '') exit
             if (finished(run, cfg)) exit
@@ -207,9 +209,9 @@ contains
                     if (mod(state%step, cfg%output%checkpoint_every) == 0) call checkpoint(run, cfg)
                 end if
                 if (cfg%time%adaptive) then
-                    call progress%update(progress_position(cfg, state%t), state%t, run%result%in_contact)
+                    call progress%update(progress_position(cfg, state%t), scale * state%t, run%result%in_contact)
                 else
-                    call progress%update(state%step, state%t, run%result%in_contact)
+                    call progress%update(state%step, scale * state%t, run%result%in_contact)
                 end if
                 ! a signal stops the run after this step, with a checkpoint of it (close_output)
                 if (.not. last) then
@@ -280,17 +282,14 @@ contains
         character(len=*), intent(in) :: suffix, status
         real(dp), intent(in) :: wall
         type(event_log_t) :: events
-        type(nondim_t) :: groups
         real(dp) :: scale
         character(len=:), allocatable :: unit, system
 
         if (cfg%output%quiet) return
-        scale = 1.0_dp
+        scale = time_scale(cfg)
         unit = ''
         system = '; times nondimensional'
-        if (cfg%material%present) then   ! SI: the time scale omega of (2.10)
-            groups = nondim_groups(cfg%material)
-            scale = groups%omega
+        if (cfg%material%present) then
             unit = ' s'
             system = ''
         end if
@@ -302,6 +301,18 @@ contains
             ', wall '//short_real(wall)//' s'//system
         flush (error_unit)
     end subroutine report_end
+
+    !> The factor from the run's times to those it reports: with &material (SI) the time
+    !> scale omega of (2.10), in s; else 1.
+    real(dp) function time_scale(cfg) result(scale)
+        type(config_t), intent(in) :: cfg
+        type(nondim_t) :: groups
+
+        scale = 1.0_dp
+        if (.not. cfg%material%present) return
+        groups = nondim_groups(cfg%material)
+        scale = groups%omega
+    end function time_scale
 
     !> '<n> <name>s (first t = <t><unit>)' of the events of kind `kind` ('no <name>s' when none).
     pure function event_summary(times, kinds, kind, name, unit) result(text)

@@ -238,7 +238,8 @@ def draw(path, rows, values, hs, refine, p_formal, t_unit):
         if math.isfinite(r["extrapolated"]):
             ax.axhline(r["extrapolated"], color="C2", ls="--", lw=1, label="extrapolate")
         p = r["observed_order"]
-        order = f"p = {p:.2f}" if math.isfinite(p) else ("no change" if r["gci_abs"] == 0 else "p undefined")
+        order = f"p = {p:.2f}" if math.isfinite(p) else {"first_step": "the first step's time",
+                                                        "unchanged": "no change"}.get(r["status"], "p undefined")
         ax.set_title(f"{name} [{r['units']}]: {r['status']}, {order}", fontsize=9)
         ax.set_xlabel(label)
         ax.ticklabel_format(axis="y", useOffset=False)

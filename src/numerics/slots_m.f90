@@ -50,11 +50,7 @@ contains
         if (nf == N_FIELDS) then
             ! every field: node by node, the five slots of a node stored together
             do i = 0, ubound(w, 1)
-                x(N_FIELDS * i + slots(1)) = w(i, 1)
-                x(N_FIELDS * i + slots(2)) = w(i, 2)
-                x(N_FIELDS * i + slots(3)) = w(i, 3)
-                x(N_FIELDS * i + slots(4)) = w(i, 4)
-                x(N_FIELDS * i + slots(5)) = w(i, 5)
+                x(N_FIELDS * i + slots) = w(i, :)
             end do
             return
         end if
@@ -76,11 +72,7 @@ contains
         nf = count(slots > 0)
         if (nf == N_FIELDS) then
             do i = 0, ubound(w, 1)
-                w(i, 1) = x(N_FIELDS * i + slots(1))
-                w(i, 2) = x(N_FIELDS * i + slots(2))
-                w(i, 3) = x(N_FIELDS * i + slots(3))
-                w(i, 4) = x(N_FIELDS * i + slots(4))
-                w(i, 5) = x(N_FIELDS * i + slots(5))
+                w(i, :) = x(N_FIELDS * i + slots)
             end do
             return
         end if

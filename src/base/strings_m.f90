@@ -4,11 +4,12 @@ module strings_m
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
     use, intrinsic :: iso_c_binding, only: c_char, c_null_char
     use kinds_m, only: dp
+    use reals_m, only: is_zero
     implicit none
     private
     public :: lower, keyword, squeeze, excerpt, quoted, quoted_string, doubled_quotes
     public :: identifier_at, is_name_char
-    public :: int_str, format_real, from_c_chars
+    public :: int_str, format_real, short_real, from_c_chars
 
 contains
 
@@ -62,6 +63,34 @@ contains
         end if
         s = sign // s
     end function format_real
+
+    !> x with 4 significant digits and no padding: 0.1973, 12.5, 3, 1.234E-05.
+    pure function short_real(x) result(text)
+        real(dp), intent(in) :: x
+        character(len=:), allocatable :: text
+        character(len=32) :: buffer
+        integer :: decimals, last
+
+        if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
+            decimals = max(0, 3 - floor(log10(abs(x))))
+            write (buffer, '(f0.' // int_str(decimals) // ')') x
+            text = trim(adjustl(buffer))
+            if (decimals > 0) then   ! no trailing zeros, no bare point
+                last = len_trim(text)
+                do while (text(last:last) == '0')
+                    last = last - 1
+                end do
+                if (text(last:last) == '.') last = last - 1
+                text = text(:last)
+            end if
+            if (text(1:1) == '.') text = '0'//text
+        else if (is_zero(x)) then
+            text = '0'
+        else
+            write (buffer, '(es10.3)') x
+            text = trim(adjustl(buffer))
+        end if
+    end function short_real
     !> The Fortran name (letters, digits, '_') starting at text(start:); '' if none.
     pure function identifier_at(text, start) result(name)
         character(len=*), intent(in) :: text

@@ -17,9 +17,8 @@ module run_m
     use checkpoint_m, only: checkpoint_t
     use step_driver_m, only: step_driver_t, step_failure
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
-    use strings_m, only: int_str, format_real
+    use strings_m, only: int_str, format_real, short_real
     use material_m, only: nondim_t, nondim_groups
-    use reals_m, only: is_zero
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, copy_history
     use run_output_m, only: output_grid, write_series, write_dense_series, write_snapshot, write_dense_snapshots, &
@@ -331,34 +330,6 @@ contains
         text = int_str(n)//' '//name//merge('s', ' ', n > 1)
         text = trim(text)//' (first t = '//format_real(times(first))//unit//')'
     end function event_summary
-
-    !> x with 4 significant digits and no padding: 0.1973, 12.5, 3, 1.234E-05.
-    pure function short_real(x) result(text)
-        real(dp), intent(in) :: x
-        character(len=:), allocatable :: text
-        character(len=32) :: buffer
-        integer :: decimals, last
-
-        if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
-            decimals = max(0, 3 - floor(log10(abs(x))))
-            write (buffer, '(f0.' // int_str(decimals) // ')') x
-            text = trim(adjustl(buffer))
-            if (decimals > 0) then   ! no trailing zeros, no bare point
-                last = len_trim(text)
-                do while (text(last:last) == '0')
-                    last = last - 1
-                end do
-                if (text(last:last) == '.') last = last - 1
-                text = text(:last)
-            end if
-            if (text(1:1) == '.') text = '0'//text
-        else if (is_zero(x)) then
-            text = '0'
-        else
-            write (buffer, '(es10.3)') x
-            text = trim(adjustl(buffer))
-        end if
-    end function short_real
 
     !> /checkpoint: every type that the run continues from saves itself (checkpoint_m), so
     !> that a restart continues exactly.

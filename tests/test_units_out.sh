@@ -53,7 +53,8 @@ onset_end=$(sed -n 's/.*contact: 1 onset (first t = \([^ ]*\) s).*/\1/p' <<< "$e
 "$prog" --summary-header run.h5 > summary.csv && "$prog" --summary run.h5 >> summary.csv
 "$prog" --events run.h5 > events.csv
 "$PY" "$src/scripts/h5extract.py" events run.h5 > events.txt 2> extract.err
-check "h5extract.py events (exit 0): $(cat extract.err)" equals 0 "$?"
+status=$?   # taken at once: the $(...) in the message below would reset $?
+check "h5extract.py events (exit 0): $(cat extract.err)" equals 0 "$status"
 
 # value COLUMN CSV: the value of the named column in the (last) row of a CSV file
 value() {

@@ -34,11 +34,11 @@ contains
             call w%fail('internal error: append_estimate() given the wrong number of values')
         if (w%estimate_ids(1, 1) < 0) then
             call open_estimate(w)
-            allocate (w%estimate_buf(N_OUTPUT_FIELDS, size(GROUPS), SERIES_CHUNK), stat=stat, errmsg=message)
+            allocate (w%estimate_buf(SERIES_CHUNK, N_OUTPUT_FIELDS, size(GROUPS)), stat=stat, errmsg=message)
             if (stat /= 0) call w%fail('no memory for the error estimates ('//trim(message)//')')
         end if
         w%n_estimate_buf = w%n_estimate_buf + 1
-        w%estimate_buf(:, :, w%n_estimate_buf) = values
+        w%estimate_buf(w%n_estimate_buf, :, :) = values
         if (w%n_estimate_buf == SERIES_CHUNK) call writer_flush_estimate(w)
     end subroutine writer_append_estimate
 
@@ -53,7 +53,7 @@ contains
         do part = 1, size(GROUPS)
             do k = 1, N_OUTPUT_FIELDS
                 call w%append_rows(w%estimate_ids(k, part), path_of(part, k), w%n_estimate_snap, [n], &
-                                   w%estimate_buf(k, part, 1:n))
+                                   w%estimate_buf(1:n, k, part))
             end do
         end do
         w%n_estimate_snap = w%n_estimate_snap + n

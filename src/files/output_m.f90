@@ -102,7 +102,7 @@ module output_m
         integer, allocatable :: ckpt_set(:)                   !< an entry's dataset
         integer(hid_t), allocatable :: ckpt_types(:)          !< an owner's scalars' memory type
         integer(hid_t) :: ckpt_current_id = -1                !< /checkpoint/current
-        real(dp), allocatable :: estimate_buf(:, :, :)   !< (N_OUTPUT_FIELDS, 3, SERIES_CHUNK)
+        real(dp), allocatable :: estimate_buf(:, :, :)   !< (SERIES_CHUNK, N_OUTPUT_FIELDS, 3)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series

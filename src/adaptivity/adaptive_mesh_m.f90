@@ -1,9 +1,9 @@
 !> The adaptive mesh of &mesh adaptive = .true.: bisection of the n_elements coarse
 !> elements up to max_level times, refined where the error indicator is large and
 !> coarsened back where the solution is smooth (run_m remeshes every &mesh remesh_every
-!> steps; remesh_m moves the solution with transfer_m). This type holds the refinement's
-!> own data (the node keys, the field scales); the geometry the solver uses is the state's
-!> mesh_t (numerics/mesh_m), which adapt reads and remesh_m sets from nodes().
+!> steps; step_driver_m's remesh moves the solution with transfer_m). This type holds the
+!> refinement's own data (the node keys, the field scales); the geometry the solver uses is
+!> the state's mesh_t (numerics/mesh_m), which adapt reads and the remesh sets from nodes().
 !>
 !> Nodes are kept as integers k_i in units of the finest possible element,
 !> 1 / n_fine with n_fine = n_elements 2^max_level: x_i = k_i / n_fine is the same number

@@ -64,7 +64,7 @@ contains
     end subroutine estimator_init
 
     !> Arrays for a mesh of s elements (the levels held are lost: a remesh moves them
-    !> first, remesh_m).
+    !> first, step_driver_m's remesh).
     subroutine estimator_resize(self, s)
         class(error_estimator_t), intent(inout) :: self
         integer, intent(in) :: s

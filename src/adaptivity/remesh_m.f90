@@ -1,23 +1,18 @@
 !> Remeshing a run (&mesh adaptive = .true.): the first mesh, fitted to the initial data,
-!> and the remesh between two steps, which moves every time level the run holds (the
-!> state, the level before of a multistep scheme, the error estimator's levels) with
-!> transfer_m, hands the new mesh to the stepper, lets the energy monitor measure the law
-!> energy across the move and counts the remesh on the state's mesh (mesh_m).
+!> and one time level moved onto a new mesh with transfer_m (move_level), for the remesh
+!> between two steps (step_driver_m's remesh) and the error companions'.
 module remesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, model_t
     use fields_m, only: N_FIELDS
-    use state_m, only: state_t, initial_state, set_mesh
+    use state_m, only: state_t, initial_state
     use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
     use transfer_m, only: transfer_level
-    use stepper_m, only: stepper_t
-    use error_estimator_m, only: error_estimator_t, MAX_LEVELS
-    use energy_m, only: energy_monitor_t
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: initial_mesh, remesh, front_buffer, move_level
+    public :: initial_mesh, front_buffer, move_level
 
 contains
 
@@ -59,41 +54,6 @@ contains
         end if
         buffer = 1 + ceiling(min(real(cfg%mesh%remesh_every, dp) * cfl, n_fine))
     end function front_buffer
-
-    !> Adapt the mesh to the level in state and, if it changed, move everything onto it.
-    subroutine remesh(mesh, state, stepper, estimator, monitor, changed)
-        type(adaptive_mesh_t), intent(inout) :: mesh
-        type(state_t), intent(inout) :: state
-        type(stepper_t), intent(inout) :: stepper
-        type(error_estimator_t), intent(inout) :: estimator
-        type(energy_monitor_t), intent(inout) :: monitor
-        logical, intent(out) :: changed
-        integer(int64), allocatable :: k_old(:)
-        real(dp), allocatable :: levels_old(:, :, :)
-        real(dp) :: rise
-        integer :: s, j, stat
-        character(len=256) :: message
-
-        allocate (k_old, source=mesh%k, stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the remesh')
-        call mesh%adapt(state%mesh, state%u, state%w, changed)
-        if (.not. changed) return
-        s = mesh%s()
-        call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u, state%w)
-        if (allocated(state%u_prev)) &
-            call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u_prev, state%w_prev)
-        call set_mesh(state, mesh%nodes())
-        allocate (levels_old, source=estimator%levels, stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the remesh')
-        call estimator%resize(s)
-        do j = 1, MAX_LEVELS
-            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), estimator%levels(:, :, j), &
-                                stepper%model)
-        end do
-        call stepper%remesh(state)
-        call monitor%remeshed(state, rise)
-        call state%mesh%record_remesh(rise)
-    end subroutine remesh
 
     !> One level (u, w) on the mesh of keys k_old onto the mesh of keys k_new (u and w
     !> reallocated with its size), by transfer_m (model: the run's, whose velocity mass v is

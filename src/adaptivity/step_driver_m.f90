@@ -16,8 +16,9 @@
 !> step_driver_trial_s.
 module step_driver_m
     use kinds_m, only: dp
+    use iso_fortran_env, only: int64
     use config_m, only: config_t, model_t, with_contact_mass
-    use state_m, only: state_t, copy_state, keep_copy
+    use state_m, only: state_t, copy_state, keep_copy, set_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t
@@ -26,7 +27,9 @@ module step_driver_m
     use step_control_m, only: step_controller_t
     use dense_output_m, only: lagrange_weights
     use adaptive_mesh_m, only: adaptive_mesh_t, front_speed
-    use remesh_m, only: remesh
+    use remesh_m, only: move_level
+    use transfer_m, only: transfer_level
+    use errors_m, only: check_allocation
     implicit none
     private
     public :: step_driver_t, step_failure
@@ -230,8 +233,10 @@ contains
         end associate
     end subroutine driver_past_level
 
-    !> Adapt the mesh to the level in state and, if it changed, move the state, the
-    !> estimator's levels, the stepper and the monitor onto it (remesh_m).
+    !> Adapt the mesh to the level in state and, if it changed, move every time level the
+    !> run holds onto it (the state, the level before of a multistep scheme, the estimator's
+    !> levels: transfer_m), hand it to the stepper, let the monitor measure the law energy
+    !> across the move and count the remesh on the state's mesh (mesh_m).
     subroutine driver_remesh(self, mesh, state, stepper, monitor, changed)
         class(step_driver_t), intent(inout) :: self
         type(adaptive_mesh_t), intent(inout) :: mesh
@@ -239,9 +244,31 @@ contains
         type(stepper_t), intent(inout) :: stepper
         type(energy_monitor_t), intent(inout) :: monitor
         logical, intent(out) :: changed
+        integer(int64), allocatable :: k_old(:)
+        real(dp), allocatable :: levels_old(:, :, :)
+        real(dp) :: rise
+        integer :: j, stat
+        character(len=256) :: message
 
-        call remesh(mesh, state, stepper, self%estimator, monitor, changed)
-        if (changed) self%level_kept = .false.
+        allocate (k_old, source=mesh%k, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remesh')
+        call mesh%adapt(state%mesh, state%u, state%w, changed)
+        if (.not. changed) return
+        self%level_kept = .false.
+        call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u, state%w)
+        if (allocated(state%u_prev)) &
+            call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u_prev, state%w_prev)
+        call set_mesh(state, mesh%nodes())
+        allocate (levels_old, source=self%estimator%levels, stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remesh')
+        call self%estimator%resize(mesh%s())
+        do j = 1, MAX_LEVELS
+            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), self%estimator%levels(:, :, j), &
+                                stepper%model)
+        end do
+        call stepper%remesh(state)
+        call monitor%remeshed(state, rise)
+        call state%mesh%record_remesh(rise)
     end subroutine driver_remesh
 
     !> 'step n (t = ...): reason' for a failure message and the status attribute; with

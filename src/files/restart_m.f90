@@ -16,8 +16,8 @@ module restart_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, number_of_steps
-    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, KIND_REAL, KIND_INTEGER, &
-                            KIND_STRING, KIND_LOGICAL
+    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, table_items, KIND_REAL, &
+                            KIND_INTEGER, KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use reals_m, only: equal
@@ -132,7 +132,8 @@ contains
 
     !> Every input variable that changes the computed history (input_vars_m's
     !> changes_history) must have the value recorded in `file` as root attribute
-    !> group.variable; &material counts when either run has it.
+    !> group.variable; &material counts when either run has it; the tables of &initial's
+    !> files the contents recorded (require_same_tables).
     subroutine require_same_history_inputs(file, cfg)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
@@ -181,7 +182,31 @@ contains
                 end if
             end select
         end do
+        call require_same_tables(file, cfg)
     end subroutine require_same_history_inputs
+
+    !> The tables of &initial's files (their names are input variables, checked by
+    !> require_same_history_inputs) must have the rows recorded in `file`, not only the names.
+    subroutine require_same_tables(file, cfg)
+        character(len=*), intent(in) :: file
+        type(config_t), intent(in) :: cfg
+        real(dp), allocatable :: xs(:)
+        integer :: k
+
+        associate (tables => table_items(cfg%initial))
+            do k = 1, size(tables)
+                associate (name => tables(k)%name, rows => tables(k)%reals)
+                    if (.not. attr_exists(file, name)) call refuse(file, name, 'not recorded', 'a table')
+                    call read_attr_real_1d(file, name, xs)
+                    if (size(xs) /= size(rows)) then
+                        call refuse(file, name, int_str(size(xs) / 2)//' rows', int_str(size(rows) / 2)//' rows')
+                    else if (.not. all(equal(xs, rows))) then
+                        call refuse(file, name, 'the rows recorded there', 'other values in its '//int_str(size(xs) / 2)//' rows')
+                    end if
+                end associate
+            end do
+        end associate
+    end subroutine require_same_tables
 
     !> Has input variable k of cfg its default value (config_m's types)?
     logical function is_default(cfg, k)

@@ -10,7 +10,8 @@
 !> line, real(dp) (scalar, (0:MAX_POLY_DEGREE) coefficients or a (2) pair), integer,
 !> logical, or character(len=LEN_NAME) (a keyword, stored in lower case) or len=LEN_PATH.
 !> A trailing comment ending in [text] gives the unit column of the &material echo; one
-!> starting with 'not an input' leaves the component out. The reader is config_reader_m.
+!> starting with 'not an input' leaves the component out (it may then be of any type, as
+!> &initial's tables). The reader is config_reader_m.
 module config_m
     use kinds_m, only: dp
     implicit none
@@ -76,7 +77,8 @@ module config_m
         real(dp) :: dt_max = 1.0_dp
     end type time_t
 
-    !> &initial: initial data (2.12) as polynomials in x plus optional steps (amp, x_end).
+    !> &initial: initial data (2.12) as polynomials in x plus optional steps (amp, x_end)
+    !> and tables (*_file: rows of position and value, read into *_table by config_reader_m).
     type :: initial_t
         real(dp) :: u0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
         real(dp) :: u1_poly(0:MAX_POLY_DEGREE) = 0.0_dp
@@ -86,6 +88,18 @@ module config_m
         real(dp) :: eta0_poly(0:MAX_POLY_DEGREE) = 0.0_dp
         real(dp) :: theta0_step(2) = 0.0_dp   !< (amplitude, x_end): adds amplitude where x <= x_end
         real(dp) :: p0_step(2) = 0.0_dp
+        character(len=LEN_PATH) :: u0_file = ''
+        character(len=LEN_PATH) :: u1_file = ''
+        character(len=LEN_PATH) :: theta0_file = ''
+        character(len=LEN_PATH) :: p0_file = ''
+        character(len=LEN_PATH) :: q0_file = ''
+        character(len=LEN_PATH) :: eta0_file = ''
+        real(dp), allocatable :: u0_table(:, :)   !< not an input: u0_file's rows (position, value)
+        real(dp), allocatable :: u1_table(:, :)       !< not an input
+        real(dp), allocatable :: theta0_table(:, :)   !< not an input
+        real(dp), allocatable :: p0_table(:, :)       !< not an input
+        real(dp), allocatable :: q0_table(:, :)       !< not an input
+        real(dp), allocatable :: eta0_table(:, :)     !< not an input
     end type initial_t
 
     !> &solver: how the per-step nonlinearity (contact node) is solved.

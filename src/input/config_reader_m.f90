@@ -5,9 +5,11 @@
 !> syntax, names, types, &material); value ranges are checked by validate_m.
 module config_reader_m
     use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+    use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
-    use config_m, only: config_t
-    use strings_m, only: lower, excerpt, quoted, identifier_at
+    use config_m, only: config_t, initial_t
+    use strings_m, only: lower, excerpt, quoted, identifier_at, int_str, format_real
     use input_vars_m, only: read_namelist, var_kind, kind_description
     use namelist_text_m, only: string_t, group_t, assignments_t, read_source, strip_comments, find_groups, &
                                split_group, origin, assignment_lhs, assignment_value, piece
@@ -73,6 +75,7 @@ contains
                                 term=[1, len(set_line(1)%s)], last=[1, len(set_line(1)%s)], from_set=.true.)
             call read_group(set_line, set_group, cfg)
         end do
+        call read_tables(cfg%initial)
         if (cfg%material%present) then
             call check_material(cfg%material)
             cfg%model = model_from_material(cfg%material)
@@ -135,6 +138,74 @@ contains
                        '&material computes the &model values by (2.10)-(2.11); give one of the two groups')
     end subroutine check_model_material
 
+    !> The tables of &initial's *_file into its *_table (docs/input.md, "Tables").
+    subroutine read_tables(init)
+        type(initial_t), intent(inout) :: init
+
+        call read_table(init%u0_file, 'u0', init%u0_table)
+        call read_table(init%u1_file, 'u1', init%u1_table)
+        call read_table(init%theta0_file, 'theta0', init%theta0_table)
+        call read_table(init%p0_file, 'p0', init%p0_table)
+        call read_table(init%q0_file, 'q0', init%q0_table)
+        call read_table(init%eta0_file, 'eta0', init%eta0_table)
+    end subroutine read_tables
+
+    !> The table in `file` (none if ''), rows (position, value): one row a line, two
+    !> numbers apart by blanks, a tab or a comma; '#' starts a comment, blank lines are
+    !> skipped. Refused, naming the file and line: a file that cannot be read, a line that
+    !> is not two finite numbers, positions not increasing, fewer than two rows.
+    subroutine read_table(file, name, table)
+        character(len=*), intent(in) :: file, name
+        real(dp), allocatable, intent(out) :: table(:, :)
+        type(string_t), allocatable :: lines(:)
+        character(len=:), allocatable :: where, text, first, rest
+        integer :: k, j, n, stat, last
+        character(len=LEN_MSG) :: msg
+
+        if (file == '') return
+        where = 'initial.' // name // '_file'
+        call read_source(file, lines, where)
+        allocate (table(size(lines), 2), stat=stat, errmsg=msg)
+        call check_allocation(stat, msg, 'the table of ' // where)
+        n = 0
+        do k = 1, size(lines)
+            text = lines(k)%s // '#'
+            text = text(:index(text, '#') - 1)
+            do j = 1, len(text)
+                if (index(char(9) // char(13) // ',', text(j:j)) > 0) text(j:j) = ' '
+            end do
+            text = trim(adjustl(text))
+            if (text == '') cycle
+            first = text(:index(text // ' ', ' ') - 1)
+            rest = trim(adjustl(text(len(first) + 1:)))
+            n = n + 1
+            table(n, :) = [number(first), number(rest)]
+            if (index(rest, ' ') > 0 .or. .not. all(ieee_is_finite(table(n, :)))) &
+                call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // int_str(k) // ': got ' // &
+                quoted(excerpt(text)) // '; each line must be two finite numbers, position and value, apart by ' // &
+                "blanks or a comma ('#' starts a comment)")
+            if (n > 1) then
+                if (table(n, 1) <= table(n - 1, 1)) call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // &
+                    int_str(k) // ': position ' // excerpt(first) // ' after ' // format_real(table(n - 1, 1)) // &
+                    ' (line ' // int_str(last) // '); the positions must increase from row to row')
+            end if
+            last = k
+        end do
+        if (n < 2) call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' has ' // int_str(n) // &
+                              ' rows; a table needs at least two rows (position, value) covering the rod')
+        table = table(:n, :)
+    end subroutine read_table
+
+    !> The real number `text` (digits, sign, point, exponent), or NaN if it is none.
+    pure real(dp) function number(text)
+        character(len=*), intent(in) :: text
+        integer :: ios
+
+        number = ieee_value(number, ieee_quiet_nan)
+        if (len(text) == 0 .or. verify(text, '0123456789+-.eEdD') /= 0) return
+        read (text, *, iostat=ios) number
+        if (ios /= 0) number = ieee_value(number, ieee_quiet_nan)
+    end function number
 
     !> After the namelist read of piece(asg, k): on failure, stop naming the variable, the
     !> value given, what is allowed, and gfortran's message.

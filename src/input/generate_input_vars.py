@@ -23,7 +23,8 @@ What a component's declaration says (one component per line):
   character(len=LEN_NAME) :: word = 'a'         KIND_STRING, a keyword (stored in lower case)
   character(len=LEN_PATH) :: path = ''          KIND_STRING
 A trailing comment that ends in [text] gives the unit column of the &material echo
-(material_m); a trailing comment that starts with 'not an input' leaves the component out.
+(material_m); a trailing comment that starts with 'not an input' leaves the component out,
+whatever its declaration (an allocatable array: &initial's tables).
 Anything else inside a group's type stops the generator with a message naming the line.
 """
 import os
@@ -74,13 +75,13 @@ def read_types(path):
 
 def variable(path, number, group, line):
     """The input variable declared by `line` of group's type, or None (not an input)."""
+    if re.search(r"!<\s*not an input", line, re.I):
+        return None
     m = COMPONENT.match(line)
     if not m:
         fail(path, number, f"cannot read this component of &{group} (one component per line, declared as "
                            "real(dp), integer, logical or character(len=LEN_NAME|LEN_PATH)): " + line.strip())
     doc = (m.group("doc") or "").strip()
-    if doc.lower().startswith("not an input"):
-        return None
     name, kind_text, dims = m.group("name"), m.group("type").lower(), (m.group("dims") or "").replace(" ", "")
     keyword = False
     if kind_text == "real(dp)":

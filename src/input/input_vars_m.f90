@@ -13,14 +13,14 @@
 !> config_m (and its line in docs/input.md); everything here follows.
 module input_vars_m
     use kinds_m, only: dp
-    use config_m, only: config_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! LEN_*: access's locals
+    use config_m, only: config_t, initial_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! LEN_*: access's locals
     use errors_m, only: fatal, EXIT_OUTPUT, check_allocation
     use strings_m, only: lower, keyword, int_str
     implicit none
     private
     public :: input_var_t, input_item_t, INPUT_VARS, GROUP_NAMES
     public :: KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL, KIND_COEFFS, KIND_PAIR
-    public :: find_input, var_kind, input_item, input_items, read_namelist
+    public :: find_input, var_kind, input_item, input_items, table_items, read_namelist
     public :: group_list, var_list, kind_description, changes_history
 
     !> Kinds of input variables (codes as in the reader's messages).
@@ -122,7 +122,7 @@ contains
 
     !> Everything the output file records of the input: every input variable (those of
     !> &material only when the group was given; the &model values are then the ones
-    !> computed from them), then 'input.source' and 'input.overrides'.
+    !> computed from them), then 'input.source', 'input.overrides' and the tables.
     function input_items(cfg) result(items)
         type(config_t), intent(in) :: cfg
         type(input_item_t), allocatable :: items(:)
@@ -141,7 +141,36 @@ contains
         end do
         items(n + 1) = string_item('input.source', trim(cfg%source))
         items(n + 2) = string_item('input.overrides', trim(cfg%overrides))
+        items = [items, table_items(cfg%initial)]
     end function input_items
+
+    !> The tables read from &initial's *_file, as items 'initial.<field>_table' (positions,
+    !> then values): the output file records them and a restart compares them, not only
+    !> the files' names.
+    function table_items(init) result(items)
+        type(initial_t), intent(in) :: init
+        type(input_item_t), allocatable :: items(:)
+
+        allocate (items(0))
+        call add('u0', init%u0_table)
+        call add('u1', init%u1_table)
+        call add('theta0', init%theta0_table)
+        call add('p0', init%p0_table)
+        call add('q0', init%q0_table)
+        call add('eta0', init%eta0_table)
+    contains
+        subroutine add(name, table)
+            character(len=*), intent(in) :: name
+            real(dp), intent(in), optional :: table(:, :)
+            type(input_item_t) :: item
+
+            if (.not. present(table)) return
+            item%name = 'initial.' // name // '_table'
+            item%kind = KIND_COEFFS
+            item%reals = [table(:, 1), table(:, 2)]
+            items = [items, item]
+        end subroutine add
+    end function table_items
 
     !> An item of kind KIND_STRING.
     function string_item(name, text) result(item)

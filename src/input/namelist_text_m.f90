@@ -43,33 +43,38 @@ module namelist_text_m
 
 contains
 
-    !> All lines of the source, read into memory (standard input cannot be rewound).
-    subroutine read_source(source, lines)
+    !> All lines of the source, read into memory (standard input cannot be rewound); a
+    !> failure is an input error of `var` (default 'input': the namelist's source).
+    subroutine read_source(source, lines, var)
         character(len=*), intent(in) :: source
         type(string_t), allocatable, intent(out) :: lines(:)
+        character(len=*), intent(in), optional :: var
         integer :: unit, ios
         logical :: is_directory
         character(len=LEN_MSG) :: msg
+        character(len=:), allocatable :: where
 
+        where = 'input'
+        if (present(var)) where = var
         if (trim(source) == '-') then
-            call read_lines(input_unit, 'standard input', lines)
+            call read_lines(input_unit, 'standard input', where, lines)
         else
             ! gfortran opens a directory without complaint and then reads nothing from it
             inquire (file=trim(source) // '/.', exist=is_directory)
-            if (is_directory) call fatal(EXIT_INPUT, 'input', "cannot open '" // trim(source) // "': it is a directory")
+            if (is_directory) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': it is a directory")
             msg = ''
             open (newunit=unit, file=trim(source), status='old', action='read', iostat=ios, iomsg=msg)
-            if (ios /= 0) call fatal(EXIT_INPUT, 'input', "cannot open '" // trim(source) // "': " // trim(msg))
-            call read_lines(unit, "'" // trim(source) // "'", lines)
+            if (ios /= 0) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': " // trim(msg))
+            call read_lines(unit, "'" // trim(source) // "'", where, lines)
             ! the text is in memory: a failure to close a read-only file cannot lose anything
             close (unit, iostat=ios)
         end if
     end subroutine read_source
 
     !> Read `unit` to its end, line by line, lines of any length.
-    subroutine read_lines(unit, what, lines)
+    subroutine read_lines(unit, what, where, lines)
         integer, intent(in) :: unit
-        character(len=*), intent(in) :: what
+        character(len=*), intent(in) :: what, where
         type(string_t), allocatable, intent(out) :: lines(:)
         type(string_t), allocatable :: grown(:)
         character(len=4096) :: chunk
@@ -86,7 +91,7 @@ contains
                 msg = ''
                 read (unit, '(a)', advance='no', iostat=ios, iomsg=msg, size=n_read) chunk
                 if (ios /= 0 .and. ios /= iostat_eor .and. ios /= iostat_end) &
-                    call fatal(EXIT_INPUT, 'input', 'cannot read ' // what // ': ' // trim(msg))
+                    call fatal(EXIT_INPUT, where, 'cannot read ' // what // ': ' // trim(msg))
                 line = line // chunk(:n_read)
                 if (ios /= 0) exit
             end do

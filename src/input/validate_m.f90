@@ -8,10 +8,10 @@ module validate_m
     use kinds_m, only: dp
     use fields_m, only: N_FIELDS, N_SNAPSHOT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
-    use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, initial_t, solver_t, output_t, &
+    use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, solver_t, output_t, &
                         number_of_steps, MAX_COMPRESSION, LEN_NAME
     use strings_m, only: format_real, int_str
-    use initial_data_m, only: profile
+    use validate_initial_m, only: validate_initial, MAX_MAGNITUDE
     use contact_laws_m, only: law_names, constraint_law
     implicit none
     private
@@ -34,16 +34,9 @@ module validate_m
     real(dp), parameter :: MAX_FINE_ELEMENTS = 2.0_dp**30      !< n_elements 2^max_level (round-off of x_i)
     real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
     real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
-    !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
-    real(dp), parameter :: BOUNDARY_TOL = 1.0e-12_dp
-    !> Every real input has magnitude at most MAX_MAGNITUDE, and the coefficients that
-    !> divide (rho, alpha, c, r, hbar weigh the energy; 1/eps; t_end/dt) are at least
-    !> MIN_POSITIVE. Why: with every input in this range no intermediate quantity of the
-    !> scheme can overflow. The initial energy is at most ~1e93, the matrix entries
-    !> (largest dt**2 alpha / h) at most ~1e97, and the scheme never lets the energy grow
-    !> (Corollary 6.2), so every field stays far below the double-precision limit ~1.8e308.
-    !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
-    real(dp), parameter :: MAX_MAGNITUDE = 1.0e30_dp
+    !> The coefficients that divide (rho, alpha, c, r, hbar weigh the energy; 1/eps;
+    !> t_end/dt) are at least MIN_POSITIVE, every real input at most MAX_MAGNITUDE in
+    !> magnitude (validate_initial_m says why).
     real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
     integer, parameter :: NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3   !< the bounds of require_real
 
@@ -177,33 +170,6 @@ contains
             format_real(time%dt) // ' with adaptive = .true.; the first step must lie in [dt_min, dt_max] = [' // &
             format_real(time%dt_min) // ', ' // format_real(time%dt_max) // ']')
     end subroutine validate_step_control
-
-    !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
-    !> u0, u1, q0, eta0 in S_h vanish at x = 0, theta0, P0 in V_h vanish at x = 1; u0(1) <= g.
-    subroutine validate_initial(init, g)
-        type(initial_t), intent(in) :: init
-        real(dp), intent(in) :: g
-        real(dp) :: u0_end
-
-        call require_finite_array(init%u0_poly, 'initial.u0_poly')
-        call require_finite_array(init%u1_poly, 'initial.u1_poly')
-        call require_finite_array(init%theta0_poly, 'initial.theta0_poly')
-        call require_finite_array(init%p0_poly, 'initial.p0_poly')
-        call require_finite_array(init%q0_poly, 'initial.q0_poly')
-        call require_finite_array(init%eta0_poly, 'initial.eta0_poly')
-        call require_step(init%theta0_step, 'initial.theta0_step')
-        call require_step(init%p0_step, 'initial.p0_step')
-        call require_boundary_zero('u0', init%u0_poly, 0.0_dp, 'u(0,t) = 0, (2.13)')
-        call require_boundary_zero('u1', init%u1_poly, 0.0_dp, 'v = u_t vanishes where u(0,t) = 0, (2.13)')
-        call require_boundary_zero('theta0', init%theta0_poly, 1.0_dp, 'theta(1,t) = 0, (2.15)', init%theta0_step)
-        call require_boundary_zero('p0', init%p0_poly, 1.0_dp, 'P(1,t) = 0, (2.15)', init%p0_step)
-        call require_boundary_zero('q0', init%q0_poly, 0.0_dp, 'q(0,t) = 0, (2.15)')
-        call require_boundary_zero('eta0', init%eta0_poly, 0.0_dp, 'eta(0,t) = 0, (2.15)')
-        u0_end = profile(poly=init%u0_poly, x=1.0_dp)
-        if (u0_end > g + BOUNDARY_TOL * (1.0_dp + sum(abs(init%u0_poly)))) call fatal(EXIT_INPUT, 'initial.u0_poly', &
-            'got u0(1) = ' // format_real(u0_end) // ' > g = ' // format_real(g) // &
-            '; the initial displacement must satisfy the contact constraint u0(1) <= g')
-    end subroutine validate_initial
 
     !> The paper's Section 7 iteration is implicit Euler with a lagged contact force: it has
     !> no form for a constraint law (Signorini) and runs one time scheme (implicit Euler).
@@ -366,74 +332,6 @@ contains
         end do
         call fatal(EXIT_INPUT, where, "got '" // trim(value) // "'; must be one of " // list)
     end subroutine require_one_of
-
-    subroutine require_finite_array(coefficients, where)
-        real(dp), intent(in) :: coefficients(0:)
-        character(len=*), intent(in) :: where
-        integer :: k
-
-        do k = 0, ubound(coefficients, 1)
-            call require_datum(coefficients(k), where, &
-                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
-        end do
-    end subroutine require_finite_array
-
-    !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= 1.
-    subroutine require_step(step, where)
-        real(dp), intent(in) :: step(2)
-        character(len=*), intent(in) :: where
-
-        call require_datum(step(1), where, 'amplitude ' // format_real(step(1)), 'must')
-        if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
-                                                      '; must be a finite real number')
-        if (.not. (step(2) >= 0.0_dp .and. step(2) <= 1.0_dp)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
-            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= 1')
-    end subroutine require_step
-
-    !> An initial datum x, given as `what`, finite and at most MAX_MAGNITUDE in magnitude;
-    !> `must`: the subject of the message ('must', 'every coefficient must').
-    subroutine require_datum(x, where, what, must)
-        real(dp), intent(in) :: x
-        character(len=*), intent(in) :: where, what, must
-        character(len=:), allocatable :: bound
-
-        ! no comparison of a NaN: it raises the invalid exception that a Debug build traps
-        if (.not. ieee_is_finite(x)) then
-            bound = 'a finite real number'
-        else if (abs(x) > MAX_MAGNITUDE) then
-            bound = 'at most ' // format_real(MAX_MAGNITUDE) // &
-                    ' in magnitude (larger initial data overflow double precision in the energy)'
-        else
-            return
-        end if
-        call fatal(EXIT_INPUT, where, 'got ' // what // '; ' // must // ' be ' // bound)
-    end subroutine require_datum
-
-    !> The initial profile `name` (polynomial plus optional step) must vanish at the
-    !> boundary point x of its finite element space; evaluated by the same profile() that
-    !> initialises the nodes.
-    subroutine require_boundary_zero(name, poly, x, why, step)
-        character(len=*), intent(in) :: name, why
-        real(dp), intent(in) :: poly(0:)
-        real(dp), intent(in) :: x
-        real(dp), intent(in), optional :: step(2)
-        real(dp) :: value, scale
-        character(len=:), allocatable :: where, what
-
-        value = profile(poly=poly, x=x, step=step)
-        scale = 1.0_dp + sum(abs(poly))
-        if (present(step)) scale = scale + abs(step(1))
-        if (abs(value) <= BOUNDARY_TOL * scale) return
-        where = 'initial.' // name // '_poly'
-        what = ''
-        if (present(step)) then
-            if (abs(value - profile(poly=poly, x=x)) > 0.0_dp) what = ' (polynomial plus step)'
-            ! the polynomial alone is right: it is the step that reaches x
-            if (abs(profile(poly=poly, x=x)) <= BOUNDARY_TOL * scale) where = 'initial.' // name // '_step'
-        end if
-        call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // format_real(value) // what // &
-                   '; must be 0 at x = ' // format_real(x) // ' (boundary condition ' // why // ')')
-    end subroutine require_boundary_zero
 
     !> bytes in GiB with one decimal.
     pure function gib_str(bytes) result(s)

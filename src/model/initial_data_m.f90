@@ -1,4 +1,4 @@
-!> Initial data (2.12) of &initial: a polynomial in x plus an optional step.
+!> Initial data (2.12) of &initial: a polynomial in x plus an optional step and table.
 !> The one function both validation (boundary values, u0(1) <= g) and initialisation
 !> (nodal interpolants) evaluate, so that they cannot disagree.
 module initial_data_m
@@ -16,12 +16,14 @@ contains
     !> y = sum_k poly(k) x**k (constant term first, Horner), plus the step (amplitude,
     !> x_end) if present: its amplitude on [0, x_end), half of it at x_end, the mean of the
     !> jump's two sides, which keeps the pulse's integral exact in the nodal interpolant
-    !> when x_end is a node (docs/scheme.md, "Initial data").
-    pure function profile(poly, x, step) result(y)
+    !> when x_end is a node (docs/scheme.md, "Initial data"), plus the table (rows of
+    !> position, value; increasing positions covering [0, 1]) if present, interpolated
+    !> linearly between its rows.
+    pure function profile(poly, x, step, table) result(y)
         real(dp), intent(in) :: poly(0:)
         real(dp), intent(in) :: x
-        real(dp), intent(in), optional :: step(2)
-        real(dp) :: y
+        real(dp), intent(in), optional :: step(2), table(:, :)
+        real(dp) :: y, w
         integer :: k
 
         y = 0.0_dp
@@ -34,6 +36,12 @@ contains
             else if (x <= step(2) + STEP_TOL) then
                 y = y + 0.5_dp * step(1)
             end if
+        end if
+        if (present(table)) then
+            ! rows k, k + 1 around x (the first or last two beyond the ends, by round-off)
+            k = min(max(count(table(:, 1) <= x), 1), size(table, 1) - 1)
+            w = (x - table(k, 1)) / (table(k + 1, 1) - table(k, 1))
+            y = y + (1.0_dp - w) * table(k, 2) + w * table(k + 1, 2)
         end if
     end function profile
 

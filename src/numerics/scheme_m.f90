@@ -154,11 +154,14 @@ contains
         type(config_t), intent(in) :: cfg
         logical :: has_data(N_FIELDS)
 
-        has_data(F_V) = .true.
-        has_data(F_Q) = .not. all(is_zero(cfg%initial%q0_poly))
-        has_data(F_THETA) = .not. (all(is_zero(cfg%initial%theta0_poly)) .and. is_zero(cfg%initial%theta0_step(1)))
-        has_data(F_P) = .not. (all(is_zero(cfg%initial%p0_poly)) .and. is_zero(cfg%initial%p0_step(1)))
-        has_data(F_ETA) = .not. all(is_zero(cfg%initial%eta0_poly))
+        associate (init => cfg%initial)
+            has_data(F_V) = .true.
+            has_data(F_Q) = .not. all(is_zero(init%q0_poly)) .or. allocated(init%q0_table)
+            has_data(F_THETA) = .not. (all(is_zero(init%theta0_poly)) .and. is_zero(init%theta0_step(1))) &
+                                .or. allocated(init%theta0_table)
+            has_data(F_P) = .not. (all(is_zero(init%p0_poly)) .and. is_zero(init%p0_step(1))) .or. allocated(init%p0_table)
+            has_data(F_ETA) = .not. all(is_zero(init%eta0_poly)) .or. allocated(init%eta0_table)
+        end associate
     end function initial_data_present
 
     !> Assemble the matrix of (6.1) restricted to the fields with slots(f) > 0, nodes

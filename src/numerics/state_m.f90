@@ -55,14 +55,14 @@ contains
         s = state%s
         allocate (state%u(0:s), state%w(0:s, N_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the state')
-        associate (x => state%mesh%x)
+        associate (x => state%mesh%x, init => cfg%initial)
             do i = 0, s
-                state%u(i) = profile(poly=cfg%initial%u0_poly, x=x(i))
-                state%w(i, F_V) = profile(poly=cfg%initial%u1_poly, x=x(i))
-                state%w(i, F_THETA) = profile(poly=cfg%initial%theta0_poly, step=cfg%initial%theta0_step, x=x(i))
-                state%w(i, F_P) = profile(poly=cfg%initial%p0_poly, step=cfg%initial%p0_step, x=x(i))
-                state%w(i, F_Q) = profile(poly=cfg%initial%q0_poly, x=x(i))
-                state%w(i, F_ETA) = profile(poly=cfg%initial%eta0_poly, x=x(i))
+                state%u(i) = profile(poly=init%u0_poly, x=x(i), table=init%u0_table)
+                state%w(i, F_V) = profile(poly=init%u1_poly, x=x(i), table=init%u1_table)
+                state%w(i, F_THETA) = profile(init%theta0_poly, x(i), init%theta0_step, init%theta0_table)
+                state%w(i, F_P) = profile(init%p0_poly, x(i), init%p0_step, init%p0_table)
+                state%w(i, F_Q) = profile(poly=init%q0_poly, x=x(i), table=init%q0_table)
+                state%w(i, F_ETA) = profile(poly=init%eta0_poly, x=x(i), table=init%eta0_table)
             end do
         end associate
         state%u(0) = 0.0_dp

@@ -99,6 +99,10 @@ class ExactLinear:
         model = {k: float(attrs["model." + k]) for k in
                  ("alpha", "varpi", "gamma1", "gamma2", "c", "d", "r", "hbar", "tau0", "tau")}
         initial = {}
+        tables = [k for k in attrs if k.startswith("initial.") and k.endswith("_table")]
+        if tables:
+            raise ValueError("initial data from a table (%s): only polynomials and steps are "
+                             "projected on the modes" % ", ".join(sorted(tables)))
         for name in ("u0", "u1", "theta0", "p0", "q0", "eta0"):
             initial[name + "_poly"] = [float(v) for v in np.atleast_1d(attrs["initial.%s_poly" % name])]
         for name in ("theta0", "p0"):

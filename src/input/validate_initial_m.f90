@@ -1,0 +1,161 @@
+!> Validation of &initial (docs/input.md): the coefficients, steps and tables finite and not
+!> too large, steps inside [0, 1], tables covering the rod, and the boundary values of each
+!> profile those of its finite element space, (2.13) and (2.15), and u0(1) <= g; evaluated by
+!> initial_data_m's profile, the function that initialises the nodes. validate_m calls it in
+!> its order of the groups; the first failure stops with EXIT_INPUT, naming the variable.
+module validate_initial_m
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use kinds_m, only: dp
+    use errors_m, only: fatal, EXIT_INPUT
+    use config_m, only: initial_t
+    use strings_m, only: format_real, int_str
+    use initial_data_m, only: profile
+    implicit none
+    private
+    public :: validate_initial
+
+    !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
+    real(dp), parameter :: BOUNDARY_TOL = 1.0e-12_dp
+    !> Every real input has magnitude at most MAX_MAGNITUDE, and the coefficients that
+    !> divide (rho, alpha, c, r, hbar weigh the energy; 1/eps; t_end/dt) are at least
+    !> validate_m's MIN_POSITIVE. Why: with every input in this range no intermediate quantity of the
+    !> scheme can overflow. The initial energy is at most ~1e93, the matrix entries
+    !> (largest dt**2 alpha / h) at most ~1e97, and the scheme never lets the energy grow
+    !> (Corollary 6.2), so every field stays far below the double-precision limit ~1.8e308.
+    !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
+    real(dp), parameter, public :: MAX_MAGNITUDE = 1.0e30_dp
+
+contains
+
+    !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
+    !> u0, u1, q0, eta0 in S_h vanish at x = 0, theta0, P0 in V_h vanish at x = 1; u0(1) <= g.
+    subroutine validate_initial(init, g)
+        type(initial_t), intent(in) :: init
+        real(dp), intent(in) :: g
+        real(dp) :: u0_end
+
+        call require_finite_array(init%u0_poly, 'initial.u0_poly')
+        call require_finite_array(init%u1_poly, 'initial.u1_poly')
+        call require_finite_array(init%theta0_poly, 'initial.theta0_poly')
+        call require_finite_array(init%p0_poly, 'initial.p0_poly')
+        call require_finite_array(init%q0_poly, 'initial.q0_poly')
+        call require_finite_array(init%eta0_poly, 'initial.eta0_poly')
+        call require_step(init%theta0_step, 'initial.theta0_step')
+        call require_step(init%p0_step, 'initial.p0_step')
+        call require_table(init%u0_table, 'initial.u0_file', init%u0_file)
+        call require_table(init%u1_table, 'initial.u1_file', init%u1_file)
+        call require_table(init%theta0_table, 'initial.theta0_file', init%theta0_file)
+        call require_table(init%p0_table, 'initial.p0_file', init%p0_file)
+        call require_table(init%q0_table, 'initial.q0_file', init%q0_file)
+        call require_table(init%eta0_table, 'initial.eta0_file', init%eta0_file)
+        call require_boundary_zero('u0', init%u0_poly, 0.0_dp, 'u(0,t) = 0, (2.13)', table=init%u0_table)
+        call require_boundary_zero('u1', init%u1_poly, 0.0_dp, 'v = u_t vanishes where u(0,t) = 0, (2.13)', &
+                                   table=init%u1_table)
+        call require_boundary_zero('theta0', init%theta0_poly, 1.0_dp, 'theta(1,t) = 0, (2.15)', init%theta0_step, &
+                                   init%theta0_table)
+        call require_boundary_zero('p0', init%p0_poly, 1.0_dp, 'P(1,t) = 0, (2.15)', init%p0_step, init%p0_table)
+        call require_boundary_zero('q0', init%q0_poly, 0.0_dp, 'q(0,t) = 0, (2.15)', table=init%q0_table)
+        call require_boundary_zero('eta0', init%eta0_poly, 0.0_dp, 'eta(0,t) = 0, (2.15)', table=init%eta0_table)
+        u0_end = profile(poly=init%u0_poly, x=1.0_dp, table=init%u0_table)
+        if (u0_end > g + BOUNDARY_TOL * (1.0_dp + sum(abs(init%u0_poly)))) call fatal(EXIT_INPUT, &
+            trim(merge('initial.u0_file', 'initial.u0_poly', allocated(init%u0_table))), 'got u0(1) = ' // &
+            format_real(u0_end) // ' > g = ' // format_real(g) // &
+            '; the initial displacement must satisfy the contact constraint u0(1) <= g')
+    end subroutine validate_initial
+
+
+    subroutine require_finite_array(coefficients, where)
+        real(dp), intent(in) :: coefficients(0:)
+        character(len=*), intent(in) :: where
+        integer :: k
+
+        do k = 0, ubound(coefficients, 1)
+            call require_datum(coefficients(k), where, &
+                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
+        end do
+    end subroutine require_finite_array
+
+
+    !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= 1.
+    subroutine require_step(step, where)
+        real(dp), intent(in) :: step(2)
+        character(len=*), intent(in) :: where
+
+        call require_datum(step(1), where, 'amplitude ' // format_real(step(1)), 'must')
+        if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
+                                                      '; must be a finite real number')
+        if (.not. (step(2) >= 0.0_dp .and. step(2) <= 1.0_dp)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
+            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= 1')
+    end subroutine require_step
+
+
+    !> An initial datum x, given as `what`, finite and at most MAX_MAGNITUDE in magnitude;
+    !> `must`: the subject of the message ('must', 'every coefficient must').
+    subroutine require_datum(x, where, what, must)
+        real(dp), intent(in) :: x
+        character(len=*), intent(in) :: where, what, must
+        character(len=:), allocatable :: bound
+
+        ! no comparison of a NaN: it raises the invalid exception that a Debug build traps
+        if (.not. ieee_is_finite(x)) then
+            bound = 'a finite real number'
+        else if (abs(x) > MAX_MAGNITUDE) then
+            bound = 'at most ' // format_real(MAX_MAGNITUDE) // &
+                    ' in magnitude (larger initial data overflow double precision in the energy)'
+        else
+            return
+        end if
+        call fatal(EXIT_INPUT, where, 'got ' // what // '; ' // must // ' be ' // bound)
+    end subroutine require_datum
+
+
+    !> A table (if given) covers the rod [0, 1] (to round-off), its values finite and at
+    !> most MAX_MAGNITUDE in magnitude.
+    subroutine require_table(table, where, file)
+        real(dp), intent(in), optional :: table(:, :)
+        character(len=*), intent(in) :: where, file
+        integer :: k, n
+
+        if (.not. present(table)) return
+        n = size(table, 1)
+        if (table(1, 1) > BOUNDARY_TOL .or. table(n, 1) < 1.0_dp - BOUNDARY_TOL) call fatal(EXIT_INPUT, where, &
+            "got positions from " // format_real(table(1, 1)) // ' to ' // format_real(table(n, 1)) // " in '" // &
+            trim(file) // "'; the table must cover the rod: first position <= 0, last >= 1")
+        do k = 1, n
+            call require_datum(table(k, 2), where, format_real(table(k, 2)) // ' at position ' // &
+                               format_real(table(k, 1)) // " in '" // trim(file) // "'", 'every value must')
+        end do
+    end subroutine require_table
+
+
+    !> The initial profile `name` (polynomial plus optional step and table) must vanish at
+    !> the boundary point x of its finite element space; evaluated by the same profile()
+    !> that initialises the nodes.
+    subroutine require_boundary_zero(name, poly, x, why, step, table)
+        character(len=*), intent(in) :: name, why
+        real(dp), intent(in) :: poly(0:)
+        real(dp), intent(in) :: x
+        real(dp), intent(in), optional :: step(2), table(:, :)
+        real(dp) :: value, scale
+        character(len=:), allocatable :: where, what
+
+        value = profile(poly=poly, x=x, step=step, table=table)
+        scale = 1.0_dp + sum(abs(poly))
+        if (present(step)) scale = scale + abs(step(1))
+        if (present(table)) scale = scale + maxval(abs(table(:, 2)))
+        if (abs(value) <= BOUNDARY_TOL * scale) return
+        where = 'initial.' // name // '_poly'
+        what = ''
+        if (abs(value - profile(poly=poly, x=x)) > 0.0_dp) what = ' (polynomial plus step or table)'
+        ! the polynomial alone is right: it is the step or the table that reaches x
+        if (abs(profile(poly=poly, x=x)) <= BOUNDARY_TOL * scale) then
+            where = 'initial.' // name // '_file'
+            if (abs(profile(poly=poly, x=x, step=step) - profile(poly=poly, x=x)) > 0.0_dp) &
+                where = 'initial.' // name // '_step'
+        end if
+        call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // format_real(value) // what // &
+                   '; must be 0 at x = ' // format_real(x) // ' (boundary condition ' // why // ')')
+    end subroutine require_boundary_zero
+
+
+end module validate_initial_m

@@ -4,6 +4,7 @@
 !>   rodcontact < input.nml      namelist on standard input
 !>   rodcontact input.nml        namelist file as argument ('-' for standard input)
 !>   rodcontact input.nml --set group.variable=value ...   overrides after the file
+!>   rodcontact input.nml [--set ...] --resume             continue <prefix>.h5.part in place
 !>   rodcontact --summary file.h5 ... | --summary-header [file.h5]   one CSV row per run
 !>   rodcontact --events file.h5 ...                       one CSV row per contact event
 !>     (in the run's units: SI with &material; --nondimensional: the file's own values)
@@ -43,10 +44,13 @@ program rodcontact
         end do
         call read_config(source, cfg, overrides)
     end block
+    ! --resume: restart from the run's own .part, which the run then replaces (restart_m)
+    if (any([(argument(k) == '--resume', k = 1, command_argument_count())])) &
+        cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
     call validate_config(cfg, scheme_rules())
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
     if (check_only) stop
-    call run_simulation(cfg)
+    call run_simulation(cfg, resume_command(source))
 
 contains
 
@@ -87,7 +91,7 @@ contains
     !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
     !> the arguments that are files of --summary, --events or --summary-header (table: which;
     !> every argument after it but --nondimensional; none without it), and whether --check
-    !> was given. --help and --version print and stop.
+    !> was given (--resume is read by the program itself). --help and --version print and stop.
     subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
         character(len=:), allocatable, intent(out) :: source
         integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
@@ -129,8 +133,8 @@ contains
                 exit
             case ('--nondimensional')
                 nondimensional = .true.
-            case ('--check')
-                check_only = .true.
+            case ('--check', '--resume')
+                check_only = check_only .or. arg == '--check'
             case ('--set')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
                                             'group.variable=value, e.g. --set model.varpi=0.3')
@@ -162,7 +166,7 @@ contains
         end if
         if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', "unknown option '" // &
             arg // "'; allowed: --set group.variable=value, --summary file.h5, --summary-header, --events " // &
-            'file.h5, --nondimensional, --check, --help, --version, and one input file')
+            'file.h5, --nondimensional, --check, --resume, --help, --version, and one input file')
         if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
             "' after '" // source // "'; give one input file (or none: standard input)")
         source = arg
@@ -178,6 +182,43 @@ contains
         allocate (character(len=length) :: arg)
         if (length > 0) call get_command_argument(i, arg)
     end function argument
+
+    !> The command that continues this run in place, for the message of a stop signal: the
+    !> program and its arguments as given (each a word of a POSIX shell), then --resume.
+    function resume_command(source) result(text)
+        character(len=*), intent(in) :: source
+        character(len=:), allocatable :: text
+        integer :: i
+
+        text = shell_word(argument(0))
+        do i = 1, command_argument_count()
+            if (argument(i) /= '--resume') text = text // ' ' // shell_word(argument(i))
+        end do
+        text = text // ' --resume'
+        if (source == '-') text = text // ' < (the same input)'
+    end function resume_command
+
+    !> arg as one word of a POSIX shell: as it is when every character is safe, else quoted.
+    pure function shell_word(arg) result(word)
+        character(len=*), intent(in) :: arg
+        character(len=:), allocatable :: word
+        character(len=*), parameter :: SAFE = 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=.,/:@%'
+        integer :: k
+
+        if (len(arg) > 0 .and. verify(arg, SAFE) == 0) then
+            word = arg
+            return
+        end if
+        word = "'"
+        do k = 1, len(arg)
+            if (arg(k:k) == "'") then
+                word = word // "'\''"
+            else
+                word = word // arg(k:k)
+            end if
+        end do
+        word = word // "'"
+    end function shell_word
 
     integer function max_argument_length() result(n)
         integer :: i, length
@@ -201,7 +242,11 @@ contains
             '                             override input values after the file (also with stdin), e.g.', &
             '                               --set model.varpi=0.3 --set output.prefix=runs/a', &
             "                               --set initial.theta0_step=5,0.1 --set 'initial.p0_step(1)=5'", &
-            '                             strings need no quotes; same checks and messages as the file', &
+            '                             strings need no quotes; same checks and messages as the file;', &
+            '                             a later --set of a variable overrides an earlier one', &
+            '  rodcontact input.nml [--set ...] --resume', &
+            '                             continue the interrupted run in place from the checkpoint in', &
+            '                             <prefix>.h5.part: the finished <prefix>.h5 replaces the .part', &
             '  rodcontact --check input.nml [--set ...]', &
             '                             the input checks of a run (not those of the output file or of', &
             '                             restart_from), no file written: exit 0, or 2 with the message', &
@@ -231,12 +276,12 @@ contains
             '', &
             'Stopping: SIGTERM, SIGINT (Ctrl-C) or SIGUSR1 (Slurm: --signal=USR1@<seconds>) ends a run', &
             '  after the current step: it writes a checkpoint and leaves <prefix>.h5.part with status', &
-            "  'interrupted: <signal>'; continue it with --set time.restart_from=<prefix>.h5.part and", &
-            '  another output.prefix. A second signal of the same kind ends the program at once.', &
+            "  'interrupted: <signal>'; the same command with --resume added continues it (the message", &
+            '  prints that command). A second signal of the same kind ends the program at once.', &
             '', &
             'Exit status: 0 success, 2 bad input, 3 numerical failure, 4 output failure (cannot create', &
             '  or write the file; a full disk or file size limit leaves <prefix>.h5.part as its last', &
-            '  checkpoint wrote it, to continue with restart_from), 5 stopped by a signal (checkpoint in', &
+            '  checkpoint wrote it, to continue with --resume), 5 stopped by a signal (checkpoint in', &
             '  <prefix>.h5.part).'
     end subroutine print_help
 

@@ -81,7 +81,7 @@ usage() {
 record_status() {
     local stem=$1 rc=$2 message
     if ((rc == 5)); then
-        message="$(grep -m 1 '^rodcontact: stopped by' "$stem.err" | sed 's/; continue with.*//'); checkpoint in $stem.h5.part: rerun the scan to resume the point from it"
+        message="$(grep -m 1 '^rodcontact: stopped by' "$stem.err" | sed 's/; continue it with.*//'); checkpoint in $stem.h5.part: rerun the scan to resume the point from it"
     elif ((rc > 128)); then
         message="killed by signal $((rc - 128)) before its first checkpoint: a rerun of the scan runs the point again"
     else
@@ -93,16 +93,17 @@ record_status() {
 
 # run_point DIR K ARGS...: run the point in the foreground; record its exit status and message.
 # A point interrupted before (its run stopped by a signal, exit 5) left DIR/point_K.h5.part with
-# a checkpoint: it is moved to DIR/point_K.h5.resume and the run continues from it
-# (--set time.restart_from, bit for bit the result of an uninterrupted run); a .part without a
-# usable checkpoint (a run killed before its first one) is dropped and the point runs from t = 0.
+# a checkpoint: the run continues it in place (rodcontact --resume, bit for bit the result of an
+# uninterrupted run; docs/robustness.md); a .part without a usable checkpoint (a run killed
+# before its first one) is dropped and the point runs from t = 0.
 run_point() {
     local dir=$1 k=$2 stem rc resume=()
     shift 2
     stem=$dir/point_$k
     rm -f "$stem.h5" "$stem.status" "$stem.out"
-    [[ -f $stem.h5.part ]] && mv -f "$stem.h5.part" "$stem.h5.resume"
-    [[ -f $stem.h5.resume ]] && resume=(--set "time.restart_from=$stem.h5.resume")
+    # (point_K.h5.resume: where scans before --resume moved the .part they continued)
+    [[ -f $stem.h5.resume && ! -f $stem.h5.part ]] && mv -f "$stem.h5.resume" "$stem.h5.part"
+    [[ -f $stem.h5.part ]] && resume=(--resume)
     # Signals. The scan stops its runs by sending SIGUSR1 to this shell (its pid in
     # DIR/.run.<scan>.K, <scan> = SCAN_ID, the scan's host and pid),
     # Ctrl-C's SIGINT and Slurm's SIGTERM (scancel) come to every process. rodcontact stops
@@ -120,8 +121,8 @@ run_point() {
     trap 'stop_requested=1; [[ -n $child && -z $forwarded ]] && { forwarded=1; kill -USR1 "$child" 2> /dev/null; }' TERM INT USR1
     while :; do
         child=""
-        "$RODCONTACT" "$dir/input.nml" "$@" "${resume[@]}" --set "output.prefix=$stem" \
-            --set output.quiet=.true. > "$stem.out" 2> "$stem.err" < /dev/null &
+        "$RODCONTACT" "$dir/input.nml" "$@" --set "output.prefix=$stem" \
+            --set output.quiet=.true. "${resume[@]}" > "$stem.out" 2> "$stem.err" < /dev/null &
         child=$!
         [[ -n $stop_requested && -z $forwarded ]] && { forwarded=1; kill -USR1 "$child" 2> /dev/null; }
         while :; do
@@ -131,10 +132,10 @@ run_point() {
             kill -0 "$child" 2> /dev/null || break
         done
         if ((rc == 2 && ${#resume[@]} > 0)) &&
-                grep -q -F -e 'error in time.restart_from' -e "$stem.h5.resume" "$stem.err"; then
+                grep -q -F -e 'error in time.restart_from' -e "$stem.h5.part" "$stem.err"; then
             # no usable checkpoint in the file left behind: run the point from the start
             mv -f "$stem.err" "$stem.resume.err"
-            rm -f "$stem.h5.resume"
+            rm -f "$stem.h5.part" "$stem.resume.h5.part" "$stem.h5.resume"
             resume=()
             [[ -z $stop_requested ]] && continue
             rc=143   # stopped meanwhile: the point counts as not run
@@ -142,8 +143,7 @@ run_point() {
         break
     done
     rm -f "$run_file"
-    # the file resumed from is superseded by this run's output (a restart copies the history)
-    [[ -f $stem.h5 || -f $stem.h5.part ]] && rm -f "$stem.h5.resume" "$stem.resume.err"
+    [[ -f $stem.h5 || -f $stem.h5.part ]] && rm -f "$stem.resume.err"
     if ((rc > 128)) && [[ ! -f $stem.h5 && ! -f $stem.h5.part ]]; then
         # killed by a signal before it wrote anything: not recorded, the point counts as not run
         rm -f "$stem.out"
@@ -605,6 +605,14 @@ for ((k = first; k <= last; k++)); do
 done
 n_run=${#pending[@]}
 n_skipped=$((last - first + 1 - n_run))
+# the points to run that continue from a checkpoint (an interrupted run's point_K.h5.part)
+n_resumed=0
+for k in "${pending[@]}"; do
+    point_stem "$k"
+    [[ -f $STEM.h5.part || -f $STEM.h5.resume ]] && n_resumed=$((n_resumed + 1))
+done
+resumed=""
+((n_resumed > 0)) && resumed=" ($n_resumed of them continue from their checkpoints)"
 
 # The jobs for GNU parallel, one line per point: K, then its --set arguments, tab-separated
 # (--colsep); no value holds a tab (checked above).
@@ -710,7 +718,7 @@ task_ranges() {
 if [[ $mode == array ]]; then
     task_ranges
     [[ -n $ranges ]] && echo "$ranges"
-    echo "scan: $n_points points in $n_tasks tasks of --batch $batch; $n_run points to run" >&2
+    echo "scan: $n_points points in $n_tasks tasks of --batch $batch; $n_run points to run$resumed" >&2
     exit 0
 fi
 
@@ -769,9 +777,9 @@ fi
 
 # ---------------------------------------------------------------- run
 if [[ $mode == task ]]; then
-    echo "scan: task $task: points $first..$last of $n_points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
+    echo "scan: task $task: points $first..$last of $n_points in $out/, $n_skipped already complete, $n_run to run$resumed with -j $jobs" >&2
 else
-    echo "scan: $n_points points in $out/, $n_skipped already complete, $n_run to run with -j $jobs" >&2
+    echo "scan: $n_points points in $out/, $n_skipped already complete, $n_run to run$resumed with -j $jobs" >&2
 fi
 start=$SECONDS
 # --term-seq: when GNU parallel itself gets SIGTERM or SIGINT (scancel, Ctrl-C: every process

@@ -17,7 +17,8 @@
 # Environment: BUILD_TYPE (default Release), BUILD_DIR (default build; relative paths
 # are taken from the repository root), JOBS (parallel build jobs, default 2), WERROR
 # (ON: compiler warnings on the project's sources are errors, as scripts/test.sh builds;
-# default OFF).
+# OFF: not; unset: as the build directory was configured, OFF for a new one, so that
+# scripts/run.sh after scripts/test.sh reuses its build instead of rebuilding everything).
 # Exit status: 0 ready; 1 missing packages that could not be installed, or the
 # configure/build failed.
 
@@ -51,7 +52,7 @@ repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo_root"
 
 build_type="${BUILD_TYPE:-Release}"
-werror="${WERROR:-OFF}"
+werror="${WERROR:-}"
 build_dir="${BUILD_DIR:-build}"
 [[ "$build_dir" = /* ]] || build_dir="$repo_root/$build_dir"
 jobs="${JOBS:-2}"
@@ -117,6 +118,7 @@ if [[ -f "$cache" ]]; then
     cached_type="$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$cache")"
     cached_werror="$(sed -n 's/^RODCONTACT_WERROR:[A-Z]*=//p' "$cache")"
 fi
+[[ -n $werror ]] || werror="${cached_werror:-OFF}"
 if [[ ! -f "$cache" || "$cached_type" != "$build_type" || "$cached_werror" != "$werror" || ${#missing[@]} -gt 0 ||
       ( ! -f "$build_dir/Makefile" && ! -f "$build_dir/build.ninja" ) ]]; then
     say "configuring $build_type build in $build_dir/"

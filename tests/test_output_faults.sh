@@ -30,7 +30,7 @@ for level in 0 4; do
     err=$(cat full$level.err)
     check "compression $level, disk full after a checkpoint: exit 4" equals 4 "$status"
     check "compression $level: the message names the file, the reason and the checkpoint" \
-        grep -q "cannot write 'full$level.h5.part': .*(File too large).*checkpoint of step 250.*restart_from='full$level.h5.part'" full$level.err
+        grep -q "cannot write 'full$level.h5.part': .*(File too large).*checkpoint of step 250.*the same command and --resume" full$level.err
     [[ -n "$err" ]] && echo "  stderr: $err"
     # (a Debug build adds gfortran's -fcheck runtime warnings, two lines each: not counted)
     check "compression $level: no HDF5 error stack on stderr" equals 1 \
@@ -42,10 +42,11 @@ import h5py
 f = h5py.File('full$level.h5.part', 'r', swmr=True)   # left open by its SWMR writer
 print(int(f['checkpoint/slot%d/state/scalars' % int(f['checkpoint/current'][0])]['step']))" 2>&1)
     check "compression $level: the .h5.part opens, its last checkpoint is at step 250" equals 250 "$step"
-    run --set output.prefix=cont$level --set time.restart_from=full$level.h5.part --set output.compression=$level
-    check "compression $level: restart from the .h5.part (normal limit) exits 0" equals 0 "$?"
-    check "compression $level: the restarted run equals the uninterrupted one bit for bit" \
-        "$py" "$src/tests/tools/regression.py" same ref.h5 cont$level.h5
+    run --set output.prefix=full$level --set output.compression=$level --resume
+    check "compression $level: the same command with --resume (normal limit) exits 0" equals 0 "$?"
+    check "compression $level: the resumed run equals the uninterrupted one bit for bit" \
+        "$py" "$src/tests/tools/regression.py" same ref.h5 full$level.h5
+    check "compression $level: no .part left" test ! -e full$level.h5.part -a ! -e full$level.resume.h5.part
 done
 
 # before the first checkpoint (400 kB): the file holds what its first flush wrote

@@ -4,7 +4,8 @@
 # Good cases: a run with --set must be the same run as one from a namelist file that holds
 # the overridden values (their --summary rows agree in every column but file and wall
 # seconds), for a scalar, an array element, a whole array, a group the file lacks, a
-# string without quotes, stdin input, and the --set=... form.
+# string without quotes, stdin input, the --set=... form, and a variable given twice (the
+# later value wins).
 # Bad cases: exit status 2, 'rodcontact: error in <where>:' on stderr with the expected
 # text, and no output file.
 #
@@ -102,6 +103,19 @@ same_run keyword_and_logical "$(with 's/^&model varpi = 0.1 \//\&model varpi = 0
     "$prog" --set solver.method=MONOLITHIC --set solver.tol=1d-8 --set output.quiet=true base.nml \
     --set output.prefix=good/keyword_and_logical
 same_run quoted_string "$base_text" "$prog" base.nml --set "output.prefix='good/quoted_string'"
+# a later --set of a variable overrides an earlier one (also the output prefix, and an element
+# after its whole array), so that a command can be repeated with one more --set appended
+same_run later_wins "$(with 's/varpi = 0.1/varpi = 0.3/')" \
+    "$prog" base.nml --set model.varpi=1 --set MODEL.VARPI=0.3 --set output.prefix=good/later_wins
+same_run element_after_array "$(with 's/p0_step = 20, 0.1/p0_step = 5, 0.05/')" \
+    "$prog" base.nml --set initial.p0_step=7.5,0.05 --set 'initial.p0_step(1)=5' --set output.prefix=good/element_after_array
+same_run prefix_twice "$base_text" "$prog" base.nml --set output.prefix=good/first_prefix --set output.prefix=good/prefix_twice
+n_case=$((n_case + 1))
+if [[ -e good/first_prefix.h5 || -e good/first_prefix.h5.part ]]; then
+    fail "prefix given twice: the earlier output.prefix was written (good/first_prefix.h5)"
+else
+    echo "PASS case $n_case: prefix given twice: only the later one written"
+fi
 
 # a string with a blank and a quote, into a directory that does not exist yet
 n_case=$((n_case + 1))
@@ -157,7 +171,6 @@ bad "--set initial.theta0_step"  "must be two real numbers: amplitude, x_end" fi
 bad "--set initial.theta0_step"  "theta0_step(3) = 1" file --set 'initial.theta0_step(3)=1'
 bad "--set initial.theta0_step(x)" "expected a subscript like 'theta0_step(1)'" file --set 'initial.theta0_step(x)=1'
 bad "--set model.varpi(1)"       "'varpi' is not an array" file --set 'model.varpi(1)=1'
-bad "--set model.varpi"          "given twice on the command line" file --set model.varpi=1 --set MODEL.VARPI=2
 bad "--set material.t0"          "&material and &model are both given" file --set material.T0=300
 bad "--set model.varpy"          "unknown variable 'varpy'" stdin --set model.varpy=1
 bad "--set initial.u1_poly"      "at most 9 real coefficients" stdin --set initial.u1_poly=0,1,2,3,4,5,6,7,8,9

@@ -10,7 +10,8 @@
 #  3. bad restarts exit 2, write nothing and leave the source as it was: missing file, no
 #     checkpoint, a damaged one, one in the positional layout of earlier versions, any input
 #     that changes the history changed (named with both values and what may change), t_end
-#     before the checkpoint, the output being the source itself;
+#     before the checkpoint, the output being the source itself, a resume in place of a
+#     .h5.part that is not there;
 #  4. a restart that changes only t_end and &output settings runs.
 # Usage: bash test_restart.sh <rodcontact> <source dir> <scratch dir>
 set -u
@@ -177,7 +178,8 @@ bad "restart with t_end before the checkpoint" "half_euler.h5" 's/t_end=0.6/t_en
 bad "restart into its own file" "half_euler.h5" "s|prefix='bad'|prefix='half_euler'|" "is the file this run writes"
 bad "restart into its own file by another path" "half_euler.h5" "s|prefix='bad'|prefix='./../$(basename "$PWD")/half_euler'|" \
     "is the file this run writes"
-bad "restart into the .h5 of its own .h5.part" "long.h5.part" "s|prefix='bad'|prefix='long'|" "is the file this run writes"
+# its own .h5.part is resumed in place (tests/test_signal.sh); --resume without one: nothing to resume
+bad "resume in place without a .h5.part" "bad.h5.part" '' "no such file, nothing to resume" "without --resume"
 # what may change: t_end, output intervals, checkpoint interval, quiet, prefix
 make_input ok.nml ok 0.35 euler "restart_from='half_euler.h5'"
 sed -i -e 's/checkpoint_every=250/checkpoint_every=100 series_every=2/' -e 's/snapshot_every=100/snapshot_every=50/' -e 's/quiet=.true./quiet=.false./' ok.nml

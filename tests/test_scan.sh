@@ -150,7 +150,8 @@ stopped_points_kept() {
         ((rc == 5)) || continue   # (> 128: killed before its handlers, no checkpoint)
         stem=${st%.status}
         [[ -f $stem.h5.part ]] || { echo "  $stem: exit 5 but no $stem.h5.part"; return 1; }
-        grep -q -F "restart_from='$stem.h5.part'" "$stem.err" || { echo "  $stem.err names no $stem.h5.part: $(cat "$stem.err")"; return 1; }
+        grep -q -F -- "--set output.prefix=$stem --set output.quiet=.true. --resume" "$stem.err" ||
+            { echo "  $stem.err names no command resuming $stem: $(cat "$stem.err")"; return 1; }
         grep -q "^$((10#${stem##*_})),.*,interrupted,5," "$dir/summary.csv" || { echo "  point ${stem##*_} not 'interrupted,5' in the CSV"; return 1; }
     done
 }
@@ -231,9 +232,12 @@ wait "$pid"
 check "scan stopped while its point runs: exit 143" equals 143 "$?"
 check "the stopped point: exit 5 recorded, its checkpoint kept" \
     bash -c "[[ \$(head -n 1 $rs/point_0000.status) == 5 && -f $rs/point_0000.h5.part && ! -f $rs/point_0000.h5 ]]"
-check "the stopped point's .err names the file that is there" grep -q -F "restart_from='$rs/point_0000.h5.part'" "$rs/point_0000.err"
+check "the stopped point's .err names the command that resumes it" \
+    grep -q -F -- "--set output.prefix=$rs/point_0000 --set output.quiet=.true. --resume" "$rs/point_0000.err"
 bash "$scan" "${rs_args[@]}" --out "$rs" -j 1 2> scan_resume2.log
 check "resume: exit 0" equals 0 "$?"
+check "resume: the scan says the point continues from its checkpoint" \
+    grep -q -F "0 already complete, 1 to run (1 of them continue from their checkpoints)" scan_resume2.log
 check "resume: the point complete, no .part or .resume left" \
     bash -c "grep -q '^0,.*,complete,0,' $rs/summary.csv && ! ls $rs/*.part $rs/*.resume 2> /dev/null"
 if py=$("$src/scripts/lib/find_python.sh" 2> /dev/null); then

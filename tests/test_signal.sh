@@ -8,6 +8,7 @@
 # before the .part exists, so on a loaded machine too the signal stops it cleanly.
 # A signal already pending when the program starts (inherited blocked: the signal mask survives
 # exec) stops the run before its first step, with a checkpoint at step 0 to restart from.
+# Last, a run resumed in place with --resume (stopped again, killed once, then to its end).
 # Usage: bash test_signal.sh <rodcontact> <source dir> <scratch dir>
 set -u
 exe=$1; src=$2; scratch=$3
@@ -64,6 +65,67 @@ print(f.attrs['status'].replace(' ', '_'), int(step))") || { fail "SIG$sig: .h5.
     if out=$("$py" "$src/tests/tools/regression.py" same ref_$label.h5 rest_$label.h5); then echo "PASS SIG$label: stopped, restarted = uninterrupted, bit for bit ($out)"
     else fail "SIG$label: restarted run differs from the uninterrupted one:"; echo "$out"; fi
 done
+
+# Resumed in place (--resume, docs/robustness.md): a run stopped by SIGTERM, resumed with
+# --resume and stopped again (its .part replaced by the one with the later checkpoint, no
+# other file left), then resumed to the end: <prefix>.h5 equals an uninterrupted run bit for
+# bit and no .part is left. Then a resumed run killed by SIGKILL after a checkpoint: the next
+# --resume takes over that later checkpoint (restart_step) and ends equal as well.
+ckstep() {   # ckstep FILE: the step of FILE's last complete checkpoint (-1: none), as a SWMR reader
+    "$py" -c "
+import h5py, sys
+try:
+    f = h5py.File(sys.argv[1], 'r', swmr=True)
+    n = int(f['checkpoint/current'][0])
+    print(int(f['checkpoint/slot%d/state/scalars' % n]['step']) if n >= 0 else -1)
+except Exception:
+    print(-1)" "$1"
+}
+leftovers() { ls "$1".* 2> /dev/null | grep -v -x -F -e "$1.nml" -e "$1.err" -e "$1.h5" | tr '\n' ' '; }
+make_input inplace.nml inplace 1000.0 "" && sed -i 's/quiet=.true./quiet=.true. checkpoint_every=250/' inplace.nml
+start TERM inplace; status=$?
+s1=$(ckstep inplace.h5.part)
+[ $status -eq 5 ] && [ "$s1" -ge 0 ] || fail "in place: first stop: exit $status, checkpoint step $s1"
+"$exe" inplace.nml --resume 2> inplace.err & pid=$!
+wait_in_time_loop inplace.resume.h5.part || echo "note: inplace.resume.h5.part did not grow within 15 s; signalling anyway"
+kill -s TERM $pid; wait $pid; status=$?
+s2=$(ckstep inplace.h5.part)
+[ $status -eq 5 ] || fail "in place: the resumed run stopped by SIGTERM: exit $status, expected 5"
+[ "$s2" -gt "$s1" ] || fail "in place: after the second stop the .part's checkpoint is at step $s2, not after $s1"
+[ -z "$(leftovers inplace)" ] || [ "$(leftovers inplace)" = "inplace.h5.part " ] ||
+    fail "in place: after the second stop expected inplace.h5.part alone, found $(leftovers inplace)"
+grep -q -F -- "inplace.nml --resume" inplace.err || fail "in place: the stop message names no --resume command: $(cat inplace.err)"
+# killed by SIGKILL while resuming, after a checkpoint of its own (later than the .part's)
+"$exe" inplace.nml --resume & pid=$!
+for ((i = 0; i < 150; i++)); do
+    s3=$(ckstep inplace.resume.h5.part); [ "$s3" -gt "$s2" ] && break; sleep 0.1
+done
+kill -s KILL $pid; wait $pid
+s3=$(ckstep inplace.resume.h5.part)   # the last checkpoint before the kill
+[ "$s3" -gt "$s2" ] || fail "in place: the resumed run wrote no checkpoint before SIGKILL (step $s3)"
+# the wall seconds of the three runs so far, carried by the checkpoint into the resumed file's total
+w3=$("$py" -c "
+import h5py
+f = h5py.File('inplace.resume.h5.part', 'r', swmr=True)
+print(float(f['checkpoint/slot%d/run/scalars' % int(f['checkpoint/current'][0])]['wall_seconds']))")
+t_end=$(awk -v n="$((s3 + 3000))" 'BEGIN { printf "%.4f", n * 1e-4 }')
+if "$exe" inplace.nml --set time.t_end="$t_end" --resume; then
+    make_input inplace_ref.nml inplace_ref "$t_end" && sed -i 's/quiet=.true./quiet=.true. checkpoint_every=250/' inplace_ref.nml
+    "$exe" inplace_ref.nml || fail "in place: reference run exit $?"
+    if out=$("$py" "$src/tests/tools/regression.py" same inplace_ref.h5 inplace.h5); then
+        echo "PASS in place: stopped twice, killed once, resumed with --resume = uninterrupted, bit for bit ($out)"
+    else fail "in place: the resumed run differs from the uninterrupted one:"; echo "$out"; fi
+    [ -z "$(leftovers inplace)" ] && echo "PASS in place: no .part left" ||
+        fail "in place: files left beside inplace.h5: $(leftovers inplace)"
+    rs=$("$py" -c "import h5py; print(int(h5py.File('inplace.h5', 'r').attrs['restart_step']))")
+    [ "$rs" = "$s3" ] || fail "in place: resumed from step $rs, expected the killed resumed run's checkpoint $s3"
+    wall=$("$py" -c "import h5py; print(float(h5py.File('inplace.h5', 'r').attrs['wall_seconds']))")
+    awk -v w="$wall" -v w3="$w3" 'BEGIN { exit !(w > w3 && w3 > 0) }' &&
+        echo "PASS in place: wall_seconds $wall counts the runs before the resume ($w3 s up to its checkpoint)" ||
+        fail "in place: wall_seconds $wall does not count the $w3 s of the runs before the resume"
+else
+    fail "in place: the last --resume exit $?"
+fi
 
 echo "test_signal: $failures failed"
 [ $failures -eq 0 ]

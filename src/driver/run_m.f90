@@ -52,15 +52,20 @@ module run_m
         integer :: n_elements_max = 0
         integer :: last_written = 0            !< the last step whose output was written
         integer(int64) :: clock_start = 0, clock_rate = 1
+        real(dp) :: wall_before = 0.0_dp       !< a restart's: the wall seconds up to its checkpoint
+        logical :: in_place = .false.          !< resuming its own <prefix>.h5.part (restart_m)
+        character(len=:), allocatable :: resume_command   !< how to continue it, for the stop message
     end type run_t
 
 contains
 
     !> Run the validated configuration cfg and write <prefix>.h5. A numerical failure
     !> finishes the file with status 'failed: ...' and stops with EXIT_NUMERIC; a stop
-    !> signal writes a checkpoint, leaves <prefix>.h5.part and stops with EXIT_INTERRUPTED.
-    subroutine run_simulation(cfg)
+    !> signal writes a checkpoint, leaves <prefix>.h5.part and stops with EXIT_INTERRUPTED,
+    !> saying how to continue it: resume_command (the program's own command line with --resume).
+    subroutine run_simulation(cfg, resume_command)
         type(config_t), intent(in) :: cfg
+        character(len=*), intent(in), optional :: resume_command
         type(run_t), allocatable :: run   ! on the heap: larger than the stack variable limit
         character(len=320) :: failure
         character(len=:), allocatable :: interrupted
@@ -70,6 +75,8 @@ contains
         allocate (run, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the run')
         call system_clock(run%clock_start, run%clock_rate)
+        run%resume_command = 'the same command and --resume'
+        if (present(resume_command)) run%resume_command = resume_command
         ! before anything is written: a stop signal from here on (also one that arrived while
         ! the process was starting, pending and blocked) stops the run with a checkpoint,
         ! at the latest before its first step
@@ -108,7 +115,8 @@ contains
             end if
         end if
         if (cfg%time%restart_from /= '') then
-            call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt)
+            call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt, run%in_place)
+            if (ckpt%has('run/wall_seconds')) call ckpt%get('run/wall_seconds', run%wall_before)
             call run%state%restore_checkpoint(ckpt, 'state')
             call run%state%mesh%restore_checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
@@ -141,7 +149,7 @@ contains
         ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
         call ignore_file_size_signal()
         call output_grid(cfg, run%x_out)
-        call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression)
+        call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression, run%in_place)
         call record_inputs(run%writer, cfg)
         call record_provenance(run%writer, PROGRAM_VERSION, SOURCE_VERSION)
         if (cfg%material%present) call record_scales(run%writer, cfg)
@@ -228,7 +236,6 @@ contains
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
         character(len=*), intent(in) :: failure, interrupted
-        integer(int64) :: clock_now
         real(dp) :: wall
 
         if (interrupted /= '') then
@@ -246,16 +253,15 @@ contains
                 call write_series(run%writer, run%stepper, run%state, run%monitor, run%result)
             if (.not. snapshot_due(cfg, run%last_written, .false.)) call snapshot(run, cfg)
         end if
-        call system_clock(clock_now)
-        wall = real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp)
+        wall = wall_seconds(run)
         call record_results(run%writer, cfg, run%state, run%stepper, run%monitor, run%driver, run%companions, &
                             wall, run%n_elements_max)
         if (interrupted /= '') then
             call run%writer%finish('interrupted: '//interrupted, keep_part=.true.)
             call report_end(run, cfg, '.h5.part', 'interrupted: '//interrupted, wall)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
-                step_failure(run%state%step, run%state%t, 'checkpoint written')//"; continue with "// &
-                "--set time.restart_from='"//trim(cfg%output%prefix)//".h5.part' and another output.prefix"
+                step_failure(run%state%step, run%state%t, 'checkpoint written')//'; continue it with: '// &
+                run%resume_command
             flush (error_unit)
             stop EXIT_INTERRUPTED, quiet=.true.
         end if
@@ -348,8 +354,18 @@ contains
             call ckpt%put('run/n_elements_max', run%n_elements_max)
         end if
         if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
+        call ckpt%put('run/wall_seconds', wall_seconds(run))
         call run%writer%write_checkpoint(ckpt, step_failure(run%state%step, run%state%t, ''))
     end subroutine checkpoint
+
+    !> The run's wall seconds so far, with those before the checkpoint it restarted from.
+    real(dp) function wall_seconds(run)
+        type(run_t), intent(in) :: run
+        integer(int64) :: clock_now
+
+        call system_clock(clock_now)
+        wall_seconds = run%wall_before + real(clock_now - run%clock_start, dp) / real(run%clock_rate, dp)
+    end function wall_seconds
 
     !> A snapshot of the level in run%state, with its error estimate (&output error_estimate).
     subroutine snapshot(run, cfg)

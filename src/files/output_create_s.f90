@@ -16,12 +16,14 @@ contains
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
     !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes;
     !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of the /snapshots
-    !> fields (with the shuffle filter before it; 0: no filters).
-    module subroutine writer_create(w, prefix, x, compression)
+    !> fields (with the shuffle filter before it; 0: no filters). in_place: the run resumes
+    !> <prefix>.h5.part, which stays as it is until finish(); the file is <prefix>//RESUMED_SUFFIX.
+    module subroutine writer_create(w, prefix, x, compression, in_place)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: prefix
         real(dp), intent(in) :: x(0:)
         integer, intent(in), optional :: compression
+        logical, intent(in), optional :: in_place
 
         character(len=:), allocatable :: dir, message
         logical :: ok
@@ -33,6 +35,11 @@ contains
         call reset(w)
         w%final_path = trim(prefix)//'.h5'
         w%part_path = trim(prefix)//'.h5.part'
+        w%replaces = ''
+        if (present(in_place)) then
+            if (in_place) w%replaces = w%part_path
+            if (in_place) w%part_path = trim(prefix)//RESUMED_SUFFIX
+        end if
         w%creating = .true.
         if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
         w%n_nodes = size(x)

@@ -131,18 +131,21 @@ contains
 
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
-    !> `<prefix>.h5`, replacing an older file of that name.
+    !> `<prefix>.h5`, replacing an older file of that name. A run resumed in place renames
+    !> its file instead, each rename atomic, so that a valid file is always there: to
+    !> `<prefix>.h5`, then deletes the `<prefix>.h5.part` it continued; with keep_part over
+    !> that .part (its checkpoint is later).
     module subroutine writer_finish(w, status, keep_part)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: status
         !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
-        !> continued by restart_from), not renamed
+        !> continued by restart_from), not renamed to <prefix>.h5
         logical, intent(in), optional :: keep_part
 
         integer(hid_t) :: ids(MAX_OPEN)
         integer :: hdferr, k
         logical :: ok
-        character(len=:), allocatable :: message
+        character(len=:), allocatable :: message, target
 
         call w%need_open('finish()')
         call w%leave_swmr()
@@ -166,13 +169,16 @@ contains
         deallocate (w%buf)
         if (allocated(w%estimate_buf)) deallocate (w%estimate_buf)
 
+        target = w%final_path
         if (present(keep_part)) then
-            if (keep_part) return
+            if (keep_part .and. w%replaces == '') return
+            if (keep_part) target = w%replaces
         end if
-        call rename_file(w%part_path, w%final_path, ok, message)
+        call rename_file(w%part_path, target, ok, message)
         ! the .part file is complete and valid here: keep it rather than lose the run
         if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
                                  //w%part_path//"')")
+        if (w%replaces /= '' .and. target == w%final_path) call remove_file(w%replaces)
     end subroutine writer_finish
 
     !> Close whatever is open, ignoring errors, and delete the .part file. For output
@@ -244,8 +250,10 @@ contains
             if (system /= '') system = ' ('//system//')'
             if (w%checkpoint_note /= '') then
                 keep = '; the file is left as its last flush wrote it, with the checkpoint of '// &
-                       w%checkpoint_note//": free space, then continue with --set time.restart_from='"// &
-                       path//"' and another output.prefix"
+                       w%checkpoint_note//': free space, then continue it with the same command and --resume'
+            else if (w%replaces /= '') then
+                keep = "; '"//w%replaces//"' still holds the checkpoint this run resumed from: free space, "// &
+                       'then continue it with the same command and --resume'
             else
                 keep = "; the file is left as its last flush wrote it; it holds no checkpoint (&output "// &
                        'checkpoint_every > 0 makes a long run restartable after such a failure)'

@@ -9,7 +9,9 @@
 !>
 !> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
 !> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
-!> no run leaves a truncated file under the final name (docs/output.md). Until finish()
+!> no run leaves a truncated file under the final name (docs/output.md); a run resumed in
+!> place writes `<prefix>.resume.h5.part` (RESUMED_SUFFIX), which finish() renames over
+!> the .part it continues or to `<prefix>.h5` (docs/robustness.md). Until finish()
 !> writes the real status, the root attribute `status` reads 'incomplete'. Between
 !> structural changes the file is in HDF5's SWMR write mode, so that a run killed at any
 !> moment leaves its last flush readable (output_file_s; docs/output.md, "A killed run").
@@ -40,7 +42,7 @@ module output_m
     implicit none
     private
     public :: h5_writer_t
-    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, CHECKPOINT_LAYOUT
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, CHECKPOINT_LAYOUT, RESUMED_SUFFIX
 
     !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
     !> reals (192 KiB) whatever the length of the run.
@@ -52,6 +54,8 @@ module output_m
     integer, parameter :: SERIES_CHUNK = 256
     !> Attribute layout of /checkpoint: slotN/<owner>/<array>, slotN/<owner>/scalars (a compound)
     character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name, slotN/owner/scalars'
+    !> The file of a run resumed in place, beside the <prefix>.h5.part it continues
+    character(len=*), parameter :: RESUMED_SUFFIX = '.resume.h5.part'
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
 
@@ -65,6 +69,8 @@ module output_m
         logical :: creating = .false.
         character(len=:), allocatable :: final_path
         character(len=:), allocatable :: part_path
+        !> resumed in place: the <prefix>.h5.part that finish() replaces ('' otherwise)
+        character(len=:), allocatable :: replaces
         integer :: n_nodes = 0
         integer :: compression = 0                 !< deflate level of the extendible datasets (0: none)
         integer(hid_t) :: file_id = -1
@@ -138,11 +144,12 @@ module output_m
     interface   ! creating the file and its datasets, describing them, the contact events
                 ! (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
                 ! opening, SWMR writing, failing and closing (src/files/output_file_s.f90)
-        module subroutine writer_create(w, prefix, x, compression)
+        module subroutine writer_create(w, prefix, x, compression, in_place)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix
             real(dp), intent(in) :: x(0:)
             integer, intent(in), optional :: compression
+            logical, intent(in), optional :: in_place
         end subroutine writer_create
 
         module subroutine writer_open_file(w, create)

@@ -11,7 +11,8 @@
 !> told apart by position and length), which a restart refuses. A restart reads the last
 !> checkpoint of a file (complete, failed, or the .h5.part of a killed run), copies the
 !> series and snapshots up to it into the new file and continues the time loop from there,
-!> so the result is bit-for-bit that of an uninterrupted run.
+!> so the result is bit-for-bit that of an uninterrupted run. A restart from the run's own
+!> <prefix>.h5.part resumes it in place (output_m's RESUMED_SUFFIX; docs/robustness.md).
 module restart_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -19,15 +20,15 @@ module restart_m
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, table_items, KIND_REAL, &
                             KIND_INTEGER, KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
-    use errors_m, only: fatal, EXIT_INPUT, check_allocation
+    use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
     use reals_m, only: equal
     use checkpoint_m, only: checkpoint_t
     use checkpoint_read_m, only: read_entries, has_group_attribute
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
-    use fsys_m, only: file_exists, same_file
+    use fsys_m, only: file_exists, same_file, rename_file, remove_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
-                         read_attr_str, read_attr_real_1d, dataset_exists, attr_exists
-    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT
+                         read_attr_str, read_attr_real_1d, dataset_exists, attr_exists, is_hdf5_file
+    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX
     implicit none
     private
     public :: read_checkpoint, copy_history
@@ -37,21 +38,31 @@ module restart_m
 contains
 
     !> Read the checkpoint of `file` into ckpt, after checking that this run may continue
-    !> it: `file` is not the file this run writes, its checkpoint is in this version's
+    !> it: `file` is not the <prefix>.h5 this run writes, its checkpoint is in this version's
     !> layout, every input that changes the computed history equals the one recorded in
     !> `file`, and t_end is not before the checkpoint. Any of these failing is an input error
-    !> (exit 2) that leaves no output.
-    subroutine read_checkpoint(file, cfg, ckpt)
+    !> (exit 2) that leaves no output. in_place: `file` is this run's own <prefix>.h5.part.
+    subroutine read_checkpoint(file, cfg, ckpt, in_place)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
         type(checkpoint_t), intent(out) :: ckpt
+        logical, intent(out) :: in_place
         integer, allocatable :: current(:)
         real(dp) :: t
         integer :: step
+        character(len=:), allocatable :: prefix
 
+        prefix = trim(cfg%output%prefix)
+        if (.not. file_exists(file) .and. file == prefix//'.h5.part') call fatal(EXIT_INPUT, WHERE, "got '"//file// &
+            "': no such file, nothing to resume (a run stopped by a signal leaves it); without --resume the run "// &
+            'starts at t = 0')
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
-        call require_not_output(file, trim(cfg%output%prefix))
+        if (same_file(file, prefix//'.h5')) call fatal(EXIT_INPUT, WHERE, "'"//file//"' is the file this run "// &
+            "writes (output.prefix = '"//prefix//"' writes '"//prefix//".h5' at the end): it would overwrite the "// &
+            'checkpoint it restarts from; choose another output.prefix')
+        in_place = same_file(file, prefix//'.h5.part')
+        if (in_place) call take_over_resumed(prefix//RESUMED_SUFFIX, file)
         if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
         if (.not. has_group_attribute(file, '/checkpoint', 'layout')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
@@ -114,21 +125,29 @@ contains
         end if
     end function ends_before
 
-    !> The file restarted from must not be one this run writes: <prefix>.h5.part is created
-    !> (truncated) at the start and renamed to <prefix>.h5 at the end, and either would
-    !> destroy the checkpoint (and the history up to it) being continued.
-    subroutine require_not_output(file, prefix)
-        character(len=*), intent(in) :: file, prefix
-        character(len=*), parameter :: SUFFIXES(2) = [character(len=8) :: '.h5', '.h5.part']
-        integer :: k
+    !> Before resuming `part` in place: a resumed run that was killed (or failed to write)
+    !> left its own file `resumed`. With a complete checkpoint, which is later than part's
+    !> (it continued part's history), it takes part's place; without one it is dropped.
+    subroutine take_over_resumed(resumed, part)
+        character(len=*), intent(in) :: resumed, part
+        integer, allocatable :: current(:)
+        character(len=:), allocatable :: message
+        logical :: ok
 
-        do k = 1, size(SUFFIXES)
-            if (same_file(file, prefix//trim(SUFFIXES(k)))) call fatal(EXIT_INPUT, WHERE, "'"//file// &
-                "' is the file this run writes (output.prefix = '"//prefix//"' writes '"//prefix// &
-                ".h5.part', renamed to '"//prefix//".h5' at the end): it would overwrite the checkpoint it "// &
-                'restarts from; choose another output.prefix')
-        end do
-    end subroutine require_not_output
+        if (.not. file_exists(resumed)) return
+        ok = is_hdf5_file(resumed)
+        if (ok) ok = dataset_exists(resumed, '/checkpoint/current')
+        if (ok) then
+            call read_int_1d(resumed, '/checkpoint/current', current)
+            ok = current(1) >= 0
+        end if
+        if (.not. ok) then
+            call remove_file(resumed)
+            return
+        end if
+        call rename_file(resumed, part, ok, message)
+        if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//' (taking over the later checkpoint of a resumed run)')
+    end subroutine take_over_resumed
 
     !> Every input variable that changes the computed history (input_vars_m's
     !> changes_history) must have the value recorded in `file` as root attribute

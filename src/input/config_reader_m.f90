@@ -53,7 +53,7 @@ contains
             allocate (sets(size(overrides)), stat=stat, errmsg=msg)
             call check_allocation(stat, msg, 'the command-line overrides')
             do k = 1, size(overrides)
-                sets(k) = parse_override(overrides(k), sets(:k - 1))
+                sets(k) = parse_override(overrides(k))
             end do
             cfg%overrides = override_summary(overrides)
         else

@@ -23,16 +23,16 @@ contains
 
     !> Split the override `text` ('group.variable=value' or 'group.variable(i)=value') and
     !> check what can be checked before reading it: a known group and variable, a subscript
-    !> only on an array, a value that stays inside one assignment, not given twice. The
-    !> value of a string variable is quoted here unless it is quoted already (--set
-    !> output.prefix=runs/a), so that the shell need not pass the quotes.
-    function parse_override(text, earlier) result(set)
+    !> only on an array, a value that stays inside one assignment. The value of a string
+    !> variable is quoted here unless it is quoted already (--set output.prefix=runs/a), so
+    !> that the shell need not pass the quotes. A variable given twice takes the later value
+    !> (the overrides are read in order, as the text's assignments are).
+    function parse_override(text) result(set)
         character(len=*), intent(in) :: text
-        type(override_t), intent(in) :: earlier(:)
         type(override_t) :: set
         character(len=:), allocatable :: lhs, name, subscript, value, where
         character :: code
-        integer :: eq, dot, k
+        integer :: eq, dot
 
         eq = index(text, '=')
         lhs = trim(adjustl(text(:max(0, eq - 1))))
@@ -62,10 +62,6 @@ contains
                 call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
                            excerpt(set%lhs) // "'")
         end if
-        do k = 1, size(earlier)
-            if (earlier(k)%group == set%group .and. lower(squeeze(earlier(k)%lhs)) == lower(squeeze(set%lhs))) &
-                call fatal(EXIT_INPUT, where, 'given twice on the command line; each --set variable at most once')
-        end do
         value = trim(adjustl(text(eq + 1:)))
         if (code == KIND_STRING) then
             if (len(value) == 0) then

@@ -292,7 +292,7 @@ contains
             stop 1
         end if
         u_end(0) = state%u(s)
-        if (with_energy) energy(0) = discrete_energy(cfg%model, stepper%law, state%u, state%w, state%mesh)
+        if (with_energy) call discrete_energy(cfg%model, state%u, state%w, state%mesh, energy(0), law=stepper%law)
         seconds = 0.0_dp
         do n = 1, n_steps
             t0 = wall_seconds()
@@ -303,7 +303,7 @@ contains
                 stop 1
             end if
             u_end(n) = state%u(s)
-            if (with_energy) energy(n) = discrete_energy(cfg%model, stepper%law, state%u, state%w, state%mesh)
+            if (with_energy) call discrete_energy(cfg%model, state%u, state%w, state%mesh, energy(n), law=stepper%law)
         end do
     end subroutine run_series
 

@@ -9,9 +9,11 @@
 !>     at a step of another size (step_changed) goes to max_rise_step_change, not max_rise;
 !>  3. a remesh (remeshed) gives the rise of the law energy across it, which the mesh's
 !>     record_remesh keeps as max_rise_remesh and counts (as remesh_m does), apart from max_rise.
-!>  4. linear_energy_by_nodes (the step-size controller's norm, summed by nodes) against E_lin
-!>     written out here, to round-off, on a smooth and on a sawtooth level (where the sums by
-!>     nodes cancel most); on a graded mesh it is energy_m's linear_energy, bit for bit.
+!>  4. energy_m's discrete_energy (E_lin without a contact law), summed by nodes on a uniform
+!>     mesh, against E_lin written out here and against its own sum by elements on the same
+!>     nodes as a graded mesh, to round-off, on a smooth and on a sawtooth level (where the
+!>     sums by nodes cancel most), on an odd and an even number of elements; its parts add
+!>     up to it.
 !> The runs' own checks (test_energy_law) see only levels whose energy falls, where a monitor
 !> that compared a level with itself would also report 0.
 program test_energy_monitor
@@ -22,10 +24,10 @@ program test_energy_monitor
     use contact_laws_m, only: contact_law
     use time_scheme_m, only: time_scheme
     use state_m, only: state_t
-    use energy_m, only: energy_monitor_t, linear_energy_by_nodes, energy_m_linear => linear_energy
+    use energy_m, only: energy_monitor_t, discrete_energy
     use mesh_m, only: graded_mesh
     use checkpoint_m, only: checkpoint_t
-    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA
+    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, N_ENERGY_PARTS
     use testing_m, only: check_close, check_true, test_summary
     implicit none
 
@@ -40,7 +42,7 @@ program test_energy_monitor
     x0 = level(1.0_dp, 0.05_dp)
     call euler_checks()
     call bdf2_checks()
-    call by_nodes_checks()
+    call one_pass_checks()
     call test_summary('test_energy_monitor')
 
 contains
@@ -116,46 +118,55 @@ contains
         call check_close('BDF2: a remesh leaves max_rise', rise, max_rise, TOL)
     end subroutine bdf2_checks
 
-    !> A level on the uniform mesh of S elements: every field a different smooth profile
-    !> times amplitude, u(1) = u_end.
-    type(state_t) function level(amplitude, u_end) result(x)
+    !> A level on the uniform mesh of n elements (S if absent): every field a different smooth
+    !> profile times amplitude, u(1) = u_end.
+    type(state_t) function level(amplitude, u_end, n) result(x)
         real(dp), intent(in) :: amplitude, u_end
+        integer, intent(in), optional :: n
         integer :: i, f
         real(dp) :: xi
 
         x%s = S
-        call x%mesh%set_uniform(S)
-        allocate (x%u(0:S), x%w(0:S, N_FIELDS))
-        do i = 0, S
-            xi = real(i, dp) / S
+        if (present(n)) x%s = n
+        call x%mesh%set_uniform(x%s)
+        allocate (x%u(0:x%s), x%w(0:x%s, N_FIELDS))
+        do i = 0, x%s
+            xi = real(i, dp) / x%s
             x%u(i) = u_end * xi**2 + 0.01_dp * amplitude * sin(3.0_dp * xi)
             do f = 1, N_FIELDS
                 x%w(i, f) = amplitude * cos(real(f, dp) * xi + 0.3_dp * f)
             end do
         end do
-        x%u(S) = u_end
+        x%u(x%s) = u_end
     end function level
 
     !> 4. (module header)
-    subroutine by_nodes_checks()
+    subroutine one_pass_checks()
         type(state_t) :: x
-        real(dp) :: work(S), by_nodes
-        integer :: i
+        real(dp) :: by_nodes, by_elements, parts(N_ENERGY_PARTS)
+        integer :: i, j, n
+        character(len=40) :: tag
 
-        x = level(1.0_dp, 0.05_dp)
-        call linear_energy_by_nodes(MODEL, x%u, x%w, x%mesh, work, by_nodes)
-        call check_close('E_lin by nodes, smooth level', linear_energy(x), by_nodes, TOL * linear_energy(x))
-        do i = 0, S
-            x%u(i) = 0.01_dp * (-1)**i
-            x%w(i, :) = (-1)**i * [1.0_dp, 0.5_dp, 2.0_dp, 0.7_dp, 1.3_dp]
+        do n = S - 1, S
+            x = level(1.0_dp, 0.05_dp, n)
+            write (tag, '(a,i0,a)') ', smooth level, ', n, ' elements'
+            do i = 1, 2
+                if (i == 2) then
+                    x%u = 0.01_dp * [(real((-1)**j, dp), j = 0, n)]
+                    x%w = spread([(real((-1)**j, dp), j = 0, n)], 2, N_FIELDS) &
+                          * spread([1.0_dp, 0.5_dp, 2.0_dp, 0.7_dp, 1.3_dp], 1, n + 1)
+                    write (tag, '(a,i0,a)') ', sawtooth level, ', n, ' elements'
+                end if
+                call discrete_energy(MODEL, x%u, x%w, x%mesh, by_nodes, parts)
+                call check_close('E_lin by nodes'//trim(tag), linear_energy(x), by_nodes, TOL * linear_energy(x))
+                call check_true('its parts add up to it'//trim(tag), &
+                                transfer(sum(parts), 0_int64) == transfer(by_nodes, 0_int64))
+                call discrete_energy(MODEL, x%u, x%w, graded_mesh(x%mesh%x), by_elements)
+                call check_close('E_lin by elements (graded mesh)'//trim(tag), linear_energy(x), by_elements, &
+                                 TOL * linear_energy(x))
+            end do
         end do
-        call linear_energy_by_nodes(MODEL, x%u, x%w, x%mesh, work, by_nodes)
-        call check_close('E_lin by nodes, sawtooth level', linear_energy(x), by_nodes, TOL * linear_energy(x))
-        x%mesh = graded_mesh([(real(i, dp)**2 / S**2, i = 0, S)])
-        call linear_energy_by_nodes(MODEL, x%u, x%w, x%mesh, work, by_nodes)
-        call check_true('E_lin by nodes on a graded mesh = linear_energy', &
-                        transfer(by_nodes, 0_int64) == transfer(energy_m_linear(MODEL, x%u, x%w, x%mesh), 0_int64))
-    end subroutine by_nodes_checks
+    end subroutine one_pass_checks
 
     type(state_t) function with_previous(x, previous) result(y)
         type(state_t), intent(in) :: x, previous
@@ -169,7 +180,7 @@ contains
     real(dp) function energy(x)
         type(state_t), intent(in) :: x
 
-        energy = linear_energy(x) + 0.5_dp / EPS * max(x%u(S) - G, 0.0_dp)**2
+        energy = linear_energy(x) + 0.5_dp / EPS * max(x%u(x%s) - G, 0.0_dp)**2
     end function energy
 
     !> (E_lin(X^n) + E_lin(2 X^n - X^{n-1}))/2 + penalty(u^n) for x = X^n, previous = X^{n-1}.
@@ -180,18 +191,18 @@ contains
         extrapolated = x
         extrapolated%u = 2.0_dp * x%u - previous%u
         extrapolated%w = 2.0_dp * x%w - previous%w
-        g_energy = 0.5_dp * (linear_energy(x) + linear_energy(extrapolated)) + 0.5_dp / EPS * max(x%u(S) - G, 0.0_dp)**2
+        g_energy = 0.5_dp * (linear_energy(x) + linear_energy(extrapolated)) + 0.5_dp / EPS * max(x%u(x%s) - G, 0.0_dp)**2
     end function g_energy
 
     !> 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2 + tau hbar eta^2)
-    !> for P1 functions on the uniform mesh.
+    !> for P1 functions on the uniform mesh of x%s elements.
     real(dp) function linear_energy(x)
         type(state_t), intent(in) :: x
         integer :: e
 
         linear_energy = 0.0_dp
-        do e = 1, S
-            linear_energy = linear_energy + MODEL%alpha * (x%u(e) - x%u(e - 1))**2 * S &
+        do e = 1, x%s
+            linear_energy = linear_energy + MODEL%alpha * (x%u(e) - x%u(e - 1))**2 * x%s &
                 + MODEL%rho * mass(x, e, F_V, F_V) + MODEL%c * mass(x, e, F_THETA, F_THETA) &
                 + MODEL%r * mass(x, e, F_P, F_P) + 2.0_dp * MODEL%d * mass(x, e, F_P, F_THETA) &
                 + MODEL%tau0 * mass(x, e, F_Q, F_Q) + MODEL%tau * MODEL%hbar * mass(x, e, F_ETA, F_ETA)
@@ -205,7 +216,7 @@ contains
         integer, intent(in) :: e, a, b
 
         mass = (2.0_dp * x%w(e - 1, a) * x%w(e - 1, b) + x%w(e - 1, a) * x%w(e, b) &
-                + x%w(e, a) * x%w(e - 1, b) + 2.0_dp * x%w(e, a) * x%w(e, b)) / (6.0_dp * S)
+                + x%w(e, a) * x%w(e - 1, b) + 2.0_dp * x%w(e, a) * x%w(e, b)) / (6.0_dp * x%s)
     end function mass
 
 end program test_energy_monitor

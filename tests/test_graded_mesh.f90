@@ -17,7 +17,7 @@ program test_graded_mesh
     use iso_fortran_env, only: int64
     use config_m, only: model_t, with_contact_mass
     use fields_m, only: N_FIELDS, F_V, is_dirichlet
-    use energy_m, only: linear_energy
+    use energy_m, only: discrete_energy
     use transfer_m, only: transfer_level, merge_keys
     use adaptive_mesh_m, only: adaptive_mesh_t, nodes_of_keys
     use mesh_m, only: graded_mesh
@@ -228,7 +228,7 @@ contains
         real(dp) :: x(0:size(k) - 1)
 
         x = nodes_of_keys(k, int(N_COARSE, int64) * 2_int64**(MAX_LEVEL + 1))
-        energy = linear_energy(model, level(:, 0), level(:, 1:), graded_mesh(x))
+        call discrete_energy(model, level(:, 0), level(:, 1:), graded_mesh(x), energy)
     end function energy
 
     !> The sorted union of two increasing key lists (transfer_m%merge_keys).

@@ -15,7 +15,7 @@ module error_estimator_m
     use kinds_m, only: dp
     use config_m, only: model_t
     use fields_m, only: N_FIELDS
-    use energy_m, only: linear_energy_by_nodes
+    use energy_m, only: discrete_energy
     use mesh_m, only: mesh_t
     use errors_m, only: check_allocation
     use time_scheme_m, only: time_scheme_t
@@ -35,7 +35,6 @@ module error_estimator_m
         real(dp) :: steps(MAX_LEVELS) = 0.0_dp   !< steps(slot): the step that reached that level
         real(dp), allocatable :: levels(:, :, :)  !< (0:s, 0:N_FIELDS, slot): u, then fields_m's F_*
         real(dp), allocatable :: u_diff(:), w_diff(:, :)   !< work: X^n - P^n
-        real(dp), allocatable :: work(:)                   !< work: linear_energy_by_nodes' terms
     contains
         procedure :: init => estimator_init
         procedure :: resize => estimator_resize
@@ -71,9 +70,9 @@ contains
         integer :: stat
         character(len=256) :: message
 
-        if (allocated(self%levels)) deallocate (self%levels, self%u_diff, self%w_diff, self%work)
-        allocate (self%levels(0:s, 0:N_FIELDS, MAX_LEVELS), self%u_diff(0:s), self%w_diff(0:s, N_FIELDS), &
-                  self%work(s), stat=stat, errmsg=message)
+        if (allocated(self%levels)) deallocate (self%levels, self%u_diff, self%w_diff)
+        allocate (self%levels(0:s, 0:N_FIELDS, MAX_LEVELS), self%u_diff(0:s), self%w_diff(0:s, N_FIELDS), stat=stat, &
+                  errmsg=message)
         call check_allocation(stat, message, 'the error estimator''s levels')
         self%levels = 0.0_dp
     end subroutine estimator_resize
@@ -131,7 +130,7 @@ contains
             end do
         end do
         call extrapolation_difference(self, u, w, weight(1:n))
-        call linear_energy_by_nodes(model, self%u_diff, self%w_diff, mesh, self%work, energy)
+        call discrete_energy(model, self%u_diff, self%w_diff, mesh, energy)
         est = self%scheme%error_factor(d(1:n), self%step(1)) * energy_norm(energy)
     end function estimator_estimate
 

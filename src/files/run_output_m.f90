@@ -14,7 +14,7 @@ module run_output_m
     use stress_m, only: nodal_stress
     use stepper_m, only: stepper_t, step_result_t
     use contact_law_m, only: contact_law_t
-    use energy_m, only: energy_monitor_t, energy_and_parts
+    use energy_m, only: energy_monitor_t, discrete_energy
     use step_driver_m, only: step_driver_t
     use error_estimator_m, only: MAX_LEVELS
     use output_m, only: h5_writer_t
@@ -65,7 +65,7 @@ contains
     end subroutine write_series
 
     !> The series values that are a function of a level alone (u, w on its mesh; energy:
-    !> its E^n, parts: E's terms, energy_m's energy_and_parts); the others are 0 here.
+    !> its E^n, parts: E's terms, energy_m's discrete_energy); the others are 0 here.
     !> Dense output interpolates these between the steps (write_dense_series).
     pure subroutine level_series(level, energy, parts, values)
         type(state_t), intent(in) :: level
@@ -172,7 +172,7 @@ contains
         call level_series(state, monitor%current_energy(), monitor%parts(state), rows(:, 1))
         do j = 2, n
             call driver%past_level(state, j, level)
-            call energy_and_parts(stepper%model, stepper%law, level%u, level%w, level%mesh, energy, parts)
+            call discrete_energy(stepper%model, level%u, level%w, level%mesh, energy, parts, stepper%law)
             call level_series(level, energy, parts, rows(:, j))
         end do
     end subroutine interpolant_rows

@@ -53,8 +53,8 @@ module fields_m
     end type series_t
 
     !> The datasets (rows of SERIES): N_SCALAR_SERIES of their own (S_*), then the terms
-    !> of E^n (energy_m's energy_parts, in this order, S_ENERGY_PARTS), which add up to
-    !> /series/energy to round-off.
+    !> of E^n (energy_m's discrete_energy, in this order, S_ENERGY_PARTS), which add up to
+    !> /series/energy.
     integer, parameter :: S_T = 1, S_ENERGY = 2, S_U_END = 3, S_PENETRATION = 4, S_CONTACT_STRESS = 5, &
                           S_ITERATIONS = 6, S_DT = 7, S_N_ELEMENTS = 8, N_SCALAR_SERIES = 8
     integer, parameter :: N_ENERGY_PARTS = 8

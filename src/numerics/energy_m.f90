@@ -1,5 +1,5 @@
-!> The discrete energy of Corollary 6.2, the energy law each time scheme guarantees, and
-!> the monitor that checks the law every step.
+!> The discrete energy E^n of Corollary 6.2 and its terms (one routine, one pass over the
+!> level), the energy of the BDF2 scheme's law, and the monitor that checks the law every step.
 module energy_m
     use kinds_m, only: dp
     use config_m, only: model_t
@@ -14,18 +14,21 @@ module energy_m
     use checkpoint_m, only: checkpoint_t
     implicit none
     private
-    public :: discrete_energy, linear_energy, linear_energy_by_nodes, bdf2_energy, energy_parts, energy_and_parts, &
-              energy_monitor_t
+    public :: discrete_energy, bdf2_energy, energy_monitor_t
     public :: PART_KINETIC, PART_STRAIN, PART_THERMAL, PART_CHEMICAL, PART_COUPLING, PART_HEAT_FLUX, &
               PART_MASS_FLUX, PART_CONTACT
 
-    !> The sums over the elements of element_sums (E_lin of any model follows from them).
-    integer, parameter :: SUM_SCALE = 1, SUM_STRAIN = 2, SUM_KINETIC = 3, SUM_THERMAL = 4, SUM_CHEMICAL = 5, &
-                          SUM_COUPLING = 6, SUM_HEAT_FLUX = 7, SUM_MASS_FLUX = 8, N_SUMS = 8
-
-    !> The terms of E^n in energy_parts (the order of fields_m's energy_* series).
+    !> The terms of E^n (the order of fields_m's energy_* series).
     integer, parameter :: PART_KINETIC = 1, PART_STRAIN = 2, PART_THERMAL = 3, PART_CHEMICAL = 4, &
                           PART_COUPLING = 5, PART_HEAT_FLUX = 6, PART_MASS_FLUX = 7, PART_CONTACT = 8
+    !> The terms 1/2 int coefficient a b dx of two fields: a = w(:, MASS_A(k)), b = w(:, MASS_B(k))
+    !> in term MASS_PARTS(k).
+    integer, parameter :: MASS_PARTS(6) = [PART_KINETIC, PART_THERMAL, PART_CHEMICAL, PART_COUPLING, &
+                                           PART_HEAT_FLUX, PART_MASS_FLUX]
+    integer, parameter :: MASS_A(6) = [F_V, F_THETA, F_P, F_P, F_Q, F_ETA]
+    integer, parameter :: MASS_B(6) = [F_V, F_THETA, F_P, F_THETA, F_Q, F_ETA]
+    !> level_sums' integrals to the terms' 1/2 int: 1/12 of 6 int a b, 1/2 of int u_x^2.
+    real(dp), parameter :: HALF_OF_SUMS(PART_MASS_FLUX) = [1, 6, 1, 1, 1, 1, 1] / 12.0_dp
 
     !> The discrete energy of every level and the largest relative rise of the energy the
     !> scheme's law is stated for (time_scheme_m's energy_law: E^n, or BDF2's G-energy).
@@ -35,7 +38,6 @@ module energy_m
         type(model_t) :: law_model     !< the model of the law's energy (time_scheme_m's stiff_limit)
         class(contact_law_t), allocatable :: law
         type(energy_law_t) :: scheme_law   !< the law the time scheme guarantees
-        logical :: own_law_model = .false.   !< law_model differs from model
         real(dp) :: energy = 0.0_dp, law_energy = 0.0_dp, max_rise = 0.0_dp
         !> a law stated for constant steps only (BDF2): the largest relative rise at steps
         !> whose size differs from the step before (w /= 1), where the law is not stated (not
@@ -64,228 +66,107 @@ module energy_m
 
 contains
 
-    !> E^n = E_lin + 1/(2 eps) [u(1) - g]_+^2 (penalty law; no contact term for Signorini)
-    !> of the level (u, w) on mesh.
-    pure function discrete_energy(model, law, u, w, mesh) result(energy)
+    !> E^n of Corollary 6.2 of the level (u, w) on mesh and its terms (PART_*), from one pass
+    !> over the level (level_sums): E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2
+    !> + 2 d P theta + tau0 q^2 + tau hbar eta^2) dx, exact for P1 functions (the kinetic term
+    !> with the velocity mass's inertia_difference), plus the contact term of law at u(1)
+    !> (1/(2 eps) [u(1) - g]_+^2 for the penalty; none for Signorini). energy: the sum of the
+    !> terms. Without law: E_lin. law_energy: E^n with law_model's coefficients, from the same
+    !> pass (the midpoint rule's law: time_scheme_m's stiff_limit).
+    pure subroutine discrete_energy(model, u, w, mesh, energy, parts, law, law_model, law_energy)
         type(model_t), intent(in) :: model
-        class(contact_law_t), intent(in) :: law
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
+        real(dp), intent(in), contiguous :: u(0:), w(0:, :)
         type(mesh_t), intent(in) :: mesh
-        real(dp) :: energy
-
-        real(dp) :: parts(N_ENERGY_PARTS)
-
-        call energy_and_parts(model, law, u, w, mesh, energy, parts)
-    end function discrete_energy
-
-    !> E_lin = 1/2 int (rho v^2 + alpha u_x^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2
-    !>       + tau hbar eta^2) dx, E^n without the contact term; integrals exact for P1 functions
-    !> (linear_energy_parts, which also gives the terms one by one).
-    pure function linear_energy(model, u, w, mesh) result(energy)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp) :: energy
-        real(dp) :: parts(N_ENERGY_PARTS)
-
-        call linear_energy_parts(model, u, w, mesh, energy, parts)
-    end function linear_energy
-
-    !> E_lin = linear_energy on a uniform mesh, summed by nodes with the coefficients inside
-    !> the sum (node_terms): the same integrals in another order, equal to linear_energy to
-    !> round-off, not bit for bit (the mass matrix's quadratic form by nodes has no
-    !> cancellation beyond a factor 3: h/6 tridiag(1, 4, 1) is positive definite with condition
-    !> number 3), in about half the instructions. For the step-size controller's error norm
-    !> (step_control_m), where only its size matters; the energy law and the energy series use
-    !> linear_energy. On a graded mesh: linear_energy. work(1:s): scratch.
-    pure subroutine linear_energy_by_nodes(model, u, w, mesh, work, energy)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp), intent(inout), contiguous :: work(:)
         real(dp), intent(out) :: energy
-        integer :: s
+        real(dp), intent(out), optional :: parts(N_ENERGY_PARTS)
+        class(contact_law_t), intent(in), optional :: law
+        type(model_t), intent(in), optional :: law_model
+        real(dp), intent(out), optional :: law_energy
+        real(dp) :: sums(PART_MASS_FLUX), terms(N_ENERGY_PARTS)
+
+        call level_sums(u, w, mesh, sums)
+        terms(PART_CONTACT) = 0.0_dp
+        if (present(law)) terms(PART_CONTACT) = law%energy(u(ubound(u, 1)))
+        call model_terms(model, sums, w, mesh, terms)
+        energy = sum(terms)
+        if (present(parts)) parts = terms
+        if (present(law_energy)) then
+            call model_terms(law_model, sums, w, mesh, terms)
+            law_energy = sum(terms)
+        end if
+    end subroutine discrete_energy
+
+    !> The terms of E^n but the contact term (terms(1:PART_MASS_FLUX)) of model from level_sums.
+    pure subroutine model_terms(model, sums, w, mesh, terms)
+        type(model_t), intent(in) :: model
+        real(dp), intent(in) :: sums(PART_MASS_FLUX)
+        real(dp), intent(in), contiguous :: w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(inout) :: terms(N_ENERGY_PARTS)
+
+        terms(:PART_MASS_FLUX) = [model%rho, model%alpha, model%c, model%r, 2.0_dp * model%d, model%tau0, &
+                                  model%tau * model%hbar] * HALF_OF_SUMS * sums
+        terms(PART_KINETIC) = terms(PART_KINETIC) + inertia_difference(model, w, mesh)
+    end subroutine model_terms
+
+    !> The integrals E^n's terms are made of, without the coefficients, exact for P1 functions:
+    !> sums(PART_STRAIN) = int u_x^2, sums(MASS_PARTS(k)) = 6 int a b (fields MASS_A(k), MASS_B(k)).
+    !> On element e, 6 int a b = h_e (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1). On a uniform mesh the
+    !> sum over the elements is taken by nodes, in fewer operations: h (sum_{i=1..s} N_i
+    !> + 2 a_0 b_0 - 2 a_s b_s), N_i = a_i (2 b_i + b_{i-1}) + b_i (2 a_i + a_{i-1}); the nodes
+    !> of odd and of even index are summed apart (two lanes, one vector register).
+    pure subroutine level_sums(u, w, mesh, sums)
+        real(dp), intent(in), contiguous :: u(0:), w(0:, :)
+        type(mesh_t), intent(in) :: mesh
+        real(dp), intent(out) :: sums(PART_MASS_FLUX)
+        real(dp) :: lanes(2, PART_MASS_FLUX), h
+        integer :: i, k, s
 
         s = ubound(u, 1)
-        if (.not. mesh%is_uniform() .or. size(work) < s) then
-            energy = linear_energy(model, u, w, mesh)
+        if (.not. mesh%is_uniform()) then
+            sums = 0.0_dp
+            do i = 1, s
+                h = mesh%h(i)
+                sums(PART_STRAIN) = sums(PART_STRAIN) + (u(i) - u(i - 1))**2 / h
+                do k = 1, size(MASS_PARTS)
+                    associate (a0 => w(i - 1, MASS_A(k)), a1 => w(i, MASS_A(k)), b0 => w(i - 1, MASS_B(k)), &
+                               b1 => w(i, MASS_B(k)), total => sums(MASS_PARTS(k)))
+                        total = total + h * ((a0 + a1) * (b0 + b1) + a0 * b0 + a1 * b1)
+                    end associate
+                end do
+            end do
             return
         end if
-        call node_terms(model, u, w, work(1:s))
-        ! 0.5 (scale/6 (mass terms) + alpha strain/scale), scale = h = 1/s (linear_from_sums)
-        energy = 0.5_dp * (sum(work(1:s)) + 2.0_dp * (end_terms(model, w, 0) - end_terms(model, w, s))) &
-                 / (6.0_dp * real(s, dp)) + inertia_difference(model, w, mesh)
-    end subroutine linear_energy_by_nodes
-
-    !> The terms of node i = 1..s of linear_energy_by_nodes, into terms(i): on a uniform mesh
-    !> the mass product of element e (nodes e-1, e; element_mass_product) is 2 a0 b0 + 2 a1 b1
-    !> + a0 b1 + a1 b0, so its sum over the elements is sum_{i=1..s} (a_i (2 b_i + b_{i-1})
-    !> + b_i (2 a_i + a_{i-1})) + 2 a_0 b_0 - 2 a_s b_s (end_terms), and for a = b
-    !> 2 sum_i a_i (2 a_i + a_{i-1}) + 2 a_0^2 - 2 a_s^2. terms(i): twice the coefficients
-    !> times node i's part, plus 6 alpha s^2 (u_i - u_{i-1})^2 (the strain, scaled to the mass
-    !> terms' h/6). An elementwise loop (the compiler pairs the nodes), summed afterwards.
-    pure subroutine node_terms(model, u, w, terms)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        real(dp), intent(out) :: terms(:)
-        real(dp) :: k_strain, c_v, c_t, c_p, c_d, c_q, c_e
-        integer :: i, s
-
-        s = ubound(u, 1)
-        k_strain = 6.0_dp * model%alpha * real(s, dp)**2
-        c_v = 2.0_dp * model%rho; c_t = 2.0_dp * model%c; c_p = 2.0_dp * model%r; c_d = 2.0_dp * model%d
-        c_q = 2.0_dp * model%tau0; c_e = 2.0_dp * model%tau * model%hbar
-        do i = 1, s
-            terms(i) = c_v * w(i, F_V) * (2.0_dp * w(i, F_V) + w(i - 1, F_V)) &
-                       + c_t * w(i, F_THETA) * (2.0_dp * w(i, F_THETA) + w(i - 1, F_THETA)) &
-                       + c_p * w(i, F_P) * (2.0_dp * w(i, F_P) + w(i - 1, F_P)) &
-                       + c_d * (w(i, F_P) * (2.0_dp * w(i, F_THETA) + w(i - 1, F_THETA)) &
-                                + w(i, F_THETA) * (2.0_dp * w(i, F_P) + w(i - 1, F_P))) &
-                       + c_q * w(i, F_Q) * (2.0_dp * w(i, F_Q) + w(i - 1, F_Q)) &
-                       + c_e * w(i, F_ETA) * (2.0_dp * w(i, F_ETA) + w(i - 1, F_ETA)) &
-                       + k_strain * (u(i) - u(i - 1))**2
+        ! N_i of nodes i, i + 1 (halved for a = b: a_i (2 a_i + a_{i-1})); the coupling's is
+        ! halved at the end (exact; kept out of the loop, which it would slow down)
+        lanes = 0.0_dp
+        do i = 1, s - 1, 2
+            lanes(:, PART_STRAIN) = lanes(:, PART_STRAIN) + (u(i:i + 1) - u(i - 1:i))**2
+            lanes(:, PART_KINETIC) = lanes(:, PART_KINETIC) &
+                                     + w(i:i + 1, F_V) * (2.0_dp * w(i:i + 1, F_V) + w(i - 1:i, F_V))
+            lanes(:, PART_THERMAL) = lanes(:, PART_THERMAL) &
+                                     + w(i:i + 1, F_THETA) * (2.0_dp * w(i:i + 1, F_THETA) + w(i - 1:i, F_THETA))
+            lanes(:, PART_CHEMICAL) = lanes(:, PART_CHEMICAL) &
+                                      + w(i:i + 1, F_P) * (2.0_dp * w(i:i + 1, F_P) + w(i - 1:i, F_P))
+            lanes(:, PART_COUPLING) = lanes(:, PART_COUPLING) &
+                                      + w(i:i + 1, F_P) * (2.0_dp * w(i:i + 1, F_THETA) + w(i - 1:i, F_THETA)) &
+                                      + w(i:i + 1, F_THETA) * (2.0_dp * w(i:i + 1, F_P) + w(i - 1:i, F_P))
+            lanes(:, PART_HEAT_FLUX) = lanes(:, PART_HEAT_FLUX) &
+                                       + w(i:i + 1, F_Q) * (2.0_dp * w(i:i + 1, F_Q) + w(i - 1:i, F_Q))
+            lanes(:, PART_MASS_FLUX) = lanes(:, PART_MASS_FLUX) &
+                                       + w(i:i + 1, F_ETA) * (2.0_dp * w(i:i + 1, F_ETA) + w(i - 1:i, F_ETA))
         end do
-    end subroutine node_terms
-
-    !> The mass terms of node i alone (the end corrections of node_terms' sums):
-    !> rho v^2 + c theta^2 + r P^2 + 2 d P theta + tau0 q^2 + tau hbar eta^2 at node i.
-    pure real(dp) function end_terms(model, w, i)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in), contiguous :: w(0:, :)
-        integer, intent(in) :: i
-
-        end_terms = model%rho * w(i, F_V)**2 + model%c * w(i, F_THETA)**2 + model%r * w(i, F_P)**2 &
-                    + 2.0_dp * model%d * w(i, F_P) * w(i, F_THETA) + model%tau0 * w(i, F_Q)**2 &
-                    + model%tau * model%hbar * w(i, F_ETA)**2
-    end function end_terms
-
-    !> The terms of E^n = discrete_energy of the level (u, w) on mesh, one by one (PART_*):
-    !> 1/2 int rho v^2 (with the velocity mass's inertia_difference), 1/2 int alpha u_x^2,
-    !> 1/2 int c theta^2, 1/2 int r P^2, int d theta P, 1/2 int tau0 q^2, 1/2 int tau hbar
-    !> eta^2 and the contact term. They add up to discrete_energy to round-off (the sums are
-    !> grouped differently).
-    pure function energy_parts(model, law, u, w, mesh) result(parts)
-        type(model_t), intent(in) :: model
-        class(contact_law_t), intent(in) :: law
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp) :: parts(N_ENERGY_PARTS)
-        real(dp) :: energy
-
-        call energy_and_parts(model, law, u, w, mesh, energy, parts)
-    end function energy_parts
-
-    !> E^n (discrete_energy) and its terms (energy_parts) of the level (u, w) on mesh, from
-    !> one pass over the elements.
-    pure subroutine energy_and_parts(model, law, u, w, mesh, energy, parts)
-        type(model_t), intent(in) :: model
-        class(contact_law_t), intent(in) :: law
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp), intent(out) :: energy
-        real(dp), intent(out) :: parts(N_ENERGY_PARTS)
-
-        call linear_energy_parts(model, u, w, mesh, energy, parts)
-        parts(PART_CONTACT) = law%energy(u(ubound(u, 1)))
-        energy = energy + parts(PART_CONTACT)
-    end subroutine energy_and_parts
-
-    !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) in one pass over the
-    !> elements, which runs every time step (element_sums, then linear_from_sums).
-    pure subroutine linear_energy_parts(model, u, w, mesh, energy, parts)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp), intent(out) :: energy
-        real(dp), intent(out) :: parts(N_ENERGY_PARTS)
-        real(dp) :: sums(N_SUMS)
-
-        call element_sums(u, w, mesh, sums)
-        call linear_from_sums(model, sums, w, mesh, energy, parts)
-    end subroutine linear_energy_parts
-
-    !> The sums over the elements E_lin is made of, which do not depend on the model's
-    !> coefficients (so E_lin of two models takes one pass): on element e the mass product of
-    !> P1 functions a, b is h/6 (2 a0 b0 + a0 b1 + a1 b0 + 2 a1 b1), written here as
-    !> h/6 ((a0 + a1)(b0 + b1) + a0 b0 + a1 b1); each product is summed over the elements
-    !> (weighted by h_e on a graded mesh, scaled by h = 1/s once at the end on a uniform one).
-    !> sums: SUM_* (SUM_SCALE: that scale).
-    pure subroutine element_sums(u, w, mesh, sums)
-        real(dp), intent(in), contiguous :: u(0:)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp), intent(out) :: sums(N_SUMS)
-        real(dp) :: strain_terms, h_e
-        real(dp) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
-        ! the parts' sums (scalars, so that the loop keeps them in registers)
-        real(dp) :: kinetic, thermal, chemical, coupling, heat_flux, mass_flux
-        integer :: e, s
-
-        s = ubound(u, 1)
-        strain_terms = 0.0_dp
-        kinetic = 0.0_dp; thermal = 0.0_dp; chemical = 0.0_dp; coupling = 0.0_dp
-        heat_flux = 0.0_dp; mass_flux = 0.0_dp
-        if (mesh%is_uniform()) then
-            do e = 1, s
-                call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-                strain_terms = strain_terms + (u(e) - u(e - 1))**2
-                kinetic = kinetic + p_v; thermal = thermal + p_theta; chemical = chemical + p_p
-                coupling = coupling + p_coupling; heat_flux = heat_flux + p_q; mass_flux = mass_flux + p_eta
-            end do
-            sums(SUM_SCALE) = 1.0_dp / real(s, dp)
-        else
-            do e = 1, s
-                h_e = mesh%h(e)
-                call element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-                strain_terms = strain_terms + (u(e) - u(e - 1))**2 / h_e
-                kinetic = kinetic + h_e * p_v; thermal = thermal + h_e * p_theta; chemical = chemical + h_e * p_p
-                coupling = coupling + h_e * p_coupling; heat_flux = heat_flux + h_e * p_q
-                mass_flux = mass_flux + h_e * p_eta
-            end do
-            sums(SUM_SCALE) = 1.0_dp
+        sums = lanes(1, :) + lanes(2, :)
+        sums(PART_COUPLING) = 0.5_dp * sums(PART_COUPLING)
+        if (mod(s, 2) == 1) then   ! node s, alone
+            sums(PART_STRAIN) = sums(PART_STRAIN) + (u(s) - u(s - 1))**2
+            sums(MASS_PARTS) = sums(MASS_PARTS) + 0.5_dp * (w(s, MASS_A) * (2.0_dp * w(s, MASS_B) + w(s - 1, MASS_B)) &
+                                                            + w(s, MASS_B) * (2.0_dp * w(s, MASS_A) + w(s - 1, MASS_A)))
         end if
-        sums(SUM_STRAIN:SUM_MASS_FLUX) = [strain_terms, kinetic, thermal, chemical, coupling, heat_flux, mass_flux]
-    end subroutine element_sums
-
-    !> E_lin (energy) and its terms (parts, PART_CONTACT set to 0) of model from element_sums
-    !> of the level (w: its fields, for the velocity mass's inertia_difference).
-    pure subroutine linear_from_sums(model, sums, w, mesh, energy, parts)
-        type(model_t), intent(in) :: model
-        real(dp), intent(in) :: sums(N_SUMS)
-        real(dp), intent(in) :: w(0:, :)
-        type(mesh_t), intent(in) :: mesh
-        real(dp), intent(out) :: energy
-        real(dp), intent(out) :: parts(N_ENERGY_PARTS)
-        real(dp) :: mass_terms, kinetic_difference
-
-        associate (scale => sums(SUM_SCALE), strain_terms => sums(SUM_STRAIN), kinetic => sums(SUM_KINETIC), &
-                   thermal => sums(SUM_THERMAL), chemical => sums(SUM_CHEMICAL), coupling => sums(SUM_COUPLING), &
-                   heat_flux => sums(SUM_HEAT_FLUX), mass_flux => sums(SUM_MASS_FLUX))
-            ! E_lin from the sums over the elements: one accumulator per term keeps the loop short
-            ! (the compiler pairs them in vector registers); the sum of the parts below is E_lin
-            ! to round-off
-            mass_terms = model%rho * kinetic + model%c * thermal + model%r * chemical + 2.0_dp * model%d * coupling &
-                         + model%tau0 * heat_flux + model%tau * model%hbar * mass_flux
-            kinetic_difference = inertia_difference(model, w, mesh)
-            energy = 0.5_dp * (mass_terms * scale / 6.0_dp + model%alpha * strain_terms / scale) + kinetic_difference
-            ! 1/2 int (coefficient f g) = coefficient (h/6) (mass product) / 2
-            parts(PART_KINETIC) = model%rho * kinetic * scale / 12.0_dp + kinetic_difference
-            parts(PART_STRAIN) = 0.5_dp * model%alpha * strain_terms / scale
-            parts(PART_THERMAL) = model%c * thermal * scale / 12.0_dp
-            parts(PART_CHEMICAL) = model%r * chemical * scale / 12.0_dp
-            parts(PART_COUPLING) = model%d * coupling * scale / 6.0_dp
-            parts(PART_HEAT_FLUX) = model%tau0 * heat_flux * scale / 12.0_dp
-            parts(PART_MASS_FLUX) = model%tau * model%hbar * mass_flux * scale / 12.0_dp
-            parts(PART_CONTACT) = 0.0_dp
-        end associate
-    end subroutine linear_from_sums
+        sums(PART_STRAIN) = sums(PART_STRAIN) * real(s, dp)
+        sums(MASS_PARTS) = 2.0_dp * (sums(MASS_PARTS) + w(0, MASS_A) * w(0, MASS_B) - w(s, MASS_A) * w(s, MASS_B)) &
+                           / real(s, dp)
+    end subroutine level_sums
 
     !> What the velocity's mass of &contact mass adds to the consistent kinetic energy above:
     !> 1/2 rho v^T (M_v - M) v with fe_m's inertia_element (the matrix scheme_m assembles), so
@@ -316,17 +197,19 @@ contains
         real(dp), intent(inout), contiguous :: u_work(0:), w_work(0:, :)
         real(dp), intent(out) :: energy
         real(dp), intent(in), optional :: lin_now
-        real(dp) :: lin
+        real(dp) :: lin, lin_extrapolated
 
         if (present(lin_now)) then
             lin = lin_now
         else
-            lin = linear_energy(model, u, w, mesh)
+            call discrete_energy(model, u, w, mesh, lin)
         end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
-        energy = 0.5_dp * (lin + linear_energy(model, u_work, w_work, mesh)) + law%energy(u(ubound(u, 1)))
+        call discrete_energy(model, u_work, w_work, mesh, lin_extrapolated)
+        energy = 0.5_dp * (lin + lin_extrapolated) + law%energy(u(ubound(u, 1)))
     end subroutine bdf2_energy
+
 
     !> The energy of the first level and the law of `scheme` it must obey from then on;
     !> step_model: the model of the steps (time_scheme_m's stiff_limit), the model of the law
@@ -337,26 +220,17 @@ contains
         class(contact_law_t), intent(in) :: law
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
-        integer :: stat
-        real(dp) :: energy_lin
-        character(len=256) :: message
 
         self%scheme_law = scheme%energy_law()
         self%model = model
         self%law_model = model
-        self%own_law_model = self%scheme_law%step_model
-        if (self%own_law_model) self%law_model = step_model
+        if (self%scheme_law%step_model) self%law_model = step_model
         self%law = law
-        call measure_parts(self, state, energy_lin, self%law_energy)
+        if (self%scheme_law%energy == LAW_G_ENERGY) call self%resize(state)
+        call measure(self, state)
         ! the G-energy needs the level before: it is defined from the second level on
         self%have_law = self%scheme_law%energy /= LAW_G_ENERGY
         self%max_rise = 0.0_dp
-        if (self%scheme_law%energy == LAW_G_ENERGY) then
-            allocate (self%u_work, mold=state%u, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the energy monitor''s work arrays')
-            allocate (self%w_work, mold=state%w, stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the energy monitor''s work arrays')
-        end if
     end subroutine monitor_init
 
     !> E^n of the new level, and the rise of the law energy: E^n itself (Corollary 6.2, with
@@ -385,46 +259,25 @@ contains
         end if
     end subroutine monitor_observe
 
-    !> E^n and the law energy of the level `state` (monitor_observe).
+    !> E^n of the level `state` and its terms (kept for monitor_parts) from one pass, and the
+    !> law energy: E^n with the law's model, or the G-energy once a previous level exists.
     subroutine measure(self, state)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
-        real(dp) :: energy_lin
 
-        call measure_parts(self, state, energy_lin, self%law_energy)
-        if (self%scheme_law%energy == LAW_G_ENERGY) then
-            self%have_law = allocated(state%u_prev)
-            if (self%have_law) then
-                if (size(self%u_work) /= size(state%u)) call self%resize(state)
-                call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
-                                 self%u_work, self%w_work, self%law_energy, lin_now=energy_lin)
-            end if
-        end if
-    end subroutine measure
-
-    !> E^n of the level `state` and its terms (kept for monitor_parts) in one pass; returns
-    !> E_lin, E^n without the contact term, and law_energy, E^n with the law's model (the
-    !> same sums over the elements: discrete_energy of law_model to the bit).
-    subroutine measure_parts(self, state, energy_lin, law_energy)
-        class(energy_monitor_t), intent(inout) :: self
-        type(state_t), intent(in) :: state
-        real(dp), intent(out) :: energy_lin, law_energy
-        real(dp) :: sums(N_SUMS), law_parts(N_ENERGY_PARTS)
-
-        call element_sums(state%u, state%w, state%mesh, sums)
-        call linear_from_sums(self%model, sums, state%w, state%mesh, energy_lin, self%last_parts)
-        self%last_parts(PART_CONTACT) = self%law%energy(state%u(state%s))
-        self%energy = energy_lin + self%last_parts(PART_CONTACT)
-        law_energy = self%energy
-        if (self%own_law_model) then
-            call linear_from_sums(self%law_model, sums, state%w, state%mesh, law_energy, law_parts)
-            law_energy = law_energy + self%law%energy(state%u(state%s))
-        end if
+        call discrete_energy(self%model, state%u, state%w, state%mesh, self%energy, self%last_parts, self%law, &
+                             self%law_model, self%law_energy)
         self%have_parts = .true.
         self%parts_step = state%step
         self%parts_t = state%t
         self%parts_nodes = size(state%u)
-    end subroutine measure_parts
+        if (self%scheme_law%energy /= LAW_G_ENERGY) return
+        self%have_law = allocated(state%u_prev)
+        if (.not. self%have_law) return
+        if (size(self%u_work) /= size(state%u)) call self%resize(state)
+        call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
+                         self%u_work, self%w_work, self%law_energy, lin_now=sum(self%last_parts(:PART_MASS_FLUX)))
+    end subroutine measure
 
     !> The level has moved to a new mesh (transfer_m): its energies on the new mesh, and
     !> the relative rise of the law energy across the move (0 where the law energy is not
@@ -476,19 +329,20 @@ contains
         max_rise_step_change = self%max_rise_step_change
     end subroutine monitor_rises
 
-    !> The terms of E^n (energy_parts, PART_*) of the level in state, with the monitor's
-    !> model and contact law: they add up to current_energy() when state is the level
-    !> observed last.
+    !> The terms of E^n (discrete_energy's parts, PART_*) of the level in state, with the
+    !> monitor's model and contact law: they add up to current_energy() when state is the
+    !> level observed last.
     pure function monitor_parts(self, state) result(parts)
         class(energy_monitor_t), intent(in) :: self
         type(state_t), intent(in) :: state
         real(dp) :: parts(N_ENERGY_PARTS)
+        real(dp) :: energy
 
         if (self%have_parts .and. state%step == self%parts_step .and. equal(state%t, self%parts_t) &
             .and. size(state%u) == self%parts_nodes) then
             parts = self%last_parts   ! computed with E^n when the level was observed
         else
-            parts = energy_parts(self%model, self%law, state%u, state%w, state%mesh)
+            call discrete_energy(self%model, state%u, state%w, state%mesh, energy, parts, self%law)
         end if
     end function monitor_parts
 
@@ -516,28 +370,5 @@ contains
         call ckpt%get('energy_monitor/max_rise_step_change', self%max_rise_step_change)
         self%have_parts = .false.
     end subroutine monitor_restore_checkpoint
-
-    !> The mass products (element_mass_product) of element e of the level w: v v, theta
-    !> theta, P P, P theta, q q, eta eta.
-    pure subroutine element_products(w, e, p_v, p_theta, p_p, p_coupling, p_q, p_eta)
-        real(dp), intent(in), contiguous :: w(0:, :)
-        integer, intent(in) :: e
-        real(dp), intent(out) :: p_v, p_theta, p_p, p_coupling, p_q, p_eta
-
-        p_v = element_mass_product(w(e - 1, F_V), w(e, F_V), w(e - 1, F_V), w(e, F_V))
-        p_theta = element_mass_product(w(e - 1, F_THETA), w(e, F_THETA), w(e - 1, F_THETA), w(e, F_THETA))
-        p_p = element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_P), w(e, F_P))
-        p_coupling = element_mass_product(w(e - 1, F_P), w(e, F_P), w(e - 1, F_THETA), w(e, F_THETA))
-        p_q = element_mass_product(w(e - 1, F_Q), w(e, F_Q), w(e - 1, F_Q), w(e, F_Q))
-        p_eta = element_mass_product(w(e - 1, F_ETA), w(e, F_ETA), w(e - 1, F_ETA), w(e, F_ETA))
-    end subroutine element_products
-
-    !> 6/h times the mass product of two P1 functions on one element (nodal values a0, a1
-    !> and b0, b1).
-    pure real(dp) function element_mass_product(a0, a1, b0, b1)
-        real(dp), intent(in) :: a0, a1, b0, b1
-
-        element_mass_product = (a0 + a1) * (b0 + b1) + a0 * b0 + a1 * b1
-    end function element_mass_product
 
 end module energy_m

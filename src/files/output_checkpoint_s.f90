@@ -23,10 +23,7 @@ contains
     !> it, so a run killed at any moment leaves the last complete checkpoint, and the history
     !> flushed with it, readable. The first checkpoint creates both slots; later ones write
     !> into the same datasets, held open (a checkpoint puts the same entries every time).
-    module subroutine writer_write_checkpoint(w, ckpt, note)
-        class(h5_writer_t), intent(inout) :: w
-        type(checkpoint_t), intent(in) :: ckpt
-        character(len=*), intent(in) :: note
+    module procedure writer_write_checkpoint
         integer :: k, d, slot
         logical :: exists
         integer :: hdferr
@@ -50,7 +47,7 @@ contains
         w%checkpoint_slot = slot
         w%checkpoint_note = note
         w%n_checkpoints = w%n_checkpoints + 1
-    end subroutine writer_write_checkpoint
+    end procedure writer_write_checkpoint
 
     !> The first checkpoint creates everything later ones write into, SWMR writing being off
     !> (output_file_s): the groups, the datasets of both slots (written), the pointer
@@ -303,8 +300,7 @@ contains
 
     !> Close the checkpoint's datasets (leave_swmr: the file is closed and reopened; the next
     !> checkpoint opens them again).
-    module subroutine writer_close_checkpoint(w)
-        class(h5_writer_t), intent(inout) :: w
+    module procedure writer_close_checkpoint
         integer :: k, slot
 
         if (w%ckpt_current_id >= 0) call w%close_dataset(w%ckpt_current_id, '/checkpoint/current')
@@ -314,13 +310,11 @@ contains
                 if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
             end do
         end do
-    end subroutine writer_close_checkpoint
+    end procedure writer_close_checkpoint
 
     !> Remove the object `name` if it exists (finish(): what SWMR writing made the run create
     !> in advance and it never used).
-    module subroutine writer_drop(w, name)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: name
+    module procedure writer_drop
         logical :: exists
         integer :: hdferr
 
@@ -329,6 +323,6 @@ contains
         if (.not. exists) return
         call h5ldelete_f(w%file_id, name, hdferr)
         call w%check(hdferr, 'h5ldelete_f '//name)
-    end subroutine writer_drop
+    end procedure writer_drop
 
 end submodule output_checkpoint_s

@@ -18,13 +18,7 @@ contains
     !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of the /snapshots
     !> fields (with the shuffle filter before it; 0: no filters). in_place: the run resumes
     !> <prefix>.h5.part, which stays as it is until finish(); the file is <prefix>//RESUMED_SUFFIX.
-    module subroutine writer_create(w, prefix, x, compression, in_place)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: prefix
-        real(dp), intent(in) :: x(0:)
-        integer, intent(in), optional :: compression
-        logical, intent(in), optional :: in_place
-
+    module procedure writer_create
         character(len=:), allocatable :: dir, message
         logical :: ok
         integer :: hdferr
@@ -73,7 +67,7 @@ contains
         if (hdferr /= 0) call w%fail('cannot allocate the series buffer')
         call w%attr('status', 'incomplete')
         w%creating = .false.
-    end subroutine writer_create
+    end procedure writer_create
 
     !> Every component of the writer at its default (intent(out): default initialisation).
     subroutine reset(w)
@@ -243,9 +237,7 @@ contains
     end subroutine close_spaces
 
     !> Create the group at `path` (its parent exists).
-    module subroutine writer_make_group(w, path)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: path
+    module procedure writer_make_group
         integer(hid_t) :: group_id
         integer :: hdferr
 
@@ -253,7 +245,7 @@ contains
         call w%check(hdferr, 'h5gcreate_f '//path)
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f '//path)
-    end subroutine writer_make_group
+    end procedure writer_make_group
 
     !> A 1D dataset at `path` of type file_type (float64, or int32 from whole numbers),
     !> written once and whole: dset_id, open.
@@ -284,10 +276,7 @@ contains
     !> /events/t (float64) and /events/kind (int32, +1 onset, -1 release), n_events long
     !> (possibly 0), written once at the end of the run; t is the coordinate of kind
     !> (docs/output.md, "netCDF").
-    module subroutine writer_write_events(w, t, kind)
-        class(h5_writer_t), intent(inout) :: w
-        real(dp), intent(in) :: t(:)
-        integer, intent(in) :: kind(:)
+    module procedure writer_write_events
         integer(hid_t) :: t_id, kind_id
 
         call w%need_open('write_events()')
@@ -305,26 +294,20 @@ contains
         call w%attach_scale(kind_id, t_id, 0, '/events/kind')
         call w%close_dataset(kind_id, '/events/kind')
         call w%close_dataset(t_id, '/events/t')
-    end subroutine writer_write_events
+    end procedure writer_write_events
 
     !> A dataset's long_name: the table's, and for a nondimensional quantity the scale of
     !> (2.10) it is measured in (root attribute scale.<scale> with &material).
-    pure module function described(long_name, scale) result(text)
-        character(len=*), intent(in) :: long_name, scale
-        character(len=:), allocatable :: text
+    module procedure described
 
         text = trim(long_name)
         if (scale /= '') text = text//' (nondimensional, scale: '//trim(scale)//')'
-    end function described
+    end procedure described
 
     !> The CF-style attributes of a dataset: long_name and units ('1': nondimensional), and
     !> for one created after describe_si (/snapshots/native, /events) whose quantity has
     !> fields_m's scale `si`, si_factor and si_units (none without &material).
-    module subroutine writer_describe(w, dset_id, what, long_name, units, si)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id
-        character(len=*), intent(in) :: what, long_name, units
-        character(len=*), intent(in), optional :: si
+    module procedure writer_describe
         integer :: k
 
         if (dset_id < 0) call w%fail('internal error: no dataset '//what)
@@ -336,14 +319,11 @@ contains
             call w%attr('si_factor', w%si_factors(k), on=dset_id)
             call w%attr('si_units', trim(w%si_units(k)), on=dset_id)
         end do
-    end subroutine writer_describe
+    end procedure writer_describe
 
     !> Attributes si_factor and si_units on every dataset whose quantity has fields_m's
     !> scale `scale`: its value in SI units is si_factor times the stored value.
-    module subroutine writer_describe_si(w, scale, factor, si_units)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: scale, si_units
-        real(dp), intent(in) :: factor
+    module procedure writer_describe_si
         integer :: k
 
         if (w%n_si == size(w%si_names)) call w%fail('internal error: more SI scales than MAX_SI_SCALES')
@@ -369,32 +349,25 @@ contains
             call w%attr('si_factor', factor, on=w%mesh_x_id)
             call w%attr('si_units', si_units, on=w%mesh_x_id)
         end if
-    end subroutine writer_describe_si
+    end procedure writer_describe_si
 
     !> Make dataset dset_id (1D) a dimension scale: the coordinate of the dimension `name`
     !> (netCDF-4: a coordinate variable, named as the dataset).
-    module subroutine writer_make_scale(w, dset_id, name, what)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id
-        character(len=*), intent(in) :: name, what
+    module procedure writer_make_scale
         integer :: hdferr
 
         call h5dsset_scale_f(dset_id, hdferr, name)
         call w%check(hdferr, 'h5dsset_scale_f '//what)
-    end subroutine writer_make_scale
+    end procedure writer_make_scale
 
     !> Attach dimension scale scale_id to dimension `dim` of dataset dset_id, counted as h5py
     !> and C count them (0: the first, the slowest-varying; Fortran sees it last). The
     !> Fortran API takes that index plus 1 (measured with h5py: 0 fails, 1 is C's 0).
-    module subroutine writer_attach_scale(w, dset_id, scale_id, dim, what)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id, scale_id
-        integer, intent(in) :: dim
-        character(len=*), intent(in) :: what
+    module procedure writer_attach_scale
         integer :: hdferr
 
         call h5dsattach_scale_f(dset_id, scale_id, dim + 1, hdferr)
         call w%check(hdferr, 'h5dsattach_scale_f '//what)
-    end subroutine writer_attach_scale
+    end procedure writer_attach_scale
 
 end submodule output_create_s

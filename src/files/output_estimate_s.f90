@@ -23,9 +23,7 @@ contains
     !> total, 2 the time part, 3 the space part. Held in a buffer of SERIES_CHUNK snapshots
     !> and written when it is full and at every flush() (18 small writes per snapshot would
     !> cost more than the estimate).
-    module subroutine writer_append_estimate(w, values)
-        class(h5_writer_t), intent(inout) :: w
-        real(dp), intent(in) :: values(:, :)
+    module procedure writer_append_estimate
         integer :: stat
         character(len=256) :: message
 
@@ -40,11 +38,10 @@ contains
         w%n_estimate_buf = w%n_estimate_buf + 1
         w%estimate_buf(w%n_estimate_buf, :, :) = values
         if (w%n_estimate_buf == SERIES_CHUNK) call writer_flush_estimate(w)
-    end subroutine writer_append_estimate
+    end procedure writer_append_estimate
 
     !> Write the buffered estimates (flush()).
-    module subroutine writer_flush_estimate(w)
-        class(h5_writer_t), intent(inout) :: w
+    module procedure writer_flush_estimate
         integer(hsize_t) :: n
         integer :: k, part
 
@@ -58,7 +55,7 @@ contains
         end do
         w%n_estimate_snap = w%n_estimate_snap + n
         w%n_estimate_buf = 0
-    end subroutine writer_flush_estimate
+    end procedure writer_flush_estimate
 
     !> The groups and their datasets: created by the first append of the file (a restart's
     !> copy of the history included), kept open.

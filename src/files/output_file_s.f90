@@ -26,9 +26,7 @@ contains
 
     !> Create (create = .true.: truncating) or reopen the .part file for writing, in HDF5's
     !> 1.10 format (which SWMR needs), with strong close degree and no chunk cache.
-    module subroutine writer_open_file(w, create)
-        class(h5_writer_t), intent(inout) :: w
-        logical, intent(in) :: create
+    module procedure writer_open_file
         integer(hid_t) :: fapl_id
         integer :: hdferr
 
@@ -58,24 +56,22 @@ contains
         end if
         call h5pclose_f(fapl_id, hdferr)
         call w%check(hdferr, 'h5pclose_f (file access)')
-    end subroutine writer_open_file
+    end procedure writer_open_file
 
     !> Switch the file to SWMR writing (flush(), once the file holds everything the run will
     !> write into until its end, and after each leave_swmr).
-    module subroutine writer_start_swmr(w)
-        class(h5_writer_t), intent(inout) :: w
+    module procedure writer_start_swmr
         integer :: hdferr
 
         call start_swmr_write(w%file_id, hdferr)
         call w%check(hdferr, 'H5Fstart_swmr_write')
         w%swmr = .true.
-    end subroutine writer_start_swmr
+    end procedure writer_start_swmr
 
     !> Leave SWMR writing before a structural change (a new object or attribute, a deletion):
     !> close the file, which a SWMR close leaves clean and complete, and reopen it with every
     !> dataset the writer holds open. Nothing to do outside SWMR mode.
-    module subroutine writer_leave_swmr(w)
-        class(h5_writer_t), intent(inout) :: w
+    module procedure writer_leave_swmr
         character(len=512) :: names(MAX_OPEN)
         integer(hid_t) :: ids(MAX_OPEN)
         integer(size_t) :: length
@@ -105,7 +101,7 @@ contains
             call w%check(hdferr, 'h5dopen_f '//trim(names(k)))
         end do
         call hold_ids(w, ids)
-    end subroutine writer_leave_swmr
+    end procedure writer_leave_swmr
 
     !> Every dataset identifier the writer holds, in the order leave_swmr stores them back
     !> (negative: not open).
@@ -135,13 +131,7 @@ contains
     !> its file instead, each rename atomic, so that a valid file is always there: to
     !> `<prefix>.h5`, then deletes the `<prefix>.h5.part` it continued; with keep_part over
     !> that .part (its checkpoint is later).
-    module subroutine writer_finish(w, status, keep_part)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: status
-        !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
-        !> continued by restart_from), not renamed to <prefix>.h5
-        logical, intent(in), optional :: keep_part
-
+    module procedure writer_finish
         integer(hid_t) :: ids(MAX_OPEN)
         integer :: hdferr, k
         logical :: ok
@@ -179,13 +169,11 @@ contains
         if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//" (the complete results are in '" &
                                  //w%part_path//"')")
         if (w%replaces /= '' .and. target == w%final_path) call remove_file(w%replaces)
-    end subroutine writer_finish
+    end procedure writer_finish
 
     !> Close whatever is open, ignoring errors, and delete the .part file. For output
     !> failures, where no valid file can be promised. A writer that is not open is left alone.
-    module subroutine writer_abandon(w)
-        class(h5_writer_t), intent(inout) :: w
-
+    module procedure writer_abandon
         integer :: hdferr
 
         if (.not. w%opened) return
@@ -199,16 +187,14 @@ contains
         w%n_buf = 0
         if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)
-    end subroutine writer_abandon
+    end procedure writer_abandon
 
     !> Reserve disk space up to the end of the space HDF5 has allocated in the file, before a
     !> flush writes the metadata that lies there. A flush that fails half-way (disk full, file
     !> size limit) would write the superblock with the new end of the file but not all that
     !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
     !> leaves the file as the previous flush wrote it, with its checkpoint.
-    module subroutine writer_reserve(w)
-        class(h5_writer_t), intent(inout) :: w
-
+    module procedure writer_reserve
         integer(hsize_t) :: bytes
         integer :: hdferr
         logical :: ok
@@ -218,14 +204,11 @@ contains
         call w%check(hdferr, 'h5fget_filesize_f')
         call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
         if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
-    end subroutine writer_reserve
+    end procedure writer_reserve
 
     !> Abandon the file and stop with a message naming the file and the reason. During
     !> create() the fault is the &output prefix; later it is a write failure.
-    module subroutine writer_fail(w, reason)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: reason
-
+    module procedure writer_fail
         character(len=:), allocatable :: path, system, keep
 
         system = write_failure_reason()   ! first: errno of the failed write, before any other call
@@ -260,19 +243,16 @@ contains
             end if
             call fatal_now(EXIT_OUTPUT, 'output', "cannot write '"//path//"': "//reason//system//keep)
         end if
-    end subroutine writer_fail
+    end procedure writer_fail
 
     !> Close dataset dset_id (`what`, for the message) and mark it closed (-1).
-    module subroutine writer_close_dataset(w, dset_id, what)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(inout) :: dset_id
-        character(len=*), intent(in) :: what
+    module procedure writer_close_dataset
         integer :: hdferr
 
         call h5dclose_f(dset_id, hdferr)
         call w%check(hdferr, 'h5dclose_f '//what)
         dset_id = -1
-    end subroutine writer_close_dataset
+    end procedure writer_close_dataset
 
     !> Remove what SWMR writing made the run create in advance and it never used, so that
     !> the finished file holds what it held before SWMR: the second checkpoint slot of a run

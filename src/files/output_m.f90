@@ -143,7 +143,8 @@ module output_m
 
     interface   ! creating the file and its datasets, describing them, the contact events
                 ! (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
-                ! opening, SWMR writing, failing and closing (src/files/output_file_s.f90)
+                ! opening, SWMR writing, failing and closing (src/files/output_file_s.f90); their
+                ! arguments are declared here only (the submodules' `module procedure`)
         module subroutine writer_create(w, prefix, x, compression, in_place)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix
@@ -177,6 +178,8 @@ module output_m
         module subroutine writer_finish(w, status, keep_part)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: status
+            !> .true.: leave the closed file as <prefix>.h5.part (a run stopped by a signal, to be
+            !> continued by restart_from), not renamed to <prefix>.h5
             logical, intent(in), optional :: keep_part
         end subroutine writer_finish
 

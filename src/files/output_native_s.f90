@@ -19,10 +19,7 @@ contains
 
     !> Append one snapshot on its own mesh: nodes x(0:s), values(0:s, k) of the field
     !> fields_m's SNAPSHOTS(k).
-    module subroutine writer_append_native(w, x, values)
-        class(h5_writer_t), intent(inout) :: w
-        real(dp), intent(in) :: x(:)
-        real(dp), intent(in) :: values(:, :)
+    module procedure writer_append_native
         integer(hsize_t) :: n, at
         integer :: k
 
@@ -41,15 +38,14 @@ contains
         call append(w, 'count', w%n_native_snap, [real(n, dp)])
         w%n_native_values = w%n_native_values + int(n, int64)
         w%n_native_snap = w%n_native_snap + 1
-    end subroutine writer_append_native
+    end procedure writer_append_native
 
     !> The group and its empty datasets. Dimension scales (docs/output.md, "netCDF"): native/x
     !> is the coordinate of the fields (dimension x of this group: every snapshot's nodes one
     !> after the other), /snapshots/t that of offset and count. Created by the first append,
     !> or by the first checkpoint of an adaptive mesh (write_checkpoint), so that SWMR
     !> writing need not end for it later (output_file_s).
-    module subroutine writer_create_native(w)
-        class(h5_writer_t), intent(inout) :: w
+    module procedure writer_create_native
         integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t]
         integer(hid_t) :: dset_id, x_id
         integer :: k
@@ -78,7 +74,7 @@ contains
         call w%close_dataset(x_id, GROUP//'/x')
         call create_index(w, 'offset', 'first entry of each snapshot in native/x and the fields')
         call create_index(w, 'count', 'number of nodes of each snapshot''s mesh')
-    end subroutine writer_create_native
+    end procedure writer_create_native
 
     !> GROUP/name, int64, one entry per snapshot: its coordinate is /snapshots/t.
     subroutine create_index(w, name, long_name)

@@ -221,14 +221,14 @@ contains
     end subroutine transfer_study
 
     !> E_lin of a packed level on keys k with the model's coefficients and velocity mass.
-    real(dp) function energy(model, k, level)
+    real(dp) function energy(model, k, level) result(e)
         type(model_t), intent(in) :: model
         integer(int64), intent(in) :: k(0:)
         real(dp), intent(in) :: level(0:, 0:)
         real(dp) :: x(0:size(k) - 1)
 
         x = nodes_of_keys(k, int(N_COARSE, int64) * 2_int64**(MAX_LEVEL + 1))
-        call discrete_energy(model, level(:, 0), level(:, 1:), graded_mesh(x), energy)
+        call discrete_energy(model, level(:, 0), level(:, 1:), graded_mesh(x), e)
     end function energy
 
     !> The sorted union of two increasing key lists (transfer_m%merge_keys).

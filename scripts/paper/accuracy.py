@@ -124,8 +124,9 @@ def main(argv):
              "%d modes, summed by a type-4 DST/DCT at as many midpoints. Its own error (`tests/tools/exact_linear.py "
              "--self-check`: 2¹⁶ and 2¹⁸ modes against 2²⁰ for the exp2 pulses at t = 0.25) is at most 4·10⁻⁴ "
              "relative for P and η (the jump that is still travelling) and below 10⁻⁴ for the others — far below "
-             "every error in the tables. Its check against refined runs is the second table: u and θ converge "
-             "to it at order 1.\n" % a.modes)
+             "every error in the tables. Its check against refined runs is the second table: u and v converge "
+             "to it at order about 1, θ and q too but in experiment 2, where what is left of the pulses' jump "
+             "travels as a front.\n" % a.modes)
 
     # --- 1. paper resolution against the exact solution ---------------------------------
     L.append("### The paper's runs against the exact solution (before contact)\n")

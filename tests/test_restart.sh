@@ -175,11 +175,18 @@ bad "restart with &material added" "half_euler.h5" '/^&model/,/tau=0.2 \//d; s|&
 # t_end before the checkpoint (at t = 0.3): exit 2 naming time.t_end and the checkpoint's time
 bad "restart with t_end before the checkpoint" "half_euler.h5" 's/t_end=0.6/t_end=0.1/' time.t_end "t = 0.3"
 # the output may never be the file restarted from: its own .h5, or the .h5.part of a killed run
-bad "restart into its own file" "half_euler.h5" "s|prefix='bad'|prefix='half_euler'|" "is the file this run writes"
+bad "restart into its own file" "half_euler.h5" "s|prefix='bad'|prefix='half_euler'|" "is a file this run writes"
 bad "restart into its own file by another path" "half_euler.h5" "s|prefix='bad'|prefix='./../$(basename "$PWD")/half_euler'|" \
-    "is the file this run writes"
+    "is a file this run writes"
 # its own .h5.part is resumed in place (tests/test_signal.sh); --resume without one: nothing to resume
 bad "resume in place without a .h5.part" "bad.h5.part" '' "no such file, nothing to resume" "without --resume"
+# the file a run resumed in place writes (<prefix>.resume.h5.part) is refused too; a new run
+# (a new .part) deletes it, since it no longer continues that .part
+cp half_euler.h5 bad.resume.h5.part
+bad "restart from its own .resume.h5.part" "bad.resume.h5.part" '' "is a file this run writes" "--resume"
+make_input fresh.nml fresh 0.01 euler && cp half_euler.h5 fresh.resume.h5.part
+"$exe" fresh.nml && [ ! -e fresh.resume.h5.part ] && echo "PASS a new run deletes a stale <prefix>.resume.h5.part" ||
+    fail "a new run left fresh.resume.h5.part (a resumed run's file that no longer continues its .part)"
 # what may change: t_end, output intervals, checkpoint interval, quiet, prefix
 make_input ok.nml ok 0.35 euler "restart_from='half_euler.h5'"
 sed -i -e 's/checkpoint_every=250/checkpoint_every=100 series_every=2/' -e 's/snapshot_every=100/snapshot_every=50/' -e 's/quiet=.true./quiet=.false./' ok.nml

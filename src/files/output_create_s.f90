@@ -34,6 +34,8 @@ contains
             if (in_place) w%replaces = w%part_path
             if (in_place) w%part_path = trim(prefix)//RESUMED_SUFFIX
         end if
+        ! a new .part: a resumed run's file left beside the old one no longer continues it
+        if (w%replaces == '') call remove_file(trim(prefix)//RESUMED_SUFFIX)
         w%creating = .true.
         if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
         w%n_nodes = size(x)

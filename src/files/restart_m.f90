@@ -58,9 +58,10 @@ contains
             'starts at t = 0')
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
                                                 "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
-        if (same_file(file, prefix//'.h5')) call fatal(EXIT_INPUT, WHERE, "'"//file//"' is the file this run "// &
-            "writes (output.prefix = '"//prefix//"' writes '"//prefix//".h5' at the end): it would overwrite the "// &
-            'checkpoint it restarts from; choose another output.prefix')
+        if (any([same_file(file, prefix//'.h5'), same_file(file, prefix//RESUMED_SUFFIX)])) call fatal(EXIT_INPUT, &
+            WHERE, "'"//file//"' is a file this run writes (output.prefix = '"//prefix//"' writes '"//prefix// &
+            ".h5' at the end, and replaces '"//prefix//RESUMED_SUFFIX//"'): it would overwrite the checkpoint it "// &
+            'restarts from; choose another output.prefix, or continue the run with --resume')
         in_place = same_file(file, prefix//'.h5.part')
         if (in_place) call take_over_resumed(prefix//RESUMED_SUFFIX, file)
         if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &

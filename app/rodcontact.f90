@@ -15,6 +15,7 @@ program rodcontact
     use config_m, only: config_t
     use config_reader_m, only: read_config
     use validate_m, only: validate_config
+    use material_m, only: nondimensionalise
     use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
     use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, write_event_rows, &
@@ -48,6 +49,7 @@ program rodcontact
     if (any([(argument(k) == '--resume', k = 1, command_argument_count())])) &
         cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
     call validate_config(cfg, scheme_rules())
+    call nondimensionalise(cfg)   ! with &material (SI inputs); echoes what it derived
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
     if (check_only) stop
     call run_simulation(cfg, resume_command(source))

@@ -214,6 +214,13 @@ attr() { "$PY" "$repo_root/scripts/lib/rodrun.py" attr "$file0" "$@"; }
 n0=$(attr mesh.n_elements) && dt0=$(attr time.dt) && snap_every0=$(attr output.snapshot_every) &&
     snap_dt0=$(attr output.snapshot_dt 0) && time_adaptive=$(attr time.adaptive 0) &&
     mesh_adaptive=$(attr mesh.adaptive 0) || die "cannot read the input values from $file0"
+# the file records the nondimensional values run; an SI input (root attribute units) takes
+# its times in s: dt0 and snap_dt0 back in the input's units for the --set of the levels
+if [[ $(attr units nondimensional) == SI ]]; then
+    t_scale=$(attr scale.time) || die "cannot read scale.time from $file0"
+    dt0=$(awk -v d="$dt0" -v s="$t_scale" 'BEGIN { printf "%.17g", d * s }')
+    snap_dt0=$(awk -v d="$snap_dt0" -v s="$t_scale" 'BEGIN { printf "%.17g", d * s }')
+fi
 [[ $time_adaptive == 0 && $mesh_adaptive == 0 ]] ||
     die "the input asks for adaptive steps or an adaptive mesh: converge.sh refines fixed steps on uniform meshes (--set time.adaptive=.false. --set mesh.adaptive=.false.)"
 

@@ -120,7 +120,8 @@ run_case file  contact.law     "quoted string"     "&contact law = penalty /"
 run_case stdin initial.theta0_poly "at most 9"     "&initial theta0_poly = 1, 2, 3, 4, 5, 6, 7, 8, 9, 10 /"
 run_case file  material        "both given"        "&material /
 &model rho = 1.0 /"
-run_case stdin material.kappa  "got -386"          "&material kappa = -386 /"
+run_case stdin material.kappa  "got -386"          "&material units = 'SI' kappa = -386 /"
+run_case stdin material.units  "say so with units = 'SI'" "&material ell = 0.01 /"
 
 # --- validation: &model
 run_case file  model.rho       "got -1.2298e-17"   "&model rho = -1.2298e-17 /"

@@ -8,7 +8,7 @@ program test_config_m
     use config_m, only: config_t, material_t, model_t, MAX_POLY_DEGREE, number_of_steps
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, input_items, KIND_REAL, KIND_COEFFS, KIND_PAIR
     use config_reader_m, only: read_config
-    use material_m, only: nondim_t, nondim_groups, model_from_material
+    use material_m, only: nondim_t, nondim_groups, model_from_material, nondimensionalise
     use strings_m, only: format_real
     use validate_m, only: validate_config
     use time_scheme_m, only: scheme_rules
@@ -212,7 +212,8 @@ contains
                         abs(m%rho / 1.2298e-17_dp - 1.0006_dp) < 1.0e-4_dp, 'got rho = '//format_real(m%rho))
     end subroutine test_material_vs_paper
 
-    !> '&material' in a file: present is set, &model computed, relaxation times scaled.
+    !> '&material' in a file: present is set, &model computed (after validation, by
+    !> nondimensionalise), relaxation times scaled.
     subroutine test_material_file()
         type(config_t) :: cfg
         type(material_t) :: table1
@@ -220,21 +221,22 @@ contains
         type(nondim_t) :: nd
 
         nd = nondim_groups(table1)
-        call write_file('material.nml', [character(len=80) :: &
+        call write_file('material.nml', [character(len=100) :: &
             '&mesh n_elements = 10 /', &
-            '&material  T0 = 293, tau0 = 177.734580310881, TAU = 1777.34580310881 /'])
+            '&material  units = ''SI'', T0 = 293, tau0 = 177.734580310881, TAU = 1777.34580310881 /'])
         call read_config(path('material.nml'), cfg)
         call check_true('material.present', cfg%material%present)
         call check_true('mesh read alongside &material', cfg%mesh%n_elements == 10)
         table1%tau0 = 177.734580310881_dp
         table1%tau = 1777.34580310881_dp
         expected = model_from_material(table1)
+        call validate_config(cfg, scheme_rules())
+        call nondimensionalise(cfg)
         call check_rel('&material -> rho', expected%rho, cfg%model%rho, 1.0e-15_dp)
         call check_rel('&material -> hbar', expected%hbar, cfg%model%hbar, 1.0e-15_dp)
         call check_rel('&material -> tau0 = 0.02', 0.02_dp, cfg%model%tau0, 1.0e-12_dp)
         call check_rel('&material -> tau = 0.2', 0.2_dp, cfg%model%tau, 1.0e-12_dp)
         call check_rel('omega', 8886.729015544042_dp, nd%omega, 1.0e-13_dp)
-        call validate_config(cfg, scheme_rules())
     end subroutine test_material_file
 
     !> The initial profile: polynomial (Horner) plus a step, the mean of its two sides at its end.

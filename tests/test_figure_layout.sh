@@ -29,14 +29,15 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 copy() { "$py" "$src/scripts/lib/nml_copy.py" "$@"; }
 
 # 1. three short runs (a few tenths of a second each); the SI one is the README's rod of 1 cm, its
-#    values far from 1 (10^6 K, 10^13 Pa when its inputs are nondimensional)
+#    values far from 1 (10^6 K, 10^13 Pa: the nondimensional g = 0.5, eps = 0.01, dt = 2e-3,
+#    t_end = 1, theta0 = 40 x (x-1)^2, u1 = 10 x in SI units, by tests/tools/si_input.py)
 cat > "$dir/si.nml" <<EOF
-&material ell=0.01 /
-&contact  g=0.5 /
+&material units='SI' ell=0.01 /
+&contact  g=0.06205218110031347 eps=1.0853251274570797e-17 /
 &mesh     n_elements=40 /
-&time     dt=2e-3 t_end=1 /
-&initial  theta0_poly = 0, 40, -80, 40
-          u1_poly = 0, 10 /
+&time     dt=0.0017773458031088085 t_end=0.8886729015544043 /
+&initial  theta0_poly = 0, 13926317.701092463, -27852635.402184926, 13926317.701092463
+          u1_poly = 0, 1.3965134076165966 /
 &output   prefix='$dir/si' snapshot_every=25 quiet=.true. /
 EOF
 copy "$src/input/exp1.nml" "$dir/nd.nml" "output.prefix='$dir/nd'" output.quiet=.true. \

@@ -93,8 +93,9 @@ else
 fi
 
 # SI: every dataset of a &material run converts
-sed -e '/^&model/,/tau=0.2 \//d' -e "s|&time|\&material ell=1.0 /\n\&time|" -e 's/n_elements=500/n_elements=20/' \
-    -e 's/t_end=3.0/t_end=0.01/' -e "s|prefix='out/exp1'|prefix='mat' quiet=.true.|" "$src/input/exp1.nml" > mat.nml
+sed -e 's/n_elements=500/n_elements=20/' -e 's/t_end=3.0/t_end=0.01/' -e "s|prefix='out/exp1'|prefix='mat' quiet=.true.|" \
+    "$src/input/exp1.nml" > mat_nd.nml
+"$py" "$src/tests/tools/si_input.py" mat_nd.nml ell=1.0 > mat.nml   # the same run in SI units
 "$exe" mat.nml > /dev/null 2>&1 || { echo "FAIL: the &material run failed"; exit 1; }
 check "&material: every /series, /snapshots, /events dataset has si_factor and si_units" "$py" - mat.h5 <<'PY'
 import sys, h5py

@@ -119,9 +119,9 @@ fi
 
 # 6. units: a run with &material is drawn in SI units by default (values times si_factor,
 #    units in the labels); --nondimensional and a run without &material say 'nondimensional'
-sed -e '/^&model/,/tau=0.2 \//d' -e "s|&time|\&material ell=1.0 /\n\&time|" -e 's/n_elements=500/n_elements=20/' \
-    -e 's/t_end=3.0/t_end=0.05/' -e 's/snapshot_every=100/snapshot_every=10/' -e "s|prefix='out/exp1'|prefix='$dir/alu' quiet=.true.|" \
-    "$src/input/exp1.nml" > "$dir/alu.nml"
+sed -e 's/n_elements=500/n_elements=20/' -e 's/t_end=3.0/t_end=0.05/' -e 's/snapshot_every=100/snapshot_every=10/' \
+    -e "s|prefix='out/exp1'|prefix='$dir/alu' quiet=.true.|" "$src/input/exp1.nml" > "$dir/alu_nd.nml"
+"$py" "$src/tests/tools/si_input.py" "$dir/alu_nd.nml" ell=1.0 > "$dir/alu.nml"   # the same run in SI units
 "$prog" "$dir/alu.nml" >/dev/null 2>&1 || fail "the &material run failed"
 "$py" "$src/scripts/lib/plotdata.py" "$dir/alu.h5" "$dir/si-data" >"$dir/si.log" 2>&1 || fail "plotdata.py on alu.h5: $(cat "$dir/si.log")"
 grep -q '^x_unit = " \[m\]"$' "$dir/si-data/params.gp" && grep -q '^t_unit = " \[s\]"$' "$dir/si-data/params.gp" &&

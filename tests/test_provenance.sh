@@ -10,7 +10,9 @@ exe=$1; src=$2; scratch=$3
 py=$("$src/scripts/lib/find_python.sh") || { echo "SKIP: no Python with h5py"; exit 77; }
 cd "$scratch" && rm -rf ./* || exit 1
 printf "&time t_end=0.002 /\n&mesh n_elements=20 /\n&output prefix='plain' quiet=.true. /\n" > plain.nml
-printf "&material T0=300 ell=0.5 tau0=1e-3 tau=2e-3 mu_v=1e13 /\n&initial theta0_poly=0,40,-80,40 p0_poly=0,0,20,-40,20 u1_poly=0,10 /\n&time t_end=0.002 /\n&mesh n_elements=20 /\n&output prefix='mat' quiet=.true. /\n" > mat.nml
+printf "&contact g=0.1 eps=0.01 /\n&initial theta0_poly=0,40,-80,40 p0_poly=0,0,20,-40,20 u1_poly=0,10 /\n&time dt=1e-4 t_end=0.002 /\n&mesh n_elements=20 /\n&output prefix='mat' quiet=.true. /\n" > mat_nd.nml
+# the same run in SI units (the defaults of g, eps, dt written out: they are nondimensional)
+"$py" "$src/tests/tools/si_input.py" mat_nd.nml T0=300 ell=0.5 tau0=1e-3 tau=2e-3 mu_v=1e13 > mat.nml
 "$exe" plain.nml > /dev/null || { echo "FAIL: plain run exit $?"; exit 1; }
 "$exe" mat.nml > /dev/null || { echo "FAIL: &material run exit $?"; exit 1; }
 # source_version: git describe at configure time, so a commit made since then may be newer;

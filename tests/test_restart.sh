@@ -170,7 +170,7 @@ bad "restart with other initial data" "half_euler.h5" 's/theta0_poly = 0, 40, -8
 bad "restart with another contact gap" "half_euler.h5" 's/g=0.1 eps/g=0.2 eps/' contact.g "was 0.1" "has 0.2"
 bad "restart with another solver tolerance" "half_euler.h5" 's|&time|\&solver tol=1e-8 /\n\&time|' solver.tol
 bad "restart with another scheme" "half_euler.h5" "s/scheme='euler'/scheme='bdf2'/" time.scheme "'euler'" "'bdf2'"
-bad "restart with &material added" "half_euler.h5" '/^&model/,/tau=0.2 \//d; s|&time|\&material ell=1.0 /\n\&time|' \
+bad "restart with &material added" "half_euler.h5" '/^&model/,/tau=0.2 \//d; s|&time|\&material units='"'SI'"' ell=1.0 /\n\&time|' \
     "a restart must keep every input"
 # t_end before the checkpoint (at t = 0.3): exit 2 naming time.t_end and the checkpoint's time
 bad "restart with t_end before the checkpoint" "half_euler.h5" 's/t_end=0.6/t_end=0.1/' time.t_end "t = 0.3"

@@ -29,12 +29,14 @@ cd "$scratch" && rm -rf ./* || exit 1
 export RODCONTACT=$prog
 
 # A copper rod 1 cm long, heated inside; the gap is reached a few steps in and left again.
+# In SI units (nondimensional g = 0.3785, eps = 0.01, dt = 2e-4, t_end = 0.02, theta0 =
+# 4 x (x-1)^2, converted by tests/tools/si_input.py; the time scale is 0.8886729 s).
 cat > rod.nml << 'EOF'
-&material ell=0.01 /
-&contact  g=0.3785 /
+&material units='SI' ell=0.01 /
+&contact  g=0.0469735010929373 eps=1.0853251274570797e-17 /
 &mesh     n_elements=50 /
-&time     dt=2e-4 t_end=0.02 /
-&initial  theta0_poly = 0, 4, -8, 4 /
+&time     dt=0.00017773458031088087 t_end=0.017773458031088086 /
+&initial  theta0_poly = 0, 1392631.7701092463, -2785263.5402184925, 1392631.7701092463 /
 &output   prefix='rod' snapshot_every=10 /
 EOF
 
@@ -43,7 +45,7 @@ bash "$src/scripts/converge.sh" rod.nml --levels 2 --out conv -j 2 > conv.out 2>
 status=$?
 check "converge.sh runs (exit 0): $(tail -n 2 conv.err)" equals 0 "$status"
 # --- the same run as converge.sh's finest level, by itself
-"$prog" rod.nml --set output.prefix=run --set mesh.n_elements=100 --set time.dt=1e-4 \
+"$prog" rod.nml --set output.prefix=run --set mesh.n_elements=100 --set time.dt=8.886729015544043e-05 \
     --set output.series_every=1 > run.log 2> run.err
 check "the run (exit 0)" equals 0 "$?"
 end_line=$(tail -n 1 run.err)

@@ -33,6 +33,12 @@ contains
         type(config_t), intent(in) :: cfg
 
         call record_items(writer, input_items(cfg))
+        ! the input's unit system (the values recorded are those run, nondimensional)
+        if (cfg%material%present) then
+            call writer%attr('units', 'SI')
+        else
+            call writer%attr('units', 'nondimensional')
+        end if
     end subroutine record_inputs
 
     !> Each item as a root attribute of its kind.

@@ -135,9 +135,11 @@ module config_m
     end type output_t
 
     !> &material (optional): physical quantities of Table 1 in SI units, from which the
-    !> &model values are computed by (2.10)-(2.11) when the group is present.
+    !> &model values are computed by (2.10)-(2.11) when the group is present; every other
+    !> input with a unit is then in SI units too (units = 'SI' says so, material_m converts).
     type :: material_t
         logical :: present = .false.         !< not an input: the group was given
+        character(len=LEN_NAME) :: units = ''   !< 'SI' (required): the input's unit system
         real(dp) :: T0 = 293.0_dp            !< reference temperature [K]
         real(dp) :: rho0 = 8954.0_dp         !< mass density [kg/m^3]
         real(dp) :: cE = 383.1_dp            !< specific heat at constant strain [J/(kg K)]

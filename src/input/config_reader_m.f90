@@ -14,7 +14,7 @@ module config_reader_m
     use namelist_text_m, only: string_t, group_t, assignments_t, read_source, strip_comments, find_groups, &
                                split_group, origin, assignment_lhs, assignment_value, piece
     use overrides_m, only: override_t, parse_override, override_summary
-    use material_m, only: check_material, model_from_material, nondim_groups, echo_material
+    use material_m, only: check_material
     implicit none
     private
     public :: read_config
@@ -76,11 +76,8 @@ contains
             call read_group(set_line, set_group, cfg)
         end do
         call read_tables(cfg%initial)
-        if (cfg%material%present) then
-            call check_material(cfg%material)
-            cfg%model = model_from_material(cfg%material)
-            call echo_material(cfg, nondim_groups(cfg%material))
-        end if
+        ! &model from &material and the SI inputs: material_m's nondimensionalise, after validation
+        if (cfg%material%present) call check_material(cfg%material)
         call ieee_set_halting_mode(ieee_overflow, halt_on_overflow)
     end subroutine read_config
 

@@ -1,17 +1,17 @@
 !> &material: the physical quantities of Table 1 (SI units) and the nondimensional &model
-!> coefficients computed from them by (2.10)-(2.11), their check, and the echo of both on
-!> standard output.
+!> coefficients computed from them by (2.10)-(2.11), their check, and the one conversion of
+!> a run's SI inputs to the nondimensional variables the code runs in, echoed on stdout.
 module material_m
     use, intrinsic :: iso_fortran_env, only: output_unit
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, material_t, model_t
-    use strings_m, only: format_real
-    use input_vars_m, only: INPUT_VARS, input_item_t, input_item
+    use strings_m, only: format_real, quoted
+    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, KIND_REAL
     implicit none
     private
-    public :: nondim_t, nondim_groups, model_from_material, check_material, echo_material
+    public :: nondim_t, nondim_groups, model_from_material, check_material, nondimensionalise
     public :: si_scale_t, si_scales
 
     !> Nondimensional groups of (2.10) computed from &material.
@@ -123,6 +123,12 @@ contains
         real(dp) :: values(16)
         integer :: k
 
+        ! with &material the other inputs are SI too: an input written for the nondimensional
+        ! system (g, dt, t_end, &initial) must not be read so unnoticed
+        if (mat%units /= 'si') call fatal(EXIT_INPUT, 'material.units', 'got ' // quoted(trim(mat%units)) // &
+            "; must be 'SI': with &material every input that has a unit is in SI units (g and positions in m, " // &
+            "times in s, &initial in K, m, m/s, ...: docs/input.md); say so with units = 'SI' after converting " // &
+            'any nondimensional values, or leave &material out (then every input is nondimensional)')
         values = [mat%T0, mat%rho0, mat%cE, mat%kappa, mat%mu, mat%alpha_t, mat%alpha_c, mat%D, mat%varrho, &
                   mat%ell, mat%nu, mat%tau0, mat%tau, mat%lambda_v, mat%mu_v, mat%lambda]
         do k = 1, size(values)
@@ -139,6 +145,107 @@ contains
             'got ' // format_real(mat%lambda) // ' with mu = ' // format_real(mat%mu) // &
             '; 3 lambda + 2 mu must be > 0 (beta1, beta2 of (2.2))')
     end subroutine check_material
+
+    !> With &material (validated), the one place where a run's SI inputs become the
+    !> nondimensional variables of (2.10) the code runs in: &model by (2.10)-(2.11), the
+    !> gap, compliance, times and initial data divided by their scales (si_scales; the
+    !> polynomials' variable is x/ell in both systems). Echoed on stdout with what is off.
+    subroutine nondimensionalise(cfg)
+        type(config_t), intent(inout) :: cfg
+        type(si_scale_t) :: s(10)
+
+        if (.not. cfg%material%present) return
+        s = si_scales(cfg%material)
+        cfg%model = model_from_material(cfg%material)
+        call echo_material(cfg, nondim_groups(cfg%material))
+        write (output_unit, '(2x, a)') 'SI inputs / scale = the nondimensional values run'
+        associate (c => cfg%contact, t => cfg%time, o => cfg%output, i => cfg%initial)
+            call scale_down('contact.g', c%g, s(3))
+            ! (3.4): u - g = -eps sigma in contact, so eps [m/Pa] scales as displacement / stress
+            call scale_down('contact.eps', c%eps, si_scale_t('compliance', s(3)%factor / s(7)%factor, 'm/Pa'))
+            call scale_down('time.dt', t%dt, s(1))
+            call scale_down('time.t_end', t%t_end, s(1))
+            call scale_down('time.dt_min', t%dt_min, s(1))
+            call scale_down('time.dt_max', t%dt_max, s(1))
+            call scale_down('output.snapshot_dt', o%snapshot_dt, s(1))
+            call scale_down('output.series_dt', o%series_dt, s(1))
+            call scale_profile('initial.u0_poly', i%u0_poly, s(3))
+            call scale_profile('initial.u1_poly', i%u1_poly, s(4))
+            call scale_profile('initial.theta0_poly', i%theta0_poly, s(5))
+            call scale_profile('initial.p0_poly', i%p0_poly, s(6))
+            call scale_profile('initial.q0_poly', i%q0_poly, s(8))
+            call scale_profile('initial.eta0_poly', i%eta0_poly, s(9))
+            ! the steps (amplitude, x_end): x_end in m
+            call scale_down('initial.theta0_step(1)', i%theta0_step(1), s(5))
+            call scale_down('initial.theta0_step(2)', i%theta0_step(2), s(2))
+            call scale_down('initial.p0_step(1)', i%p0_step(1), s(6))
+            call scale_down('initial.p0_step(2)', i%p0_step(2), s(2))
+            ! the tables' rows (position in m, value)
+            call scale_table(i%u0_table, s(2), s(3))
+            call scale_table(i%u1_table, s(2), s(4))
+            call scale_table(i%theta0_table, s(2), s(5))
+            call scale_table(i%p0_table, s(2), s(6))
+            call scale_table(i%q0_table, s(2), s(8))
+            call scale_table(i%eta0_table, s(2), s(9))
+        end associate
+        call echo_effects(cfg%material)
+        flush (output_unit)
+    end subroutine nondimensionalise
+
+    !> x (SI, in scale's units) becomes x / factor; an echo row gives both.
+    subroutine scale_down(name, x, scale)
+        character(len=*), intent(in) :: name
+        real(dp), intent(inout) :: x
+        type(si_scale_t), intent(in) :: scale
+        real(dp) :: values(1)
+
+        values = [x]
+        call scale_profile(name, values, scale)
+        x = values(1)
+    end subroutine scale_down
+
+    !> A table's rows (if any): positions over position%factor, values over value%factor.
+    subroutine scale_table(table, position, value)
+        real(dp), allocatable, intent(inout) :: table(:, :)
+        type(si_scale_t), intent(in) :: position, value
+
+        if (.not. allocated(table)) return
+        table(:, 1) = table(:, 1) / position%factor
+        table(:, 2) = table(:, 2) / value%factor
+    end subroutine scale_table
+
+    !> Coefficients (SI, in scale's units) divided by factor; echoed unless all are zero.
+    subroutine scale_profile(name, values, scale)
+        character(len=*), intent(in) :: name
+        real(dp), intent(inout) :: values(:)
+        type(si_scale_t), intent(in) :: scale
+        character(len=240) :: row
+        integer :: n
+
+        values = values / scale%factor
+        n = findloc(abs(values) > 0.0_dp, .true., dim=1, back=.true.)
+        if (n == 0 .and. size(values) > 1) return
+        write (row, '(4x, a, t28, a, t40, "/ ", es12.5, " =", *(1x, es13.6))') name, '[' // trim(scale%units) // ']', &
+            scale%factor, values(:max(n, 1))
+        write (output_unit, '(a)') trim(row)
+    end subroutine scale_profile
+
+    !> The effects the physical input leaves out (zero by default), each with the value that
+    !> gives the paper's (7.1) one (the &model defaults): varpi = zeta a-check, tau0* = tau0/omega.
+    subroutine echo_effects(mat)
+        type(material_t), intent(in) :: mat
+        type(nondim_t) :: nd
+        type(model_t) :: paper
+
+        nd = nondim_groups(mat)
+        if (.not. mat%lambda_v + 2.0_dp * mat%mu_v > 0.0_dp) write (output_unit, '(2x, a)') 'off: viscosity ' // &
+            '(lambda_v + 2 mu_v = 0; varpi = ' // format_real(paper%varpi) // ' of (7.1) is lambda_v + 2 mu_v = ' // &
+            format_real(paper%varpi * nd%omega * (mat%lambda + 2.0_dp * mat%mu) / nd%a_check) // ' Pa s)'
+        if (.not. mat%tau0 > 0.0_dp) write (output_unit, '(2x, a)') 'off: second sound (tau0 = 0: Fourier''s law; ' // &
+            'tau0* = ' // format_real(paper%tau0) // ' of (7.1) is tau0 = ' // format_real(paper%tau0 * nd%omega) // ' s)'
+        if (.not. mat%tau > 0.0_dp) write (output_unit, '(2x, a)') 'off: diffusion relaxation (tau = 0: Fick''s law; ' // &
+            'tau* = ' // format_real(paper%tau) // ' of (7.1) is tau = ' // format_real(paper%tau * nd%omega) // ' s)'
+    end subroutine echo_effects
 
     !> Echo the physical values of cfg%material, the nondimensional groups nd computed from
     !> them and the &model values cfg%model (stdout).
@@ -162,7 +269,6 @@ contains
         call echo_row('alpha3', nd%alpha3, '')
         write (output_unit, '(2x, a)') '&model (2.11)'
         call echo_group(cfg, 'model')
-        flush (output_unit)
     end subroutine echo_material
 
     !> One row per variable of `group` (all real), with its unit or note from INPUT_VARS.
@@ -173,7 +279,7 @@ contains
         integer :: k
 
         do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group /= group) cycle
+            if (INPUT_VARS(k)%group /= group .or. INPUT_VARS(k)%kind /= KIND_REAL) cycle
             item = input_item(cfg, k)
             call echo_row(trim(INPUT_VARS(k)%name), item%reals(1), trim(INPUT_VARS(k)%unit))
         end do

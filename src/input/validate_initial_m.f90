@@ -27,11 +27,13 @@ module validate_initial_m
 
 contains
 
-    !> Coefficients finite, steps inside [0, 1], and the boundary values of the spaces:
-    !> u0, u1, q0, eta0 in S_h vanish at x = 0, theta0, P0 in V_h vanish at x = 1; u0(1) <= g.
-    subroutine validate_initial(init, g)
+    !> Coefficients finite, steps and tables inside the rod [0, length] (1, or ell in m with
+    !> &material), and the boundary values of the spaces: u0, u1, q0, eta0 in S_h vanish at
+    !> x = 0, theta0, P0 in V_h at x = 1 (of x/length, on_rod); u0(1) <= g.
+    subroutine validate_initial(init, g, length)
         type(initial_t), intent(in) :: init
-        real(dp), intent(in) :: g
+        real(dp), intent(in) :: g, length
+        type(initial_t) :: rod
         real(dp) :: u0_end
 
         call require_finite_array(init%u0_poly, 'initial.u0_poly')
@@ -40,23 +42,24 @@ contains
         call require_finite_array(init%p0_poly, 'initial.p0_poly')
         call require_finite_array(init%q0_poly, 'initial.q0_poly')
         call require_finite_array(init%eta0_poly, 'initial.eta0_poly')
-        call require_step(init%theta0_step, 'initial.theta0_step')
-        call require_step(init%p0_step, 'initial.p0_step')
-        call require_table(init%u0_table, 'initial.u0_file', init%u0_file)
-        call require_table(init%u1_table, 'initial.u1_file', init%u1_file)
-        call require_table(init%theta0_table, 'initial.theta0_file', init%theta0_file)
-        call require_table(init%p0_table, 'initial.p0_file', init%p0_file)
-        call require_table(init%q0_table, 'initial.q0_file', init%q0_file)
-        call require_table(init%eta0_table, 'initial.eta0_file', init%eta0_file)
-        call require_boundary_zero('u0', init%u0_poly, 0.0_dp, 'u(0,t) = 0, (2.13)', table=init%u0_table)
-        call require_boundary_zero('u1', init%u1_poly, 0.0_dp, 'v = u_t vanishes where u(0,t) = 0, (2.13)', &
-                                   table=init%u1_table)
-        call require_boundary_zero('theta0', init%theta0_poly, 1.0_dp, 'theta(1,t) = 0, (2.15)', init%theta0_step, &
-                                   init%theta0_table)
-        call require_boundary_zero('p0', init%p0_poly, 1.0_dp, 'P(1,t) = 0, (2.15)', init%p0_step, init%p0_table)
-        call require_boundary_zero('q0', init%q0_poly, 0.0_dp, 'q(0,t) = 0, (2.15)', table=init%q0_table)
-        call require_boundary_zero('eta0', init%eta0_poly, 0.0_dp, 'eta(0,t) = 0, (2.15)', table=init%eta0_table)
-        u0_end = profile(poly=init%u0_poly, x=1.0_dp, table=init%u0_table)
+        call require_step(init%theta0_step, 'initial.theta0_step', length)
+        call require_step(init%p0_step, 'initial.p0_step', length)
+        call require_table(init%u0_table, 'initial.u0_file', init%u0_file, length)
+        call require_table(init%u1_table, 'initial.u1_file', init%u1_file, length)
+        call require_table(init%theta0_table, 'initial.theta0_file', init%theta0_file, length)
+        call require_table(init%p0_table, 'initial.p0_file', init%p0_file, length)
+        call require_table(init%q0_table, 'initial.q0_file', init%q0_file, length)
+        call require_table(init%eta0_table, 'initial.eta0_file', init%eta0_file, length)
+        rod = on_rod(init, length)
+        call require_boundary_zero('u0', rod%u0_poly, 0.0_dp, 'u(0,t) = 0, (2.13)', table=rod%u0_table)
+        call require_boundary_zero('u1', rod%u1_poly, 0.0_dp, 'v = u_t vanishes where u(0,t) = 0, (2.13)', &
+                                   table=rod%u1_table)
+        call require_boundary_zero('theta0', rod%theta0_poly, 1.0_dp, 'theta(1,t) = 0, (2.15)', rod%theta0_step, &
+                                   rod%theta0_table)
+        call require_boundary_zero('p0', rod%p0_poly, 1.0_dp, 'P(1,t) = 0, (2.15)', rod%p0_step, rod%p0_table)
+        call require_boundary_zero('q0', rod%q0_poly, 0.0_dp, 'q(0,t) = 0, (2.15)', table=rod%q0_table)
+        call require_boundary_zero('eta0', rod%eta0_poly, 0.0_dp, 'eta(0,t) = 0, (2.15)', table=rod%eta0_table)
+        u0_end = profile(poly=rod%u0_poly, x=1.0_dp, table=rod%u0_table)
         if (u0_end > g + BOUNDARY_TOL * (1.0_dp + sum(abs(init%u0_poly)))) call fatal(EXIT_INPUT, &
             trim(merge('initial.u0_file', 'initial.u0_poly', allocated(init%u0_table))), 'got u0(1) = ' // &
             format_real(u0_end) // ' > g = ' // format_real(g) // &
@@ -76,16 +79,36 @@ contains
     end subroutine require_finite_array
 
 
-    !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= 1.
-    subroutine require_step(step, where)
-        real(dp), intent(in) :: step(2)
+    !> The positions of init (step ends, table rows) over length: as fractions of the rod, as
+    !> the profiles take them (material_m's nondimensionalise divides them so for a run).
+    function on_rod(init, length) result(rod)
+        type(initial_t), intent(in) :: init
+        real(dp), intent(in) :: length
+        type(initial_t) :: rod
+
+        rod = init
+        rod%theta0_step(2) = init%theta0_step(2) / length
+        rod%p0_step(2) = init%p0_step(2) / length
+        if (allocated(rod%u0_table)) rod%u0_table(:, 1) = init%u0_table(:, 1) / length
+        if (allocated(rod%u1_table)) rod%u1_table(:, 1) = init%u1_table(:, 1) / length
+        if (allocated(rod%theta0_table)) rod%theta0_table(:, 1) = init%theta0_table(:, 1) / length
+        if (allocated(rod%p0_table)) rod%p0_table(:, 1) = init%p0_table(:, 1) / length
+        if (allocated(rod%q0_table)) rod%q0_table(:, 1) = init%q0_table(:, 1) / length
+        if (allocated(rod%eta0_table)) rod%eta0_table(:, 1) = init%eta0_table(:, 1) / length
+    end function on_rod
+
+
+    !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= length (1, or ell in m).
+    subroutine require_step(step, where, length)
+        real(dp), intent(in) :: step(2), length
         character(len=*), intent(in) :: where
 
         call require_datum(step(1), where, 'amplitude ' // format_real(step(1)), 'must')
         if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
                                                       '; must be a finite real number')
-        if (.not. (step(2) >= 0.0_dp .and. step(2) <= 1.0_dp)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
-            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= 1')
+        if (.not. (step(2) >= 0.0_dp .and. step(2) <= length)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
+            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= ' // &
+            format_real(length) // ' (the rod''s length: 1, or material.ell in m)')
     end subroutine require_step
 
 
@@ -109,18 +132,20 @@ contains
     end subroutine require_datum
 
 
-    !> A table (if given) covers the rod [0, 1] (to round-off), its values finite and at
+    !> A table (if given) covers the rod [0, length] (to round-off), its values finite and at
     !> most MAX_MAGNITUDE in magnitude.
-    subroutine require_table(table, where, file)
+    subroutine require_table(table, where, file, length)
         real(dp), intent(in), optional :: table(:, :)
         character(len=*), intent(in) :: where, file
+        real(dp), intent(in) :: length
         integer :: k, n
 
         if (.not. present(table)) return
         n = size(table, 1)
-        if (table(1, 1) > BOUNDARY_TOL .or. table(n, 1) < 1.0_dp - BOUNDARY_TOL) call fatal(EXIT_INPUT, where, &
-            "got positions from " // format_real(table(1, 1)) // ' to ' // format_real(table(n, 1)) // " in '" // &
-            trim(file) // "'; the table must cover the rod: first position <= 0, last >= 1")
+        if (table(1, 1) > BOUNDARY_TOL * length .or. table(n, 1) < (1.0_dp - BOUNDARY_TOL) * length) &
+            call fatal(EXIT_INPUT, where, "got positions from " // format_real(table(1, 1)) // ' to ' // &
+            format_real(table(n, 1)) // " in '" // trim(file) // "'; the table must cover the rod: first " // &
+            'position <= 0, last >= ' // format_real(length) // ' (1, or material.ell in m)')
         do k = 1, n
             call require_datum(table(k, 2), where, format_real(table(k, 2)) // ' at position ' // &
                                format_real(table(k, 1)) // " in '" // trim(file) // "'", 'every value must')

@@ -13,6 +13,7 @@ module validate_m
     use strings_m, only: format_real, int_str
     use validate_initial_m, only: validate_initial, MAX_MAGNITUDE
     use contact_laws_m, only: law_names, constraint_law
+    use material_m, only: model_from_material
     implicit none
     private
     public :: validate_config, scheme_rule_t
@@ -42,18 +43,21 @@ module validate_m
 
 contains
 
-    !> Apply every check to cfg; stop with EXIT_INPUT at the first failure. A large (but
-    !> allowed) output size gives a warning on stderr.
+    !> Apply every check to cfg, in the input's units (with &material SI, before
+    !> material_m's nondimensionalise, whose &model is checked here); stop with EXIT_INPUT
+    !> at the first failure. A large (but allowed) output size gives a warning on stderr.
     subroutine validate_config(cfg, schemes)
         type(config_t), intent(in) :: cfg
         type(scheme_rule_t), intent(in) :: schemes(:)
         real(dp) :: n_steps
 
-        call validate_model(cfg%model, cfg%material%present)
-        call validate_contact(cfg%contact)
-        call validate_mesh(cfg%mesh)
-        call validate_time(cfg%time, schemes, n_steps)
-        call validate_initial(cfg%initial, cfg%contact%g)
+        associate (si => cfg%material%present)
+            call validate_model(merge(model_from_material(cfg%material), cfg%model, si), si)
+            call validate_contact(cfg%contact)
+            call validate_mesh(cfg%mesh)
+            call validate_time(cfg%time, schemes, n_steps)
+            call validate_initial(cfg%initial, cfg%contact%g, merge(cfg%material%ell, 1.0_dp, si))
+        end associate
         call validate_solver(cfg%solver)
         call validate_combination(cfg, schemes)
         call validate_output(cfg%output, cfg%mesh%n_elements, n_steps, cfg%time%t_end)

@@ -1,9 +1,10 @@
 !> The shipped experiments of docs/reproduction.md, loaded the way the program loads them
-!> (read_config + validate_config), with the output redirected into a test's scratch dir.
+!> (read_config + validate_config + nondimensionalise), with the output redirected into a test's scratch dir.
 module shipped_inputs_m
     use config_m, only: config_t
     use config_reader_m, only: read_config
     use validate_m, only: validate_config
+    use material_m, only: nondimensionalise
     use time_scheme_m, only: scheme_rules
     implicit none
     private
@@ -38,6 +39,7 @@ contains
         cfg%output%prefix = scratch_dir//'/'//trim(name)
         cfg%output%quiet = .true.
         call validate_config(cfg, scheme_rules())
+        call nondimensionalise(cfg)
     end subroutine load_input
 
 end module shipped_inputs_m

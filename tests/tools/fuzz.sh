@@ -83,7 +83,7 @@ cat > "$scratch/seeds/$n_seed.nml" <<'EOF'
 EOF
 n_seed=$((n_seed + 1))
 cat > "$scratch/seeds/$n_seed.nml" <<'EOF'
-&material T0=293 rho0=8954 cE=383.1 kappa=386 lambda=7.76e10 mu=3.86e10 alpha_t=1.78e-5
+&material units='SI' T0=293 rho0=8954 cE=383.1 kappa=386 lambda=7.76e10 mu=3.86e10 alpha_t=1.78e-5
           alpha_c=1.98e-4 D=0.85e-8 nu=1.2e4 varrho=0.9e6 ell=1 tau0=177.7 tau=1777 /
 &contact eps=1.0d-2 /
 &initial theta0_step = 5, 0.1 /

@@ -3,7 +3,9 @@
 # README.md (so that the test and the README cannot drift), run one after another in a
 # scratch directory that looks like the repository root (build/rodcontact, scripts/ and
 # input/ linked there), and every file that a command's comment names ('# -> FILE, FILE')
-# must exist and not be empty afterwards. The blocks with --slurm are left out: they need a
+# must exist and not be empty afterwards; the figures the README states for its copper rod
+# (peak temperature rise, contact onset and release, largest displacement) hold to 5 %, and
+# the scan's points give different summary rows. The blocks with --slurm are left out: they need a
 # Slurm cluster, and tests/test_slurm.sh checks scan.sh --slurm on one.
 #
 #   bash tests/test_readme_run.sh <path to rodcontact> <source dir> <scratch dir>
@@ -59,6 +61,20 @@ check "the plot's axes are in SI units (PDF text)" \
     bash -c "! command -v pdftotext > /dev/null || pdftotext '$work/runs/mybar_series.pdf' - | grep -q 't \[s\]'"
 check "the summary: a header and one row, in contact" equals "2 yes" \
     "$(wc -l < "$work/runs/mybar_summary.csv") $(tail -n 1 "$work/runs/mybar_summary.csv" | cut -d, -f3)"
+# the figures the README states for the copper rod ("What it shows"), to 5 %
+check "the README's figures: 10 K, onset 0.028 s, u(l,t) 0.53 um at 0.04 s, release 0.63 s" \
+    "$("$src/scripts/lib/find_python.sh")" - "$work/runs/mybar.h5" << 'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+si = lambda d: f[d][()] * f[d].attrs["si_factor"]
+t, u, kind, te = si("series/t"), si("series/u_end"), f["events/kind"][()], si("events/t")
+got = [si("snapshots/theta").max(), te[kind == 1][0], u.max(), t[u.argmax()], te[kind != 1][0]]
+want = [10.0, 0.028, 0.53e-6, 0.04, 0.63]
+print("  got", got)
+sys.exit(0 if len(te) == 2 and all(abs(g / w - 1) <= 0.05 for g, w in zip(got, want)) else 1)
+PY
+check "the scan's summary rows differ (g and ell change the run)" equals 4 \
+    "$(tail -n +2 "$work/runs/myscan/summary.csv" | cut -d, -f4- | sort -u | wc -l)"
 check "the scan: 4 points, all complete" equals "4" \
     "$(tail -n +2 "$work/runs/myscan/summary.csv" | grep -c ',complete,0,')"
 check "nothing written outside the working directory's runs/" equals "build input runs scripts" \

@@ -56,7 +56,8 @@ for r in si nd sig; do
     fi
     for st in surface profiles series; do
         expect=()
-        [[ $st == series ]] && expect=(obstacle contact) || expect=("${labels[@]/%/(x,}")
+        # the panels' labels, and the x axis' label (a word of its own: 'x' or 'x [mm]')
+        [[ $st == series ]] && expect=(obstacle contact t) || expect=("${labels[@]/%/(x,}" x)
         "$py" "$src/tests/tools/figure_layout.py" "$dir/figs/${r}_$st.pdf" --expect "${expect[@]}" \
             >"$dir/layout.out" 2>&1 || fail "$(cat "$dir/layout.out")"
     done

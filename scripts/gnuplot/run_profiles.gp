@@ -11,10 +11,12 @@ set multiplot
 st = failed ? sprintf('   [%s]', status) : ''
 eval figtitle_literal(fig_title.st.'   ('.units_note.')')
 key_plot = 'for [k=1:n_prof] NaN with lines lw 2.5 lc rgb word(prof_colours, k) title "t = ".word(prof_times, k).(t_plain eq "" ? "" : " ".t_plain)'
-key_y0 = 0.86; key_y1 = 0.935
+# bands in pixels of the H-pixel figure (one row of panels is 600 px high, two are 1000): the
+# title, the key (two rows), the panels, the x label at the bottom
+key_y1 = 1 - 65./H; key_y0 = key_y1 - 75./H
 @keyrow
 unset label 1000
-py1 = 0.80; py0 = 0.10; pgy = 0.12
+py1 = key_y0 - 55./H; py0 = 100./H; pgy = 120./H
 px0 = 0.09; px1 = 0.985; pgx = 0.10
 set xlabel it('x').x_short
 set xrange [0:x_max]

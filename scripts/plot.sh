@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Draw any rodcontact output file: the fields as surfaces over (x, t) or as families of
-# profiles, or the time series (energy and its parts when present, u(1,t) with the obstacle
-# and the contact intervals). PNG and PDF. Works on complete, failed and interrupted runs
-# (a failed run is drawn up to its last good step, with its status in the title).
+# profiles, or the time series (energy and its parts when present, u at the rod's end with
+# the obstacle and the contact intervals shaded, from the contact events or, in a file
+# without them, the penetration or contact stress). PNG and PDF. Works on complete, failed
+# and interrupted runs (a failed run is drawn up to its last good step, with its status in
+# the title).
 #
 #   scripts/plot.sh RUN.h5 [--style surface|profiles|series|all] [--fields u,P,theta]
 #                          [--t-max T] [--out DIR] [--si | --nondimensional]
@@ -20,18 +22,21 @@
 #   --si       axes in SI units with their units (from each dataset's si_factor and
 #              si_units): the default for a run with &material, which has the scales
 #   --nondimensional  the file's nondimensional values (the default without &material); the
-#              labels say so
+#              title says so
+#
 # Each axis is in a power of ten of its unit that keeps its tick labels short (mm for a 1 cm
-# rod, '[10^6 K]'), named in its label. A file still being written (a running or killed run's
-# .h5.part, status 'incomplete') is drawn as far as it goes, with a message saying how far; a
-# surface needs two snapshots and the series two rows (until then: the profiles, or nothing).
-# Names are drawn as they are (no gnuplot markup: point_0001 stays point_0001). The files
-# written are printed on stdout, one per line.
+# rod, '[10^6 K]'), named in its label. A state at t = 0 that would flatten the later ones
+# (a pulse) is clipped at the frame of the profiles (the panel says so), and the surface
+# starts at the next snapshot. A file still being written (a running or killed run's
+# .h5.part, status 'incomplete') is drawn as far as it goes, with a message saying how far;
+# a surface needs two snapshots and the series two rows (until then: the profiles, or
+# nothing). Names are drawn as they are (no gnuplot markup: point_0001 stays point_0001).
+# The files written are printed on stdout, one per line.
 #
 # Needs a Python with h5py (scripts/lib/find_python.sh) and gnuplot with pngcairo and pdfcairo.
 # Exit status: 0 drawn; 1 a tool is missing or gnuplot failed; 2 usage error, or RUN.h5 is
-# not a rodcontact output file; 3 nothing to draw yet (a run file with one snapshot and one
-# series row).
+# not a rodcontact output file; 3 nothing of the styles asked for can be drawn yet (a run
+# that has just started: a series of one row).
 
 set -euo pipefail
 

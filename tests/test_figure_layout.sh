@@ -8,7 +8,7 @@
 # without them: its penetration is always 0). A file still being written (.h5.part, status
 # 'incomplete') is drawn as far as it goes, without a gnuplot warning: with one snapshot the
 # profiles and the series (no surface, said so); with one series row no series (exit 3 when
-# that is all that was asked for).
+# that is all that was asked for); the .h5.part of a run still going is drawn, and said to be.
 #
 #   bash tests/test_figure_layout.sh <path to rodcontact> <source dir> <scratch dir>
 # Exit status: 0 passed, 1 failed, 77 skipped (no gnuplot with cairo terminals, no h5py, or
@@ -117,6 +117,20 @@ st=$?
 [[ $st -eq 3 ]] && grep -q "nothing to draw yet" "$dir/part4.log" ||
     fail "--style series on one series row: expected exit 3 and 'nothing to draw yet', got $st: $(cat "$dir/part4.log")"
 grep -q "gnuplot said" "$dir"/part*.log && fail "gnuplot warnings on a .part: $(grep -h -A1 'gnuplot said' "$dir"/part*.log)"
+
+# 5. a run still going: its .h5.part (opened by a SWMR reader) is drawn, and said to be incomplete
+copy "$src/input/exp1.nml" "$dir/live.nml" "output.prefix='$dir/live'" output.quiet=.true. \
+    mesh.n_elements=200 time.dt=1e-4 time.t_end=1000 output.snapshot_every=200
+"$prog" "$dir/live.nml" >"$dir/live.log" 2>&1 &
+live=$!
+for _ in $(seq 50); do [[ -s "$dir/live.h5.part" ]] && break; sleep 0.1; done
+sleep 1
+"$src/scripts/plot.sh" "$dir/live.h5.part" --style all --out "$dir/live" >"$dir/live_plot.log" 2>&1 ||
+    fail "plot.sh on a running run's .h5.part: $(cat "$dir/live_plot.log")"
+kill -0 "$live" 2>/dev/null || fail "the live run ended before the end of the test: $(cat "$dir/live.log")"
+kill -KILL "$live" 2>/dev/null; wait "$live" 2>/dev/null
+grep -q "status 'incomplete'" "$dir/live_plot.log" || fail "plot.sh on a running run does not say so: $(cat "$dir/live_plot.log")"
+grep -q "gnuplot said" "$dir/live_plot.log" && fail "gnuplot warnings on a running run: $(cat "$dir/live_plot.log")"
 
 if ((failures > 0)); then echo "test_figure_layout: $failures failure(s)"; exit 1; fi
 echo "test_figure_layout: passed (SI, nondimensional and Signorini figures: every text box inside the page, none overlapping, every panel labelled; Signorini contact shaded; .part drawn as far as it goes)"

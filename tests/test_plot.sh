@@ -124,7 +124,7 @@ sed -e 's/n_elements=500/n_elements=20/' -e 's/t_end=3.0/t_end=0.05/' -e 's/snap
 "$py" "$src/tests/tools/si_input.py" "$dir/alu_nd.nml" ell=1.0 > "$dir/alu.nml"   # the same run in SI units
 "$prog" "$dir/alu.nml" >/dev/null 2>&1 || fail "the &material run failed"
 "$py" "$src/scripts/lib/plotdata.py" "$dir/alu.h5" "$dir/si-data" >"$dir/si.log" 2>&1 || fail "plotdata.py on alu.h5: $(cat "$dir/si.log")"
-grep -q '^x_unit = " \[m\]"$' "$dir/si-data/params.gp" && grep -q '^t_unit = " \[s\]"$' "$dir/si-data/params.gp" &&
+grep -q '^x_unit = " \[m\]"$' "$dir/si-data/params.gp" && grep -Eq '^t_unit = " \[[mµ]?s\]"$' "$dir/si-data/params.gp" &&
     grep -Eq '^unit_theta = " \[(10\^\{[0-9]+\} )?K\]"$' "$dir/si-data/params.gp" || fail "SI units missing in params.gp: $(grep unit "$dir/si-data/params.gp")"
 "$py" - "$dir/alu.h5" "$dir/si-data" <<'PY' || fail "the SI profiles are not si_factor times the file's values (in the power of ten of their label)"
 import re, sys, h5py, numpy as np

@@ -13,7 +13,7 @@ DATA_DIR receives
                        values are not flattened
     prof.<field>.dat   x and one column per profile time (at most 9, evenly spaced over
                        [0, T], or --times); first line: column titles. When t = 0 is off the
-                       scale, params.gp says clip0_<field> = 1: it is drawn without setting
+                       scale of the later profiles, params.gp says clip0_<field> = 1: it is drawn without setting
                        the y range (clipped at the frame), and the panel says so
     series.dat         t, E, u(1,t), penetration, contact stress, then the parts of the
                        energy when the file has them (/series/energy_<part>), thinned to
@@ -263,7 +263,9 @@ def write_fields(f, a, units, fields, n_snap, params):
         signed = lo < 0 < hi and min(-lo, hi) > 0.05 * max(-lo, hi)
         m = max(abs(lo), abs(hi)) or 1.0
         params[f"t_min_{fld}"] = ft * float(ts[first[0]])
-        params[f"clip0_{fld}"] = int(first[0] > in_range[0] and tp[0] == 0.0)
+        # the profiles: t = 0 against the later profiles drawn (a fast transient between
+        # snapshots keeps the surface from t = 0 but leaves the profiles flat)
+        params[f"clip0_{fld}"] = int(len(ip) > 2 and tp[0] == 0.0 and off_scale(data[ip[0]], data[ip[1:]]))
         params[f"cb_lo_{fld}"], params[f"cb_hi_{fld}"] = ((-m, m) if signed else (lo, hi if hi > lo else lo + 1))
         params[f"z_lo_{fld}"], params[f"z_hi_{fld}"] = (lo, hi if hi > lo else lo + 1)
         params[f"signed_{fld}"] = int(signed)
@@ -274,7 +276,7 @@ def write_fields(f, a, units, fields, n_snap, params):
     return None
 
 
-def write_series(f, a, units, params):
+def write_series(f, a, units, n_snap, params):
     """series.dat and the series part of params (contact intervals, g, ...)."""
     ser = f["series"]
     names = [k for k in ("u_end", "penetration", "contact_stress") if k in ser]
@@ -288,8 +290,9 @@ def write_series(f, a, units, params):
     params["e_unit"], params["e_short"] = units.drawn(e_unit, 0)[1:]   # a log axis: no power of ten
     g = float(f.attrs["contact.g"]) if "contact.g" in f.attrs else math.nan
     u_end = ser["u_end"][:n] if "u_end" in ser else np.full(n, np.nan)
-    fu = axis(units, params, ("u_unit", "u_short", "u_plain"), ser["u_end"] if "u_end" in ser else ser["t"],
-              float(np.nanmax(np.abs(np.r_[u_end, 0.0 if math.isnan(g) else g]))))
+    # u(1, t) in the power of ten of the field u (the same quantity in the same unit)
+    u_max = float(np.nanmax(np.abs(np.r_[u_end, 0.0 if math.isnan(g) else g, f["snapshots/u"][:n_snap].ravel()])))
+    fu = axis(units, params, ("u_unit", "u_short", "u_plain"), ser["u_end"] if "u_end" in ser else ser["t"], u_max)
     cols, titles = [fts * t, fe * ser["energy"][:n]], ["t", "E"]
     for name in ("u_end", "penetration", "contact_stress"):
         if name not in ser:
@@ -345,7 +348,7 @@ def main(argv):
             }
             error = write_fields(f, a, units, fields, n_snap, params)
         if error is None:
-            write_series(f, a, units, params)
+            write_series(f, a, units, n_snap, params)
     if error is not None:
         sys.stderr.write(f"plotdata.py: {error}\n")
         return 2

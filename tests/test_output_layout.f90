@@ -36,7 +36,7 @@ program test_output_layout
     cfg%initial%u0_poly(0:1) = [0.0_dp, 0.05_dp]             ! u0 = 0.05 x
     cfg%initial%u1_poly(0:1) = [0.0_dp, 10.0_dp]             ! u1 = 10 x
     cfg%initial%theta0_poly(0:3) = [0.0_dp, 40.0_dp, -80.0_dp, 40.0_dp]   ! 40 x (x-1)^2
-    cfg%initial%p0_step = [20.0_dp, 0.5_dp]                  ! 20 on [0, 0.5]
+    cfg%initial%p0_step = [20.0_dp, 0.5_dp]                  ! 20 on [0, 0.5)
     cfg%initial%p0_poly(0:1) = [1.0_dp, -1.0_dp]             ! + (1 - x)
     cfg%initial%q0_poly(0:2) = [0.0_dp, 0.3_dp, 0.2_dp]      ! 0.3 x + 0.2 x^2
     cfg%initial%eta0_poly(0:2) = [0.0_dp, 1.0_dp, -1.0_dp]   ! x (1 - x)
@@ -117,9 +117,13 @@ contains
         case ('u'); initial_value = 0.05_dp * x
         case ('v'); initial_value = 10.0_dp * x
         case ('theta'); initial_value = 40.0_dp * x * (x - 1.0_dp)**2
-        case ('P')
+        case ('P')   ! the step's jump at x = 0.5 is node 4: the mean of its two sides there
             initial_value = 1.0_dp - x
-            if (x <= 0.5_dp) initial_value = initial_value + 20.0_dp
+            if (abs(x - 0.5_dp) < 1e-12_dp) then
+                initial_value = initial_value + 10.0_dp
+            else if (x < 0.5_dp) then
+                initial_value = initial_value + 20.0_dp
+            end if
         case ('q'); initial_value = 0.3_dp * x + 0.2_dp * x**2
         case default; initial_value = x * (1.0_dp - x)
         end select

@@ -1,20 +1,20 @@
-!> The input variables as one table, INPUT_VARS (group, name, kind, unit), and the one
-!> routine that knows which component of config_t holds each of them (access). The table
+!> The input variables as one table, INPUT_VARS (group, name, kind, unit), and the two
+!> routines that know which component of config_t holds each (get_value, read_namelist). The table
 !> drives the reader's checks and messages (known names, kinds, 'allowed: ...'), the
 !> namelist read of each assignment, the echo of &material, and the record of the inputs in
 !> the output file (input_items).
 !>
 !> Both are generated at build time from config_m's types (src/input/generate_input_vars.py
 !> writes input_vars_table.inc and input_vars_access.inc, included below): Fortran's
-!> namelist groups are static lists of declared variables, so `access` declares each input
-!> variable as a local of its name, lists it in its group's namelist statement and links it
-!> to its component of config_t; the generator writes those three mentions and the table
-!> row from the one declaration in config_m. A new input variable is therefore one line in
+!> namelist groups are static lists of declared variables, so read_namelist declares each
+!> input variable as a local of its name, lists it in its group's namelist statement and
+!> copies it from and back to its component of config_t; the generator writes those
+!> mentions and the table row from the one declaration in config_m. A new input variable is therefore one line in
 !> config_m (and its line in docs/input.md); everything here follows.
 module input_vars_m
     use kinds_m, only: dp
-    use config_m, only: config_t, initial_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! LEN_*: access's locals
-    use errors_m, only: fatal, EXIT_OUTPUT, check_allocation
+    use config_m, only: config_t, initial_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! read_namelist's locals
+    use errors_m, only: check_allocation
     use strings_m, only: lower, keyword, int_str
     implicit none
     private
@@ -55,11 +55,6 @@ module input_vars_m
         logical :: flag = .false.
     end type input_item_t
 
-    !> What access does: copy a variable into an item, or read a namelist text of its group.
-    integer, parameter :: GET_ITEM = 1, READ_TEXT = 2
-    !> What link does with one variable: copy it into an item, into the namelist's local of
-    !> its name, or from that local back into config_t.
-    integer, parameter :: TO_ITEM = 1, TO_LOCAL = 2, FROM_LOCAL = 3
 
 contains
 
@@ -114,10 +109,11 @@ contains
         type(config_t), intent(in) :: cfg
         integer, intent(in) :: k
         type(input_item_t) :: item
-        type(config_t) :: copy   ! access links components both ways; cfg stays intent(in)
 
-        copy = cfg
-        call access(copy, k, GET_ITEM, item)
+        item%name = trim(INPUT_VARS(k)%group) // '.' // trim(INPUT_VARS(k)%name)
+        item%kind = INPUT_VARS(k)%kind
+        item%keyword = INPUT_VARS(k)%keyword
+        call get_value(cfg, k, item)
     end function input_item
 
     !> Everything the output file records of the input: every input variable (those of
@@ -182,70 +178,7 @@ contains
         item%text = text
     end function string_item
 
-    !> Read the namelist `text` ('&group ... /', assignments of variables of `group`) over
-    !> the values of the group in cfg; ios and msg as from the namelist read.
-    subroutine read_namelist(cfg, group, text, ios, msg)
-        type(config_t), intent(inout) :: cfg
-        character(len=*), intent(in) :: group, text
-        integer, intent(out) :: ios
-        character(len=*), intent(out) :: msg
-        integer :: k
-
-        k = findloc(INPUT_VARS%group, group, dim=1)
-        call access(cfg, k, READ_TEXT, text=text, ios=ios, msg=msg)
-    end subroutine read_namelist
-
     include 'input_vars_access.inc'
-
-    ! ------------------------------------------------ a component, its namelist local, an item
-
-    !> With act TO_ITEM: item = the value of the component; TO_LOCAL: the namelist's local =
-    !> the component; FROM_LOCAL: the component = the local (a keyword as the code compares
-    !> it: lower case, left-adjusted). Exactly one pair of component and local is given: r
-    !> (a real), a (real coefficients or a pair), i (an integer), s (a string), l (a logical).
-    subroutine link(item, act, r, r_local, a, a_local, i, i_local, s, s_local, l, l_local)
-        type(input_item_t), intent(inout) :: item
-        integer, intent(in) :: act
-        real(dp), intent(inout), optional :: r, r_local, a(:), a_local(:)
-        integer, intent(inout), optional :: i, i_local
-        character(len=*), intent(inout), optional :: s, s_local
-        logical, intent(inout), optional :: l, l_local
-        character :: kind
-
-        kind = merge(KIND_REAL, ' ', present(r))
-        if (present(a)) kind = merge(KIND_PAIR, KIND_COEFFS, size(a) == 2)
-        if (present(i)) kind = KIND_INTEGER
-        if (present(s)) kind = KIND_STRING
-        if (present(l)) kind = KIND_LOGICAL
-        call require_kind(item, kind)
-        if (act == TO_ITEM) then
-            if (present(r)) item%reals = [r]
-            if (present(a)) item%reals = a
-            if (present(i)) item%int = i
-            if (present(s)) item%text = trim(s)
-            if (present(l)) item%flag = l
-        else if (act == TO_LOCAL) then
-            if (present(r)) r_local = r
-            if (present(a)) a_local = a
-            if (present(i)) i_local = i
-            if (present(s)) s_local = s
-            if (present(l)) l_local = l
-        else
-            if (present(r)) r = r_local
-            if (present(a)) a = a_local
-            if (present(i)) i = i_local
-            if (present(s)) s = merge(keyword(s_local), s_local, item%keyword)
-            if (present(l)) l = l_local
-        end if
-    end subroutine link
-
-    !> INPUT_VARS and access must agree on the kind of each variable (a programming error).
-    subroutine require_kind(item, kind)
-        type(input_item_t), intent(in) :: item
-        character, intent(in) :: kind
-
-        if (item%kind /= kind) error stop 'input_vars_m: INPUT_VARS and access disagree on a kind'
-    end subroutine require_kind
 
     ! ------------------------------------------------ lists and words for messages
 

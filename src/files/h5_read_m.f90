@@ -12,16 +12,14 @@ module h5_read_m
     use kinds_m, only: dp
     use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists, from_c_string
-    use strings_m, only: from_c_chars
-    use h5_swmr_m, only: open_swmr_read, h5_free
+    use strings_m, only: from_c_chars, int_str
+    use h5_swmr_m, only: open_swmr_read, h5_free_memory
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
-                    H5F_ACC_RDONLY_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_space_f, &
-                    h5sclose_f, h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
-                    h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, h5aread_f, &
-                    h5aexists_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tcopy_f, &
-                    h5tget_class_f, h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, &
-                    H5T_NATIVE_DOUBLE, h5lexists_f, h5oopen_f, h5oclose_f, &
-                    h5iget_type_f, H5I_DATASET_F
+                    H5F_ACC_RDONLY_F, h5sclose_f, h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, &
+                    h5aread_f, h5aexists_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tget_class_f, &
+                    h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, H5T_NATIVE_DOUBLE, h5lexists_f, &
+                    h5oopen_f, h5oclose_f, h5iget_type_f, H5I_DATASET_F
+    use h5lt, only: h5ltget_dataset_ndims_f, h5ltget_dataset_info_f, h5ltread_dataset_double_f
     implicit none
     private
     public :: h5_library_init
@@ -33,7 +31,6 @@ module h5_read_m
     logical, save :: library_open = .false.
 
 contains
-
     !> Start the HDF5 library (once). HDF5's automatic error-stack printing is switched off:
     !> every call's error flag is checked here and in output_m and reported with the file and
     !> operation, so the stack dump would only be noise on stderr. Set RODCONTACT_HDF5_ERRORS=1
@@ -55,14 +52,36 @@ contains
         library_open = .true.
     end subroutine h5_library_init
 
-    !> Whole 1D float dataset `dset` (e.g. '/series/t') of `file`.
-    subroutine read_real_1d(file, dset, values)
+    !> Whole 1D float dataset `dset` (e.g. '/series/t') of `file`; with dims, a dataset of
+    !> rank size(dims), its elements in Fortran order and dims its Fortran shape. Read as
+    !> float64: HDF5 converts the stored type.
+    subroutine read_real_1d(file, dset, values, dims)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: dset
         real(dp), allocatable, intent(out) :: values(:)
-        integer(hsize_t) :: dims(1)
+        integer(hsize_t), intent(out), optional :: dims(:)
+        integer(hsize_t) :: extent(7)
+        integer(hid_t) :: file_id
+        integer(size_t) :: type_size
+        integer :: hdferr, rank, wanted, type_class, stat
+        character(len=256) :: message
 
-        call read_flat(file, dset, values, dims)
+        file_id = open_file(file, dset)
+        call h5ltget_dataset_ndims_f(file_id, trim(dset), rank, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'no such dataset (h5ltget_dataset_ndims_f failed)')
+        wanted = 1
+        if (present(dims)) wanted = size(dims)
+        if (rank /= wanted) &
+            call fail(file, dset, 'dataset has rank '//int_str(rank)//', expected '//int_str(wanted))
+        call h5ltget_dataset_info_f(file_id, trim(dset), extent(:rank), type_class, type_size, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5ltget_dataset_info_f failed')
+        if (present(dims)) dims = extent(:rank)
+        allocate (values(product(extent(:rank))), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
+        if (size(values) > 0) &
+            call h5ltread_dataset_double_f(file_id, trim(dset), values, extent(:rank), hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5ltread_dataset_double_f failed')
+        call close_file(file, dset, file_id)
     end subroutine read_real_1d
 
     !> Whole 2D float dataset: values(s+1, n_snap) for what h5py shows as (n_snap, s+1).
@@ -73,7 +92,7 @@ contains
         real(dp), allocatable :: flat(:)
         integer(hsize_t) :: dims(2)
 
-        call read_flat(file, dset, flat, dims)
+        call read_real_1d(file, dset, flat, dims)
         values = reshape(flat, dims)
     end subroutine read_real_2d
 
@@ -84,37 +103,13 @@ contains
         character(len=*), intent(in) :: dset
         integer, allocatable, intent(out) :: values(:)
         real(dp), allocatable :: flat(:)
-        integer(hsize_t) :: dims(1)
 
-        call read_flat(file, dset, flat, dims)
+        call read_real_1d(file, dset, flat)
         values = nint(flat)
     end subroutine read_int_1d
 
-    !> Whole dataset `dset` of rank size(dims) as float64 (HDF5 converts the stored type),
-    !> its elements in Fortran order; dims its Fortran shape.
-    subroutine read_flat(file, dset, values, dims)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
-        real(dp), allocatable, intent(out) :: values(:)
-        integer(hsize_t), intent(out) :: dims(:)
-        integer(hid_t) :: file_id, dset_id
-        integer :: hdferr, stat
-        character(len=256) :: message
-
-        call open_dataset(file, dset, size(dims), file_id, dset_id, dims)
-        allocate (values(product(dims)), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
-        if (size(values) > 0) then
-            call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, values, dims, hdferr)
-            if (hdferr < 0) call fail(file, dset, 'h5dread_f failed')
-        end if
-        call h5dclose_f(dset_id, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'h5dclose_f failed')
-        call close_file(file, dset, file_id)
-    end subroutine read_flat
-
     !> True when `file` exists, can be read and is an HDF5 file (h5fis_hdf5_f): the test to
-    !> make before any other routine here, which stop with exit 4 on a file they cannot open.
+    !> make before any other routine here, which stop with exit 2 on a file they cannot open.
     function is_hdf5_file(file) result(yes)
         character(len=*), intent(in) :: file
         logical :: yes
@@ -132,25 +127,21 @@ contains
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: dset
         logical :: yes
-
+        character(len=:), allocatable :: path
         integer(hid_t) :: file_id, obj_id
         integer :: hdferr, i, obj_type
-        logical :: link_exists
 
-        yes = .false.
+        yes = len_trim(dset) > 0
         file_id = open_file(file, dset)
         ! h5lexists_f fails (rather than saying no) when an intermediate group is missing,
         ! so test each prefix of the path in turn
-        link_exists = .true.
-        do i = 2, len_trim(dset) + 1
-            if (i <= len_trim(dset)) then
-                if (dset(i:i) /= '/') cycle
-            end if
-            call h5lexists_f(file_id, dset(1:i-1), link_exists, hdferr)
-            if (hdferr < 0) call fail(file, dset, "h5lexists_f failed on '"//dset(1:i-1)//"'")
-            if (.not. link_exists) exit
+        path = trim(dset)//'/'
+        do i = 2, len(path)
+            if (path(i:i) /= '/' .or. .not. yes) cycle
+            call h5lexists_f(file_id, path(1:i-1), yes, hdferr)
+            if (hdferr < 0) call fail(file, dset, "h5lexists_f failed on '"//path(1:i-1)//"'")
         end do
-        if (link_exists .and. len_trim(dset) > 0) then
+        if (yes) then
             call h5oopen_f(file_id, trim(dset), obj_id, hdferr)
             if (hdferr < 0) call fail(file, dset, 'h5oopen_f failed')
             call h5iget_type_f(obj_id, obj_type, hdferr)
@@ -167,7 +158,6 @@ contains
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
         logical :: yes
-
         integer(hid_t) :: file_id
         integer :: hdferr
 
@@ -182,9 +172,7 @@ contains
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
         character(len=:), allocatable, intent(out) :: value
-
-        character(len=:), allocatable :: what
-        integer(hid_t) :: file_id, attr_id, file_type, mem_type
+        integer(hid_t) :: file_id, attr_id, str_type
         integer(hsize_t) :: npoints
         integer(size_t) :: type_size
         integer :: hdferr, type_class, stat
@@ -194,44 +182,38 @@ contains
         type(c_ptr) :: buf   ! h5aread_f wants a variable, not an expression
         character(kind=c_char), allocatable, target :: fixed(:)
 
-        what = 'attribute '//name
         call open_attr(file, name, 1_hsize_t, file_id, attr_id, npoints)
-        call h5aget_type_f(attr_id, file_type, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5aget_type_f failed')
-        call h5tget_class_f(file_type, type_class, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5tget_class_f failed')
-        if (type_class /= H5T_STRING_F) call fail(file, what, 'not a string attribute')
-        call h5tis_variable_str_f(file_type, is_variable, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5tis_variable_str_f failed')
-        ! the type from h5aget_type_f is already a memory type; a copy of it reads the
-        ! string without any character-set conversion (which HDF5 does not do)
-        call h5tcopy_f(file_type, mem_type, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5tcopy_f failed')
-
+        ! the type h5aget_type_f returns is a copy, usable as the memory type: the string is
+        ! read as stored, with no character-set conversion (which HDF5 does not do)
+        call h5aget_type_f(attr_id, str_type, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aget_type_f failed')
+        call h5tget_class_f(str_type, type_class, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tget_class_f failed')
+        if (type_class /= H5T_STRING_F) call fail(file, 'attribute '//name, 'not a string attribute')
+        call h5tis_variable_str_f(str_type, is_variable, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tis_variable_str_f failed')
         if (is_variable) then
             buf = c_loc(vl_ptr)
-            call h5aread_f(attr_id, mem_type, buf, hdferr)
-            if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
-            value = from_c_string(vl_ptr(1), '')
-            if (.not. h5_free(vl_ptr(1))) call fail(file, what, 'H5free_memory failed')
         else
-            call h5tget_size_f(file_type, type_size, hdferr)
-            if (hdferr < 0) call fail(file, what, 'h5tget_size_f failed')
+            call h5tget_size_f(str_type, type_size, hdferr)
+            if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tget_size_f failed')
             allocate (fixed(max(1_size_t, type_size)), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
             fixed = c_char_' '
             buf = c_loc(fixed)
-            call h5aread_f(attr_id, mem_type, buf, hdferr)
-            if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
+        end if
+        call h5aread_f(attr_id, str_type, buf, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
+        if (is_variable) then
+            value = from_c_string(vl_ptr(1), '')
+            if (h5_free_memory(vl_ptr(1)) < 0) call fail(file, 'attribute '//name, 'H5free_memory failed')
+        else
             ! null-terminated, null-padded or space-padded: stop at the first NUL, drop
             ! trailing blanks
             value = trim(from_c_chars(fixed))
         end if
-
-        call h5tclose_f(mem_type, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5tclose_f failed')
-        call h5tclose_f(file_type, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5tclose_f failed')
+        call h5tclose_f(str_type, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tclose_f failed')
         call close_attr(file, name, file_id, attr_id)
     end subroutine read_attr_str
 
@@ -281,10 +263,9 @@ contains
         call open_attr(file, name, npoints_wanted, file_id, attr_id, npoints)
         allocate (values(npoints), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
-        if (npoints > 0) then
-            call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, [npoints], hdferr)
-            if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
-        end if
+        hdferr = 0
+        if (npoints > 0) call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, [npoints], hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
         call close_attr(file, name, file_id, attr_id)
     end subroutine read_attr_values
 
@@ -299,68 +280,30 @@ contains
         call fatal(EXIT_INPUT, 'h5_read', "cannot read '"//trim(what)//"' from '"//trim(file)//"': "//reason)
     end subroutine fail
 
+    !> `file` opened read-only; the .h5.part of a killed run, still marked as open by its
+    !> (SWMR) writer, by a SWMR reader, which opens it without changing it (h5_swmr_m).
     function open_file(file, what) result(file_id)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: what
         integer(hid_t) :: file_id
-
         integer :: hdferr
 
         call h5_library_init()
         if (.not. file_exists(file)) call fail(file, what, 'no such file')
         call h5fopen_f(trim(file), H5F_ACC_RDONLY_F, file_id, hdferr)
-        ! the .h5.part of a killed run is still marked as open by its (SWMR) writer: a SWMR
-        ! reader opens it without changing it (h5_swmr_m)
-        if (hdferr < 0) then
-            file_id = open_swmr_read(file)
-            hdferr = merge(0, -1, file_id >= 0)
-        end if
-        if (hdferr < 0) call fail(file, what, 'not an HDF5 file or not readable (h5fopen_f failed)')
+        if (hdferr < 0) file_id = open_swmr_read(file)
+        if (file_id < 0) call fail(file, what, 'not an HDF5 file or not readable (h5fopen_f failed)')
     end function open_file
 
     subroutine close_file(file, what, file_id)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: what
         integer(hid_t), intent(in) :: file_id
-
         integer :: hdferr
 
         call h5fclose_f(file_id, hdferr)
         if (hdferr < 0) call fail(file, what, 'h5fclose_f failed')
     end subroutine close_file
-
-    !> Open `file` and dataset `dset`, check its rank is `rank`, return its Fortran dims.
-    subroutine open_dataset(file, dset, rank, file_id, dset_id, dims)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
-        integer, intent(in) :: rank
-        integer(hid_t), intent(out) :: file_id
-        integer(hid_t), intent(out) :: dset_id
-        integer(hsize_t), intent(out) :: dims(rank)
-
-        integer(hid_t) :: space_id
-        integer(hsize_t) :: maxdims(rank)
-        integer :: hdferr, file_rank
-        character(len=12) :: rank_text
-
-        file_id = open_file(file, dset)
-        call h5dopen_f(file_id, trim(dset), dset_id, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'no such dataset (h5dopen_f failed)')
-        call h5dget_space_f(dset_id, space_id, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'h5dget_space_f failed')
-        call h5sget_simple_extent_ndims_f(space_id, file_rank, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'h5sget_simple_extent_ndims_f failed')
-        if (file_rank /= rank) then
-            write (rank_text, '(i0)') file_rank
-            call fail(file, dset, 'dataset has rank '//trim(rank_text)//', expected ' &
-                      //merge('1', '2', rank == 1))
-        end if
-        ! returns the rank on success, -1 on failure
-        call h5sget_simple_extent_dims_f(space_id, dims, maxdims, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'h5sget_simple_extent_dims_f failed')
-        call h5sclose_f(space_id, hdferr)
-        if (hdferr < 0) call fail(file, dset, 'h5sclose_f failed')
-    end subroutine open_dataset
 
     !> Open `file` and root attribute `name`, with its number of elements; when
     !> npoints_wanted >= 0 it must be that.
@@ -372,24 +315,18 @@ contains
         integer(hsize_t), intent(out) :: npoints
         integer(hid_t) :: space_id
         integer :: hdferr
-        logical :: exists
-        character(len=:), allocatable :: what
 
-        what = 'attribute '//name
-        file_id = open_file(file, what)
-        call h5aexists_f(file_id, name, exists, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5aexists_f failed')
-        if (.not. exists) call fail(file, what, 'no such root attribute')
+        file_id = open_file(file, 'attribute '//name)
         call h5aopen_f(file_id, name, attr_id, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5aopen_f failed')
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'no such root attribute (h5aopen_f failed)')
         call h5aget_space_f(attr_id, space_id, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5aget_space_f failed')
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aget_space_f failed')
         call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5sget_simple_extent_npoints_f failed')
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sget_simple_extent_npoints_f failed')
         call h5sclose_f(space_id, hdferr)
-        if (hdferr < 0) call fail(file, what, 'h5sclose_f failed')
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sclose_f failed')
         if (npoints_wanted >= 0 .and. npoints /= npoints_wanted) &
-            call fail(file, what, 'attribute is not a scalar')
+            call fail(file, 'attribute '//name, 'attribute is not a scalar')
     end subroutine open_attr
 
     subroutine close_attr(file, name, file_id, attr_id)
@@ -397,7 +334,6 @@ contains
         character(len=*), intent(in) :: name
         integer(hid_t), intent(in) :: file_id
         integer(hid_t), intent(in) :: attr_id
-
         integer :: hdferr
 
         call h5aclose_f(attr_id, hdferr)

@@ -61,10 +61,8 @@ contains
     !> Switch the file to SWMR writing (flush(), once the file holds everything the run will
     !> write into until its end, and after each leave_swmr).
     module procedure writer_start_swmr
-        integer :: hdferr
 
-        call start_swmr_write(w%file_id, hdferr)
-        call w%check(hdferr, 'H5Fstart_swmr_write')
+        call w%check(start_swmr_write(w%file_id), 'H5Fstart_swmr_write')
         w%swmr = .true.
     end procedure writer_start_swmr
 

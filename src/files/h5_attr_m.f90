@@ -6,7 +6,6 @@
 module h5_attr_m
     use iso_c_binding, only: c_ptr, c_char, c_loc, c_null_char
     use kinds_m, only: dp
-    use errors_m, only: check_allocation
     use hdf5, only: hid_t, hsize_t, h5screate_f, h5screate_simple_f, h5sclose_f, h5acreate_f, h5aclose_f, &
                     h5awrite_f, h5aexists_f, h5adelete_f, h5tcopy_f, h5tclose_f, h5tset_cset_f, &
                     H5S_SCALAR_F, H5S_NULL_F, H5T_STRING, H5T_CSET_UTF8_F, H5T_IEEE_F64LE, H5T_STD_I32LE, &
@@ -63,24 +62,16 @@ contains
         character(len=*), intent(in) :: name
         character(len=*), intent(in) :: value
         character(len=:), allocatable, intent(inout) :: failed
-        integer(hid_t) :: type_id
-        integer :: hdferr, i, stat
-        character(len=256) :: message
-        character(kind=c_char), allocatable, target :: chars(:)
+        character(kind=c_char, len=len(value) + 1), target :: chars
         type(c_ptr), target :: str_ptr(1)
+        integer(hid_t) :: type_id
+        integer :: hdferr
 
-        allocate (chars(len(value) + 1), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the attribute '''//name//'''')
-        do i = 1, len(value)
-            chars(i) = value(i:i)
-        end do
-        chars(len(value) + 1) = c_null_char
+        chars = value//c_null_char
         str_ptr(1) = c_loc(chars)
         call h5tcopy_f(H5T_STRING, type_id, hdferr)
-        if (hdferr < 0) then
-            failed = 'h5tcopy_f (string type) for attribute '//name
-            return
-        end if
+        if (hdferr < 0) failed = 'h5tcopy_f (string type) for attribute '//name
+        if (failed /= '') return
         call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
         if (hdferr < 0) failed = 'h5tset_cset_f for attribute '//name
         if (failed == '') call put_values(obj_id, name, type_id, type_id, -1, c_loc(str_ptr), failed)
@@ -100,28 +91,19 @@ contains
         logical :: exists
         integer :: hdferr
 
-        if (n < 0) then
-            call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
-        else if (n == 0) then
-            call h5screate_f(H5S_NULL_F, space_id, hdferr)
-        else
-            call h5screate_simple_f(1, [int(n, hsize_t)], space_id, hdferr)
-        end if
+        if (n < 0) call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+        if (n == 0) call h5screate_f(H5S_NULL_F, space_id, hdferr)
+        if (n > 0) call h5screate_simple_f(1, [int(n, hsize_t)], space_id, hdferr)
         if (hdferr < 0) failed = 'h5screate_f for attribute '//name
         if (failed == '') call h5aexists_f(obj_id, name, exists, hdferr)
         if (failed == '' .and. hdferr < 0) failed = 'h5aexists_f attribute '//name
-        if (failed == '' .and. exists) then
-            call h5adelete_f(obj_id, name, hdferr)
-            if (hdferr < 0) failed = 'h5adelete_f attribute '//name
-        end if
+        if (failed == '' .and. exists) call h5adelete_f(obj_id, name, hdferr)
+        if (failed == '' .and. hdferr < 0) failed = 'h5adelete_f attribute '//name
+        if (failed == '') call h5acreate_f(obj_id, name, file_type, space_id, attr_id, hdferr)
+        if (failed == '' .and. hdferr < 0) failed = 'h5acreate_f attribute '//name
         if (failed /= '') return
-        call h5acreate_f(obj_id, name, file_type, space_id, attr_id, hdferr)
-        if (hdferr < 0) then
-            failed = 'h5acreate_f attribute '//name
-            return
-        end if
         if (n /= 0) call h5awrite_f(attr_id, mem_type, buf, hdferr)
-        if (n /= 0 .and. hdferr < 0) failed = 'h5awrite_f attribute '//name
+        if (hdferr < 0) failed = 'h5awrite_f attribute '//name
         call h5aclose_f(attr_id, hdferr)
         if (hdferr < 0 .and. failed == '') failed = 'h5aclose_f attribute '//name
         call h5sclose_f(space_id, hdferr)

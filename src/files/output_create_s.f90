@@ -79,79 +79,61 @@ contains
     !> /mesh/x with the nodes x(0:s), and the empty extendible /series and /snapshots datasets:
     !> the series 1D, chunks of SERIES_CHUNK entries written SERIES_BUFFER_SIZE at a time;
     !> /snapshots/t 1D, the fields (s+1, n_snap) growing by one row per snapshot, one row per
-    !> chunk, so that each append writes whole chunks (see h5pset_cache_f).
+    !> chunk, so that each append writes whole chunks (see h5pset_cache_f). Dimension scales
+    !> (netCDF-4 dimensions and coordinates, docs/output.md): /series/t of every /series
+    !> dataset; /snapshots/t and x of every /snapshots field, where /snapshots/x is /mesh/x
+    !> itself (a second link to it: netCDF and xarray look for a dimension's coordinate in the
+    !> group of the variable or above).
     subroutine create_datasets(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
         integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
         integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t]
         integer(hsize_t) :: row(2)
-        integer :: k
+        integer :: hdferr, k
 
         call w%make_group('/mesh')
         ! /mesh/x stays open until finish(), for describe_si
-        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id)
-        call w%describe(w%mesh_x_id, '/mesh/x', &
-                        'position x along the rod (nondimensional, scale: position)', '1')
+        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id, &
+                          'position x along the rod (nondimensional, scale: position)', '1', scale='x')
         call w%make_group('/series')
+        associate (t => SERIES(S_T))
+            call w%create_extendible('/series/'//trim(t%name), H5T_IEEE_F64LE, EMPTY, CHUNK, w%series_ids(S_T), &
+                                     described(t%long_name, t%scale), t%units, scale='t')
+        end associate
         do k = 1, N_SERIES
-            associate (path => '/series/'//trim(SERIES(k)%name))
-                call w%create_extendible(path, &
-                                         merge(H5T_STD_I32LE, H5T_IEEE_F64LE, SERIES(k)%is_integer), &
-                                         EMPTY, CHUNK, w%series_ids(k))
-                call w%describe(w%series_ids(k), path, described(SERIES(k)%long_name, SERIES(k)%scale), &
-                                SERIES(k)%units)
+            if (k == S_T) cycle
+            associate (series => SERIES(k))
+                call w%create_extendible('/series/'//trim(series%name), &
+                                         merge(H5T_STD_I32LE, H5T_IEEE_F64LE, series%is_integer), EMPTY, CHUNK, &
+                                         w%series_ids(k), described(series%long_name, series%scale), &
+                                         series%units, coords=[w%series_ids(S_T)])
             end associate
         end do
         call w%make_group('/snapshots')
-        call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, w%snap_t_id)
-        call w%describe(w%snap_t_id, '/snapshots/t', &
-                        described(SERIES(S_T)%long_name, SERIES(S_T)%scale), SERIES(S_T)%units)
+        call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, w%snap_t_id, &
+                                 described(SERIES(S_T)%long_name, SERIES(S_T)%scale), SERIES(S_T)%units, scale='t')
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
         do k = 1, N_SNAPSHOT_FIELDS
-            associate (field => SNAPSHOTS(k), path => '/snapshots/'//trim(SNAPSHOTS(k)%name))
-                call w%create_extendible(path, H5T_IEEE_F64LE, [row(1), 0_hsize_t], row, &
-                                         w%snap_field_ids(k), compress=.true.)
-                call w%describe(w%snap_field_ids(k), path, &
-                                described(field%long_name, field%scale), field%units)
+            associate (field => SNAPSHOTS(k))
+                call w%create_extendible('/snapshots/'//trim(field%name), H5T_IEEE_F64LE, [row(1), 0_hsize_t], &
+                                         row, w%snap_field_ids(k), described(field%long_name, field%scale), &
+                                         field%units, coords=[w%snap_t_id, w%mesh_x_id], compress=.true.)
             end associate
         end do
-        call name_dimensions(w)
-    end subroutine create_datasets
-
-    !> The dimension scales (netCDF-4 dimensions and coordinates, docs/output.md): /series/t
-    !> of every /series dataset; /snapshots/t and x of every /snapshots field, where
-    !> /snapshots/x is /mesh/x itself (a second link to it: netCDF and xarray look for a
-    !> dimension's coordinate in the group of the variable or above).
-    subroutine name_dimensions(w)
-        class(h5_writer_t), intent(inout) :: w
-        integer :: hdferr, k
-
-        call w%make_scale(w%mesh_x_id, 'x', '/mesh/x')
         call h5lcreate_hard_f(w%file_id, '/mesh/x', w%file_id, '/snapshots/x', hdferr)
         call w%check(hdferr, 'h5lcreate_hard_f /snapshots/x')
-        call w%make_scale(w%series_ids(S_T), 't', '/series/t')
-        do k = 1, N_SERIES
-            if (k == S_T) cycle
-            call w%attach_scale(w%series_ids(k), w%series_ids(S_T), 0, '/series/'//trim(SERIES(k)%name))
-        end do
-        call w%make_scale(w%snap_t_id, 't', '/snapshots/t')
-        do k = 1, N_SNAPSHOT_FIELDS
-            associate (path => '/snapshots/'//trim(SNAPSHOTS(k)%name))
-                call w%attach_scale(w%snap_field_ids(k), w%snap_t_id, 0, path)
-                call w%attach_scale(w%snap_field_ids(k), w%mesh_x_id, 1, path)
-            end associate
-        end do
-    end subroutine name_dimensions
+    end subroutine create_datasets
 
-    !> Create an empty dataset at `path` whose last dimension is unlimited.
-    !> dims gives the initial size (last entry 0), chunk the chunk shape.
+    !> Create an empty dataset at `path` whose last dimension is unlimited, dims its initial
+    !> size (last entry 0), chunk the chunk shape, and label it (label()).
     !> With compress (the snapshot fields only) and compression > 0: shuffle and deflate.
     !> Only datasets whose chunks are written once, whole, are compressed: rewriting a
     !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
     !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
     !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
-    !> Arguments (w, path, file_type, dims, chunk, dset_id, compress): output_m's interface.
+    !> Arguments (w, path, file_type, dims, chunk, dset_id, long_name, units, si, scale,
+    !> coords, compress): output_m's interface.
     module procedure writer_create_extendible
         logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
@@ -182,6 +164,7 @@ contains
         call h5pclose_f(dcpl_id, hdferr)
         call w%check(hdferr, 'h5pclose_f (dataset creation) '//path)
         call close_spaces(w, path, space_id)
+        call label(w, dset_id, path, long_name, units, si, scale, coords)
     end procedure writer_create_extendible
 
     !> Grow extendible dataset dset_id (`what`) along its last dimension from `offset` to
@@ -250,13 +233,15 @@ contains
     end procedure writer_make_group
 
     !> A 1D dataset at `path` of type file_type (float64, or int32 from whole numbers),
-    !> written once and whole: dset_id, open.
-    subroutine create_fixed(w, path, file_type, values, dset_id)
+    !> written once and whole, and labelled (label()): dset_id, open.
+    subroutine create_fixed(w, path, file_type, values, dset_id, long_name, units, si, scale, coords)
         class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: path
+        character(len=*), intent(in) :: path, long_name, units
         integer(hid_t), intent(in) :: file_type
         real(dp), intent(in) :: values(:)
         integer(hid_t), intent(out) :: dset_id
+        character(len=*), intent(in), optional :: si, scale
+        integer(hid_t), intent(in), optional :: coords(:)
         integer(hid_t) :: space_id
         integer :: hdferr
 
@@ -273,6 +258,7 @@ contains
             call w%check(hdferr, 'h5dwrite_f '//path)
         end if
         call close_spaces(w, path, space_id)
+        call label(w, dset_id, path, long_name, units, si, scale, coords)
     end subroutine create_fixed
 
     !> /events/t (float64) and /events/kind (int32, +1 onset, -1 release), n_events long
@@ -284,16 +270,12 @@ contains
         call w%need_open('write_events()')
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call w%make_group('/events')
-        call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id)
-        call w%describe(t_id, '/events/t', described(trim(SERIES(S_T)%long_name)//' of a change of the '// &
-                        'contact state (interpolated in the step that crosses it)', SERIES(S_T)%scale), &
-                        SERIES(S_T)%units, si=SERIES(S_T)%scale)
-        call w%make_scale(t_id, 't', '/events/t')
-        call create_fixed(w, '/events/kind', H5T_STD_I32LE, real(kind, dp), kind_id)
-        call w%describe(kind_id, '/events/kind', &
-                        'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
-                        '1', si='')
-        call w%attach_scale(kind_id, t_id, 0, '/events/kind')
+        call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id, described(trim(SERIES(S_T)%long_name)// &
+                          ' of a change of the contact state (interpolated in the step that crosses it)', &
+                          SERIES(S_T)%scale), SERIES(S_T)%units, si=SERIES(S_T)%scale, scale='t')
+        call create_fixed(w, '/events/kind', H5T_STD_I32LE, real(kind, dp), kind_id, &
+                          'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
+                          '1', si='', coords=[t_id])
         call w%close_dataset(kind_id, '/events/kind')
         call w%close_dataset(t_id, '/events/t')
     end procedure writer_write_events
@@ -306,22 +288,38 @@ contains
         if (scale /= '') text = text//' (nondimensional, scale: '//trim(scale)//')'
     end procedure described
 
-    !> The CF-style attributes of a dataset: long_name and units ('1': nondimensional), and
-    !> for one created after describe_si (/snapshots/native, /events) whose quantity has
-    !> fields_m's scale `si`, si_factor and si_units (none without &material).
-    module procedure writer_describe
-        integer :: k
+    !> The CF-style attributes of dataset dset_id (`path`): long_name and units ('1':
+    !> nondimensional), and for one created after describe_si (/snapshots/native, /events)
+    !> whose quantity has fields_m's scale `si`, si_factor and si_units (none without
+    !> &material). With `scale`, it is the dimension scale (netCDF-4: the coordinate
+    !> variable) of the dimension of that name; coords(j), if given, is the dimension scale
+    !> of its dimension j, counted as h5py counts them (1: the slowest-varying; the Fortran
+    !> API counts them so, C and h5py from 0).
+    subroutine label(w, dset_id, path, long_name, units, si, scale, coords)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        character(len=*), intent(in) :: path, long_name, units
+        character(len=*), intent(in), optional :: si, scale
+        integer(hid_t), intent(in), optional :: coords(:)
+        integer :: hdferr, k
 
-        if (dset_id < 0) call w%fail('internal error: no dataset '//what)
         call w%attr('long_name', trim(long_name), on=dset_id)
         call w%attr('units', trim(units), on=dset_id)
-        if (.not. present(si)) return
-        do k = 1, w%n_si
-            if (w%si_names(k) /= si) cycle
-            call w%attr('si_factor', w%si_factors(k), on=dset_id)
-            call w%attr('si_units', trim(w%si_units(k)), on=dset_id)
+        if (present(si)) then
+            do k = 1, w%n_si
+                if (w%si_names(k) == si) call put_si(w, dset_id, w%si_factors(k), trim(w%si_units(k)))
+            end do
+        end if
+        if (present(scale)) then
+            call h5dsset_scale_f(dset_id, hdferr, scale)
+            call w%check(hdferr, 'h5dsset_scale_f '//path)
+        end if
+        if (.not. present(coords)) return
+        do k = 1, size(coords)
+            call h5dsattach_scale_f(dset_id, coords(k), k, hdferr)
+            call w%check(hdferr, 'h5dsattach_scale_f '//path)
         end do
-    end procedure writer_describe
+    end subroutine label
 
     !> Attributes si_factor and si_units on every dataset whose quantity has fields_m's
     !> scale `scale`: its value in SI units is si_factor times the stored value.
@@ -334,42 +332,24 @@ contains
         w%si_factors(w%n_si) = factor
         w%si_units(w%n_si) = si_units
         do k = 1, N_SERIES
-            if (SERIES(k)%scale /= scale) cycle
-            call w%attr('si_factor', factor, on=w%series_ids(k))
-            call w%attr('si_units', si_units, on=w%series_ids(k))
+            if (SERIES(k)%scale == scale) call put_si(w, w%series_ids(k), factor, si_units)
         end do
-        if (SERIES(S_T)%scale == scale) then
-            call w%attr('si_factor', factor, on=w%snap_t_id)
-            call w%attr('si_units', si_units, on=w%snap_t_id)
-        end if
+        if (SERIES(S_T)%scale == scale) call put_si(w, w%snap_t_id, factor, si_units)
         do k = 1, N_SNAPSHOT_FIELDS
-            if (SNAPSHOTS(k)%scale /= scale) cycle
-            call w%attr('si_factor', factor, on=w%snap_field_ids(k))
-            call w%attr('si_units', si_units, on=w%snap_field_ids(k))
+            if (SNAPSHOTS(k)%scale == scale) call put_si(w, w%snap_field_ids(k), factor, si_units)
         end do
-        if (scale == 'position') then
-            call w%attr('si_factor', factor, on=w%mesh_x_id)
-            call w%attr('si_units', si_units, on=w%mesh_x_id)
-        end if
+        if (scale == 'position') call put_si(w, w%mesh_x_id, factor, si_units)
     end procedure writer_describe_si
 
-    !> Make dataset dset_id (1D) a dimension scale: the coordinate of the dimension `name`
-    !> (netCDF-4: a coordinate variable, named as the dataset).
-    module procedure writer_make_scale
-        integer :: hdferr
+    !> Attributes si_factor and si_units of dataset dset_id.
+    subroutine put_si(w, dset_id, factor, si_units)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(in) :: dset_id
+        real(dp), intent(in) :: factor
+        character(len=*), intent(in) :: si_units
 
-        call h5dsset_scale_f(dset_id, hdferr, name)
-        call w%check(hdferr, 'h5dsset_scale_f '//what)
-    end procedure writer_make_scale
-
-    !> Attach dimension scale scale_id to dimension `dim` of dataset dset_id, counted as h5py
-    !> and C count them (0: the first, the slowest-varying; Fortran sees it last). The
-    !> Fortran API takes that index plus 1 (measured with h5py: 0 fails, 1 is C's 0).
-    module procedure writer_attach_scale
-        integer :: hdferr
-
-        call h5dsattach_scale_f(dset_id, scale_id, dim + 1, hdferr)
-        call w%check(hdferr, 'h5dsattach_scale_f '//what)
-    end procedure writer_attach_scale
+        call w%attr('si_factor', factor, on=dset_id)
+        call w%attr('si_units', si_units, on=dset_id)
+    end subroutine put_si
 
 end submodule output_create_s

@@ -67,12 +67,10 @@ contains
         do part = 1, size(GROUPS)
             call w%make_group(trim(GROUPS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                call w%create_extendible(path_of(part, k), H5T_IEEE_F64LE, [0_hsize_t], &
-                                         [int(SERIES_CHUNK, hsize_t)], w%estimate_ids(k, part))
-                call w%describe(w%estimate_ids(k, part), path_of(part, k), &
-                                'estimated relative L2 error of '// &
-                                trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
-                                ' at each snapshot '//trim(WHAT(part)), '1')
+                call w%create_extendible(path_of(part, k), H5T_IEEE_F64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], &
+                                         w%estimate_ids(k, part), 'estimated relative L2 error of '// &
+                                         trim(FIELDS(OUTPUT_ORDER(k))%long_name)//' at each snapshot '// &
+                                         trim(WHAT(part)), '1')
             end do
         end do
     end subroutine open_estimate

@@ -58,13 +58,23 @@ contains
         call w%check(hdferr, 'h5pclose_f (file access)')
     end procedure writer_open_file
 
-    !> Switch the file to SWMR writing (flush(), once the file holds everything the run will
-    !> write into until its end, and after each leave_swmr).
-    module procedure writer_start_swmr
+    !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
+    !> crash leaves everything appended so far readable in the .part file; then (re)start
+    !> SWMR writing (until the next structural change, flushes are then crash-safe), except
+    !> while finish() closes the file.
+    module procedure writer_flush
+        integer :: hdferr
 
+        call w%need_open('flush()')
+        call w%flush_series()
+        call writer_flush_estimate(w)
+        call reserve(w)
+        call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
+        call w%check(hdferr, 'h5fflush_f')
+        if (w%swmr .or. w%closing) return
         call w%check(start_swmr_write(w%file_id), 'H5Fstart_swmr_write')
         w%swmr = .true.
-    end procedure writer_start_swmr
+    end procedure writer_flush
 
     !> Leave SWMR writing before a structural change (a new object or attribute, a deletion):
     !> close the file, which a SWMR close leaves clean and complete, and reopen it with every
@@ -88,7 +98,7 @@ contains
             call w%check(hdferr, 'h5dclose_f '//trim(names(k)))
         end do
         call writer_close_checkpoint(w)
-        call w%reserve()
+        call reserve(w)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f (leaving SWMR writing)')
         w%swmr = .false.
@@ -192,7 +202,8 @@ contains
     !> size limit) would write the superblock with the new end of the file but not all that
     !> lies before it: a file that no longer opens ('truncated file'). Failing here instead
     !> leaves the file as the previous flush wrote it, with its checkpoint.
-    module procedure writer_reserve
+    subroutine reserve(w)
+        class(h5_writer_t), intent(inout) :: w
         integer(hsize_t) :: bytes
         integer :: hdferr
         logical :: ok
@@ -202,7 +213,7 @@ contains
         call w%check(hdferr, 'h5fget_filesize_f')
         call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
         if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
-    end procedure writer_reserve
+    end subroutine reserve
 
     !> Abandon the file and stop with a message naming the file and the reason. During
     !> create() the fault is the &output prefix; later it is a write failure.

@@ -129,15 +129,11 @@ module output_m
         procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
-        procedure, private :: reserve => writer_reserve
         procedure, private :: attr_target => writer_attr_target
         procedure, private :: make_group => writer_make_group
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: append_rows => writer_append_rows
         procedure, private :: close_dataset => writer_close_dataset
-        procedure, private :: describe => writer_describe
-        procedure, private :: make_scale => writer_make_scale
-        procedure, private :: attach_scale => writer_attach_scale
         procedure, private :: leave_swmr => writer_leave_swmr
     end type h5_writer_t
 
@@ -158,17 +154,13 @@ module output_m
             logical, intent(in) :: create
         end subroutine writer_open_file
 
-        module subroutine writer_start_swmr(w)
+        module subroutine writer_flush(w)
             class(h5_writer_t), intent(inout) :: w
-        end subroutine writer_start_swmr
+        end subroutine writer_flush
 
         module subroutine writer_leave_swmr(w)
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_leave_swmr
-
-        module subroutine writer_reserve(w)
-            class(h5_writer_t), intent(inout) :: w
-        end subroutine writer_reserve
 
         module subroutine writer_fail(w, reason)
             class(h5_writer_t), intent(inout) :: w
@@ -211,12 +203,15 @@ module output_m
             character(len=*), intent(in) :: path
         end subroutine writer_make_group
 
-        module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, compress)
+        module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, long_name, units, &
+                                                   si, scale, coords, compress)
             class(h5_writer_t), intent(inout) :: w
-            character(len=*), intent(in) :: path
+            character(len=*), intent(in) :: path, long_name, units
             integer(hid_t), intent(in) :: file_type
             integer(hsize_t), intent(in) :: dims(:), chunk(:)
             integer(hid_t), intent(out) :: dset_id
+            character(len=*), intent(in), optional :: si, scale
+            integer(hid_t), intent(in), optional :: coords(:)
             logical, intent(in), optional :: compress
         end subroutine writer_create_extendible
 
@@ -255,31 +250,11 @@ module output_m
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_close_checkpoint
 
-        module subroutine writer_describe(w, dset_id, what, long_name, units, si)
-            class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(in) :: dset_id
-            character(len=*), intent(in) :: what, long_name, units
-            character(len=*), intent(in), optional :: si
-        end subroutine writer_describe
-
         module subroutine writer_describe_si(w, scale, factor, si_units)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: scale, si_units
             real(dp), intent(in) :: factor
         end subroutine writer_describe_si
-
-        module subroutine writer_make_scale(w, dset_id, name, what)
-            class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(in) :: dset_id
-            character(len=*), intent(in) :: name, what
-        end subroutine writer_make_scale
-
-        module subroutine writer_attach_scale(w, dset_id, scale_id, dim, what)
-            class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(in) :: dset_id, scale_id
-            integer, intent(in) :: dim
-            character(len=*), intent(in) :: what
-        end subroutine writer_attach_scale
 
         pure module function described(long_name, scale) result(text)
             character(len=*), intent(in) :: long_name, scale
@@ -373,24 +348,6 @@ contains
         obj_id = w%file_id
         if (present(on)) obj_id = on
     end function writer_attr_target
-
-    !> Write the buffered series entries and flush HDF5's caches to disk, so that a later
-    !> crash leaves everything appended so far readable in the .part file; then (re)start
-    !> SWMR writing, which makes the next flushes crash-safe (output_file_s).
-    subroutine writer_flush(w)
-        class(h5_writer_t), intent(inout) :: w
-
-        integer :: hdferr
-
-        call w%need_open('flush()')
-        call w%flush_series()
-        call writer_flush_estimate(w)
-        call w%reserve()
-        call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
-        call w%check(hdferr, 'h5fflush_f')
-        ! from here on until the next structural change, flushes are crash-safe (output_file_s)
-        if (.not. w%swmr .and. .not. w%closing) call writer_start_swmr(w)
-    end subroutine writer_flush
 
     ! ---------------------------------------------------------------- private helpers
 

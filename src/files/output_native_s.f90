@@ -53,21 +53,14 @@ contains
         call w%leave_swmr()
         call w%make_group(GROUP)
         w%native_created = .true.
-        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, EMPTY, &
-                                 [int(VALUES_CHUNK, hsize_t)], x_id)
-        call w%describe(x_id, GROUP//'/x', &
-                        'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
-                        '1', si='position')
-        call w%make_scale(x_id, 'x', GROUP//'/x')
+        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, EMPTY, [int(VALUES_CHUNK, hsize_t)], x_id, &
+                                 'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
+                                 '1', si='position', scale='x')
         do k = 1, N_SNAPSHOT_FIELDS
             associate (field => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
-                call w%create_extendible(path, H5T_IEEE_F64LE, EMPTY, &
-                                         [int(VALUES_CHUNK, hsize_t)], dset_id)
-                call w%describe(dset_id, path, &
-                                described(trim(field%long_name)// &
-                                          ' at the nodes of its own mesh (native/x)', field%scale), &
-                                field%units, si=field%scale)
-                call w%attach_scale(dset_id, x_id, 0, path)
+                call w%create_extendible(path, H5T_IEEE_F64LE, EMPTY, [int(VALUES_CHUNK, hsize_t)], dset_id, &
+                                         described(trim(field%long_name)//' at the nodes of its own mesh (native/x)', &
+                                                   field%scale), field%units, si=field%scale, coords=[x_id])
                 call w%close_dataset(dset_id, path)
             end associate
         end do
@@ -82,10 +75,8 @@ contains
         character(len=*), intent(in) :: name, long_name
         integer(hid_t) :: dset_id
 
-        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, [0_hsize_t], &
-                                 [int(SERIES_CHUNK, hsize_t)], dset_id)
-        call w%describe(dset_id, GROUP//'/'//name, long_name, '1', si='')
-        call w%attach_scale(dset_id, w%snap_t_id, 0, GROUP//'/'//name)
+        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], &
+                                 dset_id, long_name, '1', si='', coords=[w%snap_t_id])
         call w%close_dataset(dset_id, GROUP//'/'//name)
     end subroutine create_index
 

@@ -2,16 +2,15 @@
 !> command, from which source, with which HDF5 library and compiler, as root attributes
 !> (record_provenance); the time and host name come from src/files/provenance_c.c.
 module provenance_m
-    use iso_c_binding, only: c_char, c_int, c_null_char
+    use iso_c_binding, only: c_char, c_int
     use iso_fortran_env, only: compiler_version
     use hdf5, only: h5get_libversion_f
     use h5_read_m, only: h5_library_init
     use strings_m, only: int_str, from_c_chars
-    use errors_m, only: check_allocation
     use output_m, only: h5_writer_t
     implicit none
     private
-    public :: record_provenance, utc_now, host_name, command_line, hdf5_version, fortran_compiler
+    public :: record_provenance
 
     abstract interface
         !> A helper of provenance_c.c: writes a NUL-terminated string of at most n characters
@@ -29,34 +28,21 @@ module provenance_m
 
 contains
 
-    !> The root attributes version (program_version) and the provenance: created,
-    !> source_version, host, command_line, hdf5_version, compiler_version.
+    !> The root attributes version (program_version) and the provenance: created (the UTC
+    !> time, ISO 8601: '2026-11-23T07:30:00Z'), source_version, host (gethostname(2)),
+    !> command_line, hdf5_version, compiler_version; 'unknown' for any it cannot get.
     subroutine record_provenance(writer, program_version, source_version)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: program_version, source_version
 
         call writer%attr('version', program_version)
-        call writer%attr('created', utc_now())
+        call writer%attr('created', c_text(c_utc_now))
         call writer%attr('source_version', source_version)
-        call writer%attr('host', host_name())
+        call writer%attr('host', c_text(c_hostname))
         call writer%attr('command_line', command_line())
         call writer%attr('hdf5_version', hdf5_version())
-        call writer%attr('compiler_version', fortran_compiler())
+        call writer%attr('compiler_version', compiler_version())
     end subroutine record_provenance
-
-    !> The current time in UTC, ISO 8601: '2026-11-23T07:30:00Z' ('unknown' if the clock fails).
-    function utc_now() result(text)
-        character(len=:), allocatable :: text
-
-        text = c_text(c_utc_now)
-    end function utc_now
-
-    !> The host name (gethostname(2)); 'unknown' if it fails.
-    function host_name() result(text)
-        character(len=:), allocatable :: text
-
-        text = c_text(c_hostname)
-    end function host_name
 
     !> What the C helper `helper` writes, or 'unknown' when it fails.
     function c_text(helper) result(text)
@@ -72,15 +58,11 @@ contains
     function command_line() result(text)
         character(len=:), allocatable :: text
         integer :: length, stat
-        character(len=256) :: message
 
+        text = 'unknown'
         call get_command(length=length, status=stat)
-        if (stat > 0 .or. length == 0) then
-            text = 'unknown'
-            return
-        end if
-        allocate (character(len=length) :: text, stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the command line')
+        if (stat > 0 .or. length == 0) return
+        text = repeat(' ', length)
         call get_command(text)
     end function command_line
 
@@ -91,18 +73,8 @@ contains
 
         call h5_library_init()
         call h5get_libversion_f(major, minor, release, hdferr)
-        if (hdferr < 0) then
-            text = 'unknown'
-        else
-            text = int_str(major)//'.'//int_str(minor)//'.'//int_str(release)
-        end if
+        text = 'unknown'
+        if (hdferr >= 0) text = int_str(major)//'.'//int_str(minor)//'.'//int_str(release)
     end function hdf5_version
-
-    !> The Fortran compiler that built this program (compiler_version() of iso_fortran_env).
-    function fortran_compiler() result(text)
-        character(len=:), allocatable :: text
-
-        text = compiler_version()
-    end function fortran_compiler
 
 end module provenance_m

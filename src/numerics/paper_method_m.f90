@@ -69,7 +69,7 @@ contains
         type(model_t), intent(in) :: model
         type(mesh_t), intent(in) :: mesh
         class(contact_law_t), intent(in) :: law
-        real(dp), intent(in) :: rhs(:)
+        real(dp), intent(in), contiguous :: rhs(:)
         type(state_t), intent(inout) :: state
         real(dp), intent(in) :: dt
         type(step_result_t), intent(inout) :: result

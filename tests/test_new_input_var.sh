@@ -29,7 +29,7 @@ pass() { echo "PASS: $*"; }
 
 # --- the one edit ------------------------------------------------------------------------
 for f in base/kinds_m base/errors_m base/reals_m base/strings_m input/config_m input/input_vars_m input/namelist_text_m \
-         input/overrides_m input/material_m input/config_reader_m; do
+         input/material_m input/config_reader_m; do
     cp "$src/src/$f.f90" . || exit 1
 done
 sed -i 's|^\( *\)real(dp) :: t_end = 1.0_dp$|&\n\1real(dp) :: knob = 2.5_dp   !< added by test_new_input_var|' config_m.f90
@@ -64,7 +64,7 @@ program knob
 end program knob
 EOF
 if ! "$fc" -std=f2018 -fimplicit-none -Igen -Jmod kinds_m.f90 errors_m.f90 reals_m.f90 strings_m.f90 config_m.f90 \
-        input_vars_m.f90 namelist_text_m.f90 overrides_m.f90 material_m.f90 config_reader_m.f90 knob.f90 \
+        input_vars_m.f90 namelist_text_m.f90 material_m.f90 config_reader_m.f90 knob.f90 \
         -o knob > compile.log 2>&1; then
     echo "FAIL: the input layer does not compile with the new variable:"
     head -20 compile.log

@@ -1,5 +1,5 @@
 !> The namelist reader: read_config reads the input text (namelist_text_m finds and splits
-!> its groups), then the --set overrides (overrides_m), each assignment by a namelist read
+!> its groups), then the --set overrides (namelist_text_m too), each assignment by a namelist read
 !> of its own so that a bad value names its variable; the input variables and their kinds
 !> are those of input_vars_m. Only what the reader alone can know is checked here (text,
 !> syntax, names, types, &material); value ranges are checked by validate_m.
@@ -11,9 +11,8 @@ module config_reader_m
     use config_m, only: config_t, initial_t
     use strings_m, only: lower, excerpt, quoted, identifier_at, int_str, format_real
     use input_vars_m, only: read_namelist, var_kind, kind_description
-    use namelist_text_m, only: string_t, group_t, assignments_t, read_source, strip_comments, find_groups, &
-                               split_group, origin, assignment_lhs, assignment_value, piece
-    use overrides_m, only: override_t, parse_override, override_summary
+    use namelist_text_m, only: string_t, group_t, read_source, strip_comments, find_groups, split_group, &
+                               assignment_lhs, assignment_value, parse_override, override_summary
     use material_m, only: check_material
     implicit none
     private
@@ -35,10 +34,7 @@ contains
         type(config_t), intent(out) :: cfg
         character(len=*), intent(in), optional :: overrides(:)
         type(string_t), allocatable :: lines(:)
-        type(group_t), allocatable :: groups(:)
-        type(override_t), allocatable :: sets(:)
-        type(string_t) :: set_line(1)
-        type(group_t) :: set_group
+        type(group_t), allocatable :: groups(:), sets(:)
         integer :: k, stat
         character(len=LEN_MSG) :: msg
         logical :: halt_on_overflow
@@ -65,15 +61,10 @@ contains
         call find_groups(lines, groups)
         if (size(groups) == 0 .and. size(sets) == 0) call no_group(source)
         call check_model_material(groups, sets)
+        ! each override a group of one assignment, read like a group of the text
+        groups = [groups, sets]
         do k = 1, size(groups)
-            call read_group(lines, groups(k), cfg)
-        end do
-        do k = 1, size(sets)
-            ! '&group lhs = value /' on a line of its own, read like a group of the text
-            set_line(1)%s = '&' // sets(k)%group // ' ' // sets(k)%lhs // ' = ' // sets(k)%value // ' /'
-            set_group = group_t(name=sets(k)%group, first=[1, 1], body=[1, 2 + len(sets(k)%group)], &
-                                term=[1, len(set_line(1)%s)], last=[1, len(set_line(1)%s)], from_set=.true.)
-            call read_group(set_line, set_group, cfg)
+            call read_group(groups(k), cfg)
         end do
         call read_tables(cfg%initial)
         ! &model from &material and the SI inputs: material_m's nondimensionalise, after validation
@@ -81,20 +72,19 @@ contains
         call ieee_set_halting_mode(ieee_overflow, halt_on_overflow)
     end subroutine read_config
 
-    !> Read group `grp` of `lines` into its part of cfg, over the values already there: each
-    !> assignment alone (so that a bad value names its variable), then the whole group.
-    subroutine read_group(lines, grp, cfg)
-        type(string_t), intent(in) :: lines(:)
-        type(group_t), intent(in) :: grp
+    !> Read group `grp` into its part of cfg, over the values already there: each assignment
+    !> alone ('&group lhs = value /'), so that a bad value names its variable.
+    subroutine read_group(grp, cfg)
+        type(group_t), intent(inout) :: grp
         type(config_t), intent(inout) :: cfg
-        type(assignments_t) :: asg
         character(len=LEN_MSG) :: msg
         integer :: k, ios
 
-        call split_group(lines, grp, asg)
-        do k = 1, size(asg%eq) + 1
-            call read_namelist(cfg, trim(grp%name), piece(asg, k), ios, msg)
-            call check_read(ios, msg, asg, k)
+        call split_group(grp)
+        do k = 1, size(grp%eq)
+            call read_namelist(cfg, trim(grp%name), '&' // trim(grp%name) // ' ' // assignment_lhs(grp, k) // &
+                               ' = ' // assignment_value(grp, k) // ' /', ios, msg)
+            call check_read(ios, msg, grp, k)
         end do
         if (grp%name == 'material') cfg%material%present = .true.
     end subroutine read_group
@@ -114,23 +104,18 @@ contains
 
     !> &material and &model together are ambiguous, whether from the text or from --set.
     subroutine check_model_material(groups, sets)
-        type(group_t), intent(in) :: groups(:)
-        type(override_t), intent(in) :: sets(:)
+        type(group_t), intent(in) :: groups(:), sets(:)
         character(len=:), allocatable :: where
-        logical :: has_model, has_material
         integer :: k
 
-        has_model = any(groups%name == 'model')
-        has_material = any(groups%name == 'material')
         where = 'material'
-        do k = 1, size(sets)
-            if (sets(k)%group == 'model' .or. sets(k)%group == 'material') then
-                if (sets(k)%group == 'model') has_model = .true.
-                if (sets(k)%group == 'material') has_material = .true.
-                if (where == 'material') where = '--set ' // sets(k)%group // '.' // lower(sets(k)%lhs)
-            end if
+        do k = size(sets), 1, -1   ! named by the first override of either group
+            associate (lhs => sets(k)%body(:index(sets(k)%body, '=') - 1))
+                if (any(sets(k)%name == ['model   ', 'material'])) &
+                    where = '--set ' // trim(sets(k)%name) // '.' // lower(trim(adjustl(lhs)))
+            end associate
         end do
-        if (has_model .and. has_material) &
+        if (any([groups%name, sets%name] == 'model') .and. any([groups%name, sets%name] == 'material')) &
             call fatal(EXIT_INPUT, where, '&material and &model are both given, which is ambiguous: ' // &
                        '&material computes the &model values by (2.10)-(2.11); give one of the two groups')
     end subroutine check_model_material
@@ -204,24 +189,22 @@ contains
         if (ios /= 0) number = ieee_value(number, ieee_quiet_nan)
     end function number
 
-    !> After the namelist read of piece(asg, k): on failure, stop naming the variable, the
-    !> value given, what is allowed, and gfortran's message.
-    subroutine check_read(ios, msg, asg, k)
+    !> After the namelist read of assignment k of grp: on failure, stop naming the variable,
+    !> the value given, what is allowed, and gfortran's message.
+    subroutine check_read(ios, msg, grp, k)
         integer, intent(in) :: ios
         character(len=*), intent(in) :: msg
-        type(assignments_t), intent(in) :: asg
+        type(group_t), intent(in) :: grp
         integer, intent(in) :: k
         character(len=:), allocatable :: lhs, name, value
 
         if (ios == 0) return
-        if (k > size(asg%eq)) call fatal(EXIT_INPUT, origin(asg) // trim(asg%group), &
-                                         'cannot read &' // trim(asg%group) // ': ' // trim(msg))
-        lhs = assignment_lhs(asg, k)
+        lhs = assignment_lhs(grp, k)
         name = identifier_at(lhs, 1)
-        value = assignment_value(asg, k)
+        value = assignment_value(grp, k)
         if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
-        call fatal(EXIT_INPUT, origin(asg) // trim(asg%group) // '.' // lower(name), &
-                   'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(var_kind(asg%group, name)) // &
+        call fatal(EXIT_INPUT, grp%origin // trim(grp%name) // '.' // lower(name), &
+                   'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(var_kind(grp%name, name)) // &
                    ' (namelist read: ' // trim(msg) // ')')
     end subroutine check_read
 

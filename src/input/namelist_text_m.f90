@@ -2,39 +2,36 @@
 !> (standard input cannot be rewound), comments blanked, the groups '&name ... /' located
 !> (so that an unknown group, a group given twice or stray text is an error, in any order
 !> of the groups), and each group split into its assignments 'lhs = value', which the
-!> reader (config_reader_m) then reads one at a time.
+!> reader (config_reader_m) then reads one at a time. A command-line override '--set
+!> group.variable=value' becomes a group of that one assignment, read after the text: it
+!> passes the same checks and names itself in any error; what only a --set can get wrong
+!> (its form, a subscript, a value that would end the group) is checked when it is parsed,
+!> before the input is read (a misspelt --set fails before standard input is read).
 module namelist_text_m
     use, intrinsic :: iso_fortran_env, only: input_unit, iostat_end, iostat_eor
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
-    use config_m, only: LEN_NAME
-    use strings_m, only: lower, squeeze, excerpt, quoted, identifier_at, is_name_char, int_str
-    use input_vars_m, only: GROUP_NAMES, group_list, var_list, var_kind, kind_description
+    use config_m, only: LEN_NAME, LEN_PATH
+    use strings_m, only: lower, squeeze, excerpt, quoted, quoted_string, identifier_at, is_name_char, int_str
+    use input_vars_m, only: GROUP_NAMES, KIND_COEFFS, KIND_PAIR, KIND_STRING, group_list, var_list, var_kind, &
+                            kind_description
     implicit none
     private
-    public :: string_t, group_t, assignments_t
-    public :: read_source, strip_comments, find_groups, split_group
-    public :: origin, assignment_lhs, assignment_value, piece
+    public :: string_t, group_t
+    public :: read_source, strip_comments, find_groups, split_group, parse_override, override_summary
+    public :: assignment_lhs, assignment_value
 
     integer, parameter :: LEN_MSG = 512         !< iomsg buffers
 
-    !> A namelist group found in the input text: positions (line, column) in the text.
+    !> A namelist group of the input text, or a --set override as a group of one assignment;
+    !> split_group finds its assignments, body(first(k):eq(k)-1) the lhs of the k-th.
     type :: group_t
-        character(len=LEN_NAME) :: name = ''   !< lower case, without '&'
-        integer :: first(2) = 0                !< the '&' of '&name'
-        integer :: body(2) = 0                 !< just after the name
-        integer :: term(2) = 0                 !< the terminator '/' or '&end'
-        integer :: last(2) = 0                 !< the terminator's last character
-        logical :: from_set = .false.          !< made from a --set override (named so in errors)
+        character(len=LEN_NAME) :: name = ''      !< lower case, without '&'
+        integer :: line = 0                       !< the line of its '&name' (0: none open)
+        character(len=:), allocatable :: origin   !< '--set ' before group.variable in messages, or ''
+        character(len=:), allocatable :: body     !< text between the name and the terminator
+        integer, allocatable :: first(:)          !< where the k-th left-hand side begins
+        integer, allocatable :: eq(:)             !< its '='
     end type group_t
-
-    !> The assignments 'lhs = value' of one group: body(first(k):eq(k)-1) = lhs of the k-th.
-    type :: assignments_t
-        character(len=LEN_NAME) :: group = ''
-        character(len=:), allocatable :: body   !< text between the name and the terminator
-        integer, allocatable :: first(:)        !< where the k-th left-hand side begins
-        integer, allocatable :: eq(:)           !< its '='
-        logical :: from_set = .false.           !< made from a --set override
-    end type assignments_t
 
     !> A line of text.
     type :: string_t
@@ -141,25 +138,24 @@ contains
         type(group_t) :: current
         character :: quote
         character(len=:), allocatable :: name
-        logical :: inside
-        integer :: i, j, k, stat
+        integer :: i, j, k, stat, body(2)
         character(len=LEN_MSG) :: msg
 
         name = ''
+        body = 0
         allocate (groups(0), stat=stat, errmsg=msg)
         call check_allocation(stat, msg, 'the namelist groups')
-        inside = .false.
         do i = 1, size(lines)
             quote = ' '
             j = 1
             do while (j <= len_trim(lines(i)%s))
                 associate (ch => lines(i)%s(j:j))
-                    if (.not. inside) then
+                    if (current%line == 0) then
                         if (ch == '&') then
                             name = lower(identifier_at(lines(i)%s, j + 1))
                             call check_group_name(name, i, groups)
-                            current = group_t(name=name, first=[i, j], body=[i, j + 1 + len(name)])
-                            inside = .true.
+                            current = group_t(name=name, line=i, origin='')
+                            body = [i, j + 1 + len(name)]
                             j = j + len(name)
                         else if (ch /= ' ') then
                             call fatal(EXIT_INPUT, 'input', 'text outside a namelist group at line ' // &
@@ -175,22 +171,21 @@ contains
                         if (ch == '&') then
                             name = lower(identifier_at(lines(i)%s, j + 1))
                             if (name /= 'end') call fatal(EXIT_INPUT, trim(current%name), 'group &' // &
-                                trim(current%name) // ' (line ' // int_str(current%first(1)) // ') is not ' // &
+                                trim(current%name) // ' (line ' // int_str(current%line) // ') is not ' // &
                                 "closed: '&" // name // "' at line " // int_str(i) // " comes before its '/'")
                             k = j + 3
                         end if
-                        current%term = [i, j]
-                        current%last = [i, k]
+                        current%body = joined(lines, body, [i, j - 1])
                         groups = [groups, current]
-                        inside = .false.
+                        current%line = 0
                         j = k
                     end if
                 end associate
                 j = j + 1
             end do
         end do
-        if (inside) call fatal(EXIT_INPUT, trim(current%name), 'group &' // trim(current%name) // &
-                               ' (line ' // int_str(current%first(1)) // ") is not closed: missing '/' " // &
+        if (current%line > 0) call fatal(EXIT_INPUT, trim(current%name), 'group &' // trim(current%name) // &
+                                         ' (line ' // int_str(current%line) // ") is not closed: missing '/' " // &
                                'at its end (or a quoted string without its closing quote)')
     end subroutine find_groups
 
@@ -207,79 +202,81 @@ contains
                                                        "' at line " // int_str(line) // '; allowed groups: ' // group_list())
         do k = 1, size(groups)
             if (groups(k)%name == name) call fatal(EXIT_INPUT, name, 'group &' // name // ' given twice (lines ' // &
-                int_str(groups(k)%first(1)) // ' and ' // int_str(line) // '); each group may appear at most once')
+                int_str(groups(k)%line) // ' and ' // int_str(line) // '); each group may appear at most once')
         end do
     end subroutine check_group_name
 
-    !> The text between the group's name and its terminator, lines joined by a blank.
-    pure function group_body(lines, grp) result(body)
+    !> The text from position `from` to `to` (line, column) of lines, lines joined by a blank.
+    pure function joined(lines, from, to) result(body)
         type(string_t), intent(in) :: lines(:)
-        type(group_t), intent(in) :: grp
+        integer, intent(in) :: from(2), to(2)
         character(len=:), allocatable :: body
         integer :: i, first_col, last_col
 
         body = ''
-        do i = grp%body(1), grp%term(1)
+        do i = from(1), to(1)
             first_col = 1
-            if (i == grp%body(1)) first_col = grp%body(2)
+            if (i == from(1)) first_col = from(2)
             last_col = len(lines(i)%s)
-            if (i == grp%term(1)) last_col = grp%term(2) - 1
+            if (i == to(1)) last_col = to(2)
             body = body // lines(i)%s(first_col:last_col) // ' '
         end do
-    end function group_body
+    end function joined
 
-    !> Split the group into its assignments 'lhs = value' and check what only the reader can:
-    !> known variable names, each given once, a value after '=', strings quoted.
-    subroutine split_group(lines, grp, asg)
-        type(string_t), intent(in) :: lines(:)
-        type(group_t), intent(in) :: grp
-        type(assignments_t), intent(out) :: asg
+    !> Find the group's assignments 'lhs = value' and check what only the reader can: known
+    !> variable names, each given once, a value after '=', strings quoted.
+    subroutine split_group(grp)
+        type(group_t), intent(inout) :: grp
         character(len=:), allocatable :: lhs, name, value, where
         integer :: k, p, n
 
-        asg%group = grp%name
-        asg%from_set = grp%from_set
-        asg%body = group_body(lines, grp)
-        call find_assignments(asg)
-        n = size(asg%eq)
-        p = len(asg%body) + 1
-        if (n > 0) p = asg%first(1)
-        if (verify(asg%body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), &
-            "expected 'variable = value' in &" // trim(grp%name) // ", got '" // excerpt(asg%body(:p - 1)) // &
+        call find_assignments(grp)
+        n = size(grp%eq)
+        p = len(grp%body) + 1
+        if (n > 0) p = grp%first(1)
+        if (verify(grp%body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, grp%origin // trim(grp%name), &
+            "expected 'variable = value' in &" // trim(grp%name) // ", got '" // excerpt(grp%body(:p - 1)) // &
             "'; allowed variables: " // var_list(grp%name))
         do k = 1, n
-            lhs = assignment_lhs(asg, k)
+            lhs = assignment_lhs(grp, k)
             name = identifier_at(lhs, 1)
-            value = assignment_value(asg, k)
-            where = origin(asg) // trim(grp%name) // '.' // lower(name)
-            if (len(name) == 0) call fatal(EXIT_INPUT, origin(asg) // trim(grp%name), &
+            value = assignment_value(grp, k)
+            where = grp%origin // trim(grp%name) // '.' // lower(name)
+            if (len(name) == 0) call fatal(EXIT_INPUT, grp%origin // trim(grp%name), &
                 "'=' without a variable name in &" // trim(grp%name) // ": '" // &
-                excerpt(asg%body(asg%first(k):)) // "'; allowed variables: " // var_list(grp%name))
-            if (var_kind(grp%name, name) == ' ') call fatal(EXIT_INPUT, where, "unknown variable '" // name // &
-                "' in &" // trim(grp%name) // '; allowed: ' // var_list(grp%name))
+                excerpt(grp%body(grp%first(k):)) // "'; allowed variables: " // var_list(grp%name))
+            call require_known(where, grp%name, name)
             do p = 1, k - 1
-                if (lower(squeeze(assignment_lhs(asg, p))) == lower(squeeze(lhs))) &
+                if (lower(squeeze(assignment_lhs(grp, p))) == lower(squeeze(lhs))) &
                     call fatal(EXIT_INPUT, where, "'" // lhs // "' given twice in &" // trim(grp%name))
             end do
             if (verify(value, ' ,') == 0) call fatal(EXIT_INPUT, where, "no value after '" // lhs // &
                 " ='; must be " // kind_description(var_kind(grp%name, name)))
             ! gfortran silently skips an unquoted string value: only the reader can catch it
-            if (var_kind(grp%name, name) == 's' .and. scan(value(1:1), '''"') == 0) call fatal(EXIT_INPUT, where, &
-                'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // name // ' = ' // quoted(excerpt(value)))
+            if (var_kind(grp%name, name) == KIND_STRING .and. scan(value(1:1), '''"') == 0) &
+                call fatal(EXIT_INPUT, where, 'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // &
+                           name // ' = ' // quoted(excerpt(value)))
         end do
     end subroutine split_group
 
-    !> asg%first and asg%eq of the assignments in asg%body: each '=' outside quoted strings,
-    !> and where the variable name before it (and its subscript, if any) begins.
-    subroutine find_assignments(asg)
-        type(assignments_t), intent(inout) :: asg
-        character :: quote
-        character(len=LEN_MSG) :: msg
-        integer :: j, p, stat
+    !> The variable of left-hand side `lhs` ('name' or 'name(i)') must be one of `group`.
+    subroutine require_known(where, group, lhs)
+        character(len=*), intent(in) :: where, group, lhs
 
-        allocate (asg%first(0), asg%eq(0), stat=stat, errmsg=msg)
-        call check_allocation(stat, msg, 'the assignments of &' // trim(asg%group))
-        associate (body => asg%body)
+        if (var_kind(group, identifier_at(lhs, 1)) == ' ') call fatal(EXIT_INPUT, where, "unknown variable '" // &
+            lhs // "' in &" // trim(group) // '; allowed: ' // var_list(group))
+    end subroutine require_known
+
+    !> grp%first and grp%eq of the assignments in grp%body: each '=' outside quoted strings,
+    !> and where the variable name before it (and its subscript, if any) begins.
+    pure subroutine find_assignments(grp)
+        type(group_t), intent(inout) :: grp
+        character :: quote
+        integer :: j, p
+
+        grp%first = [integer ::]
+        grp%eq = [integer ::]
+        associate (body => grp%body)
             quote = ' '
             do j = 1, len(body)
                 if (quote /= ' ') then
@@ -295,60 +292,107 @@ contains
                         if (.not. is_name_char(body(p:p))) exit
                         p = p - 1
                     end do
-                    asg%first = [asg%first, p + 1]
-                    asg%eq = [asg%eq, j]
+                    grp%first = [grp%first, p + 1]
+                    grp%eq = [grp%eq, j]
                 end if
             end do
         end associate
     end subroutine find_assignments
 
-    !> '--set ' before group.variable in messages about an override, '' for the text.
-    pure function origin(asg) result(prefix)
-        type(assignments_t), intent(in) :: asg
-        character(len=:), allocatable :: prefix
-
-        if (asg%from_set) then
-            prefix = '--set '
-        else
-            prefix = ''
-        end if
-    end function origin
-
     !> The left-hand side 'name' or 'name(i)' of assignment k.
-    pure function assignment_lhs(asg, k) result(lhs)
-        type(assignments_t), intent(in) :: asg
+    pure function assignment_lhs(grp, k) result(lhs)
+        type(group_t), intent(in) :: grp
         integer, intent(in) :: k
         character(len=:), allocatable :: lhs
 
-        lhs = trim(adjustl(asg%body(asg%first(k):asg%eq(k) - 1)))
+        lhs = trim(adjustl(grp%body(grp%first(k):grp%eq(k) - 1)))
     end function assignment_lhs
 
     !> The value text of assignment k (up to the next variable name).
-    pure function assignment_value(asg, k) result(value)
-        type(assignments_t), intent(in) :: asg
+    pure function assignment_value(grp, k) result(value)
+        type(group_t), intent(in) :: grp
         integer, intent(in) :: k
         character(len=:), allocatable :: value
 
-        if (k < size(asg%eq)) then
-            value = trim(adjustl(asg%body(asg%eq(k) + 1:asg%first(k + 1) - 1)))
+        if (k < size(grp%eq)) then
+            value = trim(adjustl(grp%body(grp%eq(k) + 1:grp%first(k + 1) - 1)))
         else
-            value = trim(adjustl(asg%body(asg%eq(k) + 1:)))
+            value = trim(adjustl(grp%body(grp%eq(k) + 1:)))
         end if
     end function assignment_value
 
-    !> Namelist text of assignment k alone ('&group lhs = value /': reading it alone names
-    !> the variable when a value is bad), or of the whole group for k = size(asg%eq) + 1.
-    pure function piece(asg, k) result(text)
-        type(assignments_t), intent(in) :: asg
-        integer, intent(in) :: k
-        character(len=:), allocatable :: text
+    ! ---------------------------------------------------------------- --set
 
-        if (k <= size(asg%eq)) then
-            text = '&' // trim(asg%group) // ' ' // assignment_lhs(asg, k) // ' = ' // assignment_value(asg, k) // ' /'
-        else
-            text = '&' // trim(asg%group) // ' ' // asg%body // ' /'
+    !> The override `text` ('group.variable=value' or 'group.variable(i)=value') as a group of
+    !> that one assignment, after the checks that can be made before reading it: a known
+    !> group and variable, a subscript only on an array, a value that stays inside one
+    !> assignment. The value of a string variable is quoted here unless it is quoted already
+    !> (--set output.prefix=runs/a), so that the shell need not pass the quotes. A variable
+    !> given twice takes the later value (the overrides are read in order, as the text's
+    !> assignments are).
+    function parse_override(text) result(set)
+        character(len=*), intent(in) :: text
+        type(group_t) :: set
+        character(len=:), allocatable :: lhs, name, subscript, value, where
+        character :: code
+        integer :: eq, dot
+
+        eq = index(text, '=')
+        lhs = trim(adjustl(text(:max(0, eq - 1))))
+        dot = index(lhs, '.')
+        if (eq == 0 .or. dot == 0) call fatal(EXIT_INPUT, '--set ' // excerpt(text), &
+            "expected group.variable=value, e.g. --set model.varpi=0.3 or --set 'initial.theta0_step(1)=5'; " // &
+            'groups: ' // group_list())
+        set%name = lower(trim(lhs(:dot - 1)))
+        set%origin = '--set '
+        lhs = trim(adjustl(lhs(dot + 1:)))
+        where = '--set ' // trim(set%name) // '.' // lower(lhs)
+        if (.not. any(GROUP_NAMES == set%name)) call fatal(EXIT_INPUT, where, "unknown namelist group '" // &
+            trim(set%name) // "'; allowed groups: " // group_list())
+        call require_known(where, set%name, lhs)
+        name = identifier_at(lhs, 1)
+        code = var_kind(set%name, name)
+        subscript = squeeze(lhs(len(name) + 1:))
+        if (len(subscript) > 0) then
+            if (code /= KIND_COEFFS .and. code /= KIND_PAIR) call fatal(EXIT_INPUT, where, "'" // name // &
+                "' is not an array; give " // trim(set%name) // '.' // lower(name) // '=value (must be ' // &
+                kind_description(code) // ')')
+            if (len(subscript) < 3 .or. subscript(1:1) /= '(' .or. subscript(len(subscript):) /= ')') &
+                call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
+                           excerpt(lhs) // "'")
+            if (verify(subscript(2:len(subscript) - 1), '0123456789') /= 0) &
+                call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
+                           excerpt(lhs) // "'")
         end if
-    end function piece
+        value = trim(adjustl(text(eq + 1:)))
+        if (code == KIND_STRING) then
+            if (len(value) == 0) then
+                value = "''"
+            else if (scan(value(1:1), '''"') == 0) then
+                value = quoted_string(value)
+            end if
+        else if (scan(value, '/&$=!''"') > 0) then
+            ! any of these would end the assignment or the group early in the namelist text
+            call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(code))
+        end if
+        ! the body of '&group lhs = value /'
+        set%body = ' ' // lhs // ' = ' // value // ' '
+    end function parse_override
 
+    !> '--set a=1 --set b=2', the record of the overrides in cfg%overrides.
+    pure function override_summary(overrides) result(text)
+        character(len=*), intent(in) :: overrides(:)
+        character(len=LEN_PATH) :: text
+        character(len=:), allocatable :: all
+        integer :: k
+
+        all = ''
+        do k = 1, size(overrides)
+            all = all // ' --set ' // trim(adjustl(overrides(k)))
+        end do
+        all = trim(adjustl(all))
+        if (len(all) > LEN_PATH) all = all(:LEN_PATH - 3) // '...'
+        text = all
+    end function override_summary
 
 end module namelist_text_m

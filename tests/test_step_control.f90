@@ -314,10 +314,8 @@ contains
             associate (x => a%entries(k), y => b%entries(k))
                 if (x%name /= y%name .or. (x%is_integer .neqv. y%is_integer) .or. any(x%dims /= y%dims)) then
                     same_entries = .false.
-                else if (x%is_integer) then
-                    same_entries = same_entries .and. all(x%ints == y%ints)
                 else
-                    same_entries = same_entries .and. .not. any(abs(x%reals - y%reals) > 0.0_dp)
+                    same_entries = same_entries .and. all(x%values == y%values)
                 end if
             end associate
         end do

@@ -1,11 +1,11 @@
 !> Reading a checkpoint slot of a file (restart_m): every dataset under a group, whatever
-!> its owner, into a checkpoint_t record as entry '<path below the group>', integers as
+!> its owner, into a checkpoint_t record as entry '<path below the group>', and each member
+!> of a compound (an owner's scalars) as '<its group's path>/<member>'; integers as
 !> integers. What the entries mean is their owners' business (checkpoint_m). A file that
 !> cannot be read stops the run with exit 2 (EXIT_INPUT), as h5_read_m does.
 module checkpoint_read_m
     use iso_c_binding, only: c_loc, c_ptr
     use iso_fortran_env, only: int64
-    use kinds_m, only: dp
     use errors_m, only: fatal, check_allocation, EXIT_INPUT
     use checkpoint_m, only: checkpoint_t, entry_t
     use h5_read_m, only: h5_library_init
@@ -13,10 +13,10 @@ module checkpoint_read_m
     use hdf5, only: hid_t, hsize_t, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, h5gopen_f, h5gclose_f, &
                     h5gget_info_f, h5lget_name_by_idx_f, H5_INDEX_NAME_F, H5_ITER_INC_F, h5oopen_f, h5oclose_f, &
                     h5iget_type_f, H5I_GROUP_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, h5tget_class_f, &
-                    h5tclose_f, H5T_INTEGER_F, h5dget_space_f, h5sget_simple_extent_ndims_f, &
+                    h5tclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
                     h5sget_simple_extent_dims_f, h5sclose_f, H5T_NATIVE_DOUBLE, h5kind_to_type, H5_INTEGER_KIND, &
                     h5aexists_by_name_f, h5tget_nmembers_f, h5tget_member_class_f, h5tget_member_name_f, &
-                    h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F, size_t
+                    h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F, H5T_INTEGER_F, size_t
     implicit none
     private
     public :: read_entries, has_group_attribute
@@ -75,100 +75,83 @@ contains
             call h5oclose_f(obj_id, hdferr)
             if (obj_type == H5I_GROUP_F) then
                 call read_below(file, file_id, group, path//'/'//trim(name), ckpt)
-            else if (trim(name) == 'scalars') then
-                call read_scalars(file, group_id, here//'/scalars', path(2:)//'/', ckpt)
             else
-                call ckpt%add(read_entry(file, group_id, here//'/'//trim(name), path(2:)//'/'//trim(name)))
+                call read_dataset(file, group_id, here//'/'//trim(name), path(2:)//'/', ckpt)
             end if
         end do
         call h5gclose_f(group_id, hdferr)
     end subroutine read_below
 
-    !> The dataset `where` (name in its group: the last part) as entry `name`.
-    function read_entry(file, group_id, where, name) result(entry)
-        character(len=*), intent(in) :: file, where, name
+    !> The dataset `where` (in group_id: its last part) as entry prefix//<its name>; a
+    !> compound (an owner's scalars) as the scalar entries prefix//<member>, one a member.
+    subroutine read_dataset(file, group_id, where, prefix, ckpt)
+        character(len=*), intent(in) :: file, where, prefix
         integer(hid_t), intent(in) :: group_id
-        type(entry_t), target :: entry
+        type(checkpoint_t), intent(inout) :: ckpt
+        type(entry_t) :: entry
         integer(hid_t) :: dset_id, type_id, space_id
         integer(hsize_t) :: dims(2), maxdims(2)
-        integer :: hdferr, type_class, stat
-        character(len=256) :: message
-        type(c_ptr) :: buf
+        integer :: hdferr, type_class, m, n
 
         call h5dopen_f(group_id, where(index(where, '/', back=.true.) + 1:), dset_id, hdferr)
         call require(hdferr, file, where, 'h5dopen_f')
         call h5dget_type_f(dset_id, type_id, hdferr)
         call h5tget_class_f(type_id, type_class, hdferr)
-        call h5tclose_f(type_id, hdferr)
-        call h5dget_space_f(dset_id, space_id, hdferr)
-        call h5sget_simple_extent_ndims_f(space_id, entry%rank, hdferr)
-        dims = 1
-        if (entry%rank > 2) call require(-1, file, where, 'a rank above 2')
-        if (entry%rank > 0) call h5sget_simple_extent_dims_f(space_id, dims(:entry%rank), maxdims(:entry%rank), hdferr)
-        call require(hdferr, file, where, 'h5sget_simple_extent_dims_f')
-        call h5sclose_f(space_id, hdferr)
-        entry%name = name
-        entry%dims = int(dims)
-        entry%is_integer = type_class == H5T_INTEGER_F
-        if (entry%is_integer) then
-            allocate (entry%ints(product(entry%dims)), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'a checkpoint entry')
-            buf = c_loc(entry%ints)
-            if (size(entry%ints) > 0) call h5dread_f(dset_id, h5kind_to_type(int64, H5_INTEGER_KIND), buf, hdferr)
+        call require(hdferr, file, where, 'h5tget_class_f')
+        if (type_class == H5T_COMPOUND_F) then
+            call h5tget_nmembers_f(type_id, n, hdferr)
+            call require(hdferr, file, where, 'h5tget_nmembers_f')
+            do m = 0, n - 1
+                call h5tget_member_class_f(type_id, m, type_class, hdferr)
+                entry = entry_t(prefix//member_name(type_id, m), type_class == H5T_INTEGER_F, 0, [1, 1], null())
+                call read_values(file, dset_id, where, entry, member_name(type_id, m))
+                call ckpt%add(entry)
+            end do
         else
-            allocate (entry%reals(product(entry%dims)), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'a checkpoint entry')
-            buf = c_loc(entry%reals)
-            if (size(entry%reals) > 0) call h5dread_f(dset_id, H5T_NATIVE_DOUBLE, buf, hdferr)
+            call h5dget_space_f(dset_id, space_id, hdferr)
+            call h5sget_simple_extent_ndims_f(space_id, entry%rank, hdferr)
+            if (entry%rank > 2) call require(-1, file, where, 'a rank above 2')
+            dims = 1
+            if (entry%rank > 0) call h5sget_simple_extent_dims_f(space_id, dims(:entry%rank), maxdims(:entry%rank), hdferr)
+            call require(hdferr, file, where, 'h5sget_simple_extent_dims_f')
+            call h5sclose_f(space_id, hdferr)
+            entry%name = prefix//where(index(where, '/', back=.true.) + 1:)
+            entry%dims = int(dims)
+            entry%is_integer = type_class == H5T_INTEGER_F
+            call read_values(file, dset_id, where, entry)
+            call ckpt%add(entry)
         end if
-        call require(hdferr, file, where, 'h5dread_f')
+        call h5tclose_f(type_id, hdferr)
         call h5dclose_f(dset_id, hdferr)
-    end function read_entry
+    end subroutine read_dataset
 
-    !> An owner's scalars, the compound dataset `where`: each member as entry prefix//member
-    !> (every member 8 bytes: int64 or float64).
-    subroutine read_scalars(file, group_id, where, prefix, ckpt)
-        character(len=*), intent(in) :: file, where, prefix
-        integer(hid_t), intent(in) :: group_id
-        type(checkpoint_t), intent(inout) :: ckpt
-        integer(hid_t) :: dset_id, type_id, mem_type
-        integer(int64), allocatable, target :: values(:)
-        integer :: hdferr, n, m, member_class, stat
-        character(len=64) :: member
+    !> entry%values (entry%dims of them) from the dataset dset_id, `where`; with `member`,
+    !> that member of its compound alone (every member 8 bytes: int64 or float64).
+    subroutine read_values(file, dset_id, where, entry, member)
+        character(len=*), intent(in) :: file, where
+        integer(hid_t), intent(in) :: dset_id
+        type(entry_t), intent(inout), target :: entry
+        character(len=*), intent(in), optional :: member
+        integer(hid_t) :: word, mem_type
+        integer :: hdferr, stat
         character(len=256) :: message
         type(c_ptr) :: buf
-        logical, allocatable :: is_integer(:)
 
-        call h5dopen_f(group_id, 'scalars', dset_id, hdferr)
-        call require(hdferr, file, where, 'h5dopen_f')
-        call h5dget_type_f(dset_id, type_id, hdferr)
-        call h5tget_nmembers_f(type_id, n, hdferr)
-        call require(hdferr, file, where, 'h5tget_nmembers_f')
-        allocate (values(n), is_integer(n), stat=stat, errmsg=message)
+        allocate (entry%values(product(entry%dims)), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'a checkpoint entry')
-        call h5tcreate_f(H5T_COMPOUND_F, int(8 * n, size_t), mem_type, hdferr)
-        do m = 1, n
-            call h5tget_member_class_f(type_id, m - 1, member_class, hdferr)
-            is_integer(m) = member_class == H5T_INTEGER_F
-            call h5tinsert_f(mem_type, member_name(type_id, m - 1), int(8 * (m - 1), size_t), &
-                             merge(h5kind_to_type(int64, H5_INTEGER_KIND), H5T_NATIVE_DOUBLE, is_integer(m)), hdferr)
-            call require(hdferr, file, where, 'h5tinsert_f')
-        end do
-        buf = c_loc(values)
-        call h5dread_f(dset_id, mem_type, buf, hdferr)
+        word = merge(h5kind_to_type(int64, H5_INTEGER_KIND), H5T_NATIVE_DOUBLE, entry%is_integer)
+        mem_type = word
+        hdferr = 0
+        if (present(member)) then
+            call h5tcreate_f(H5T_COMPOUND_F, 8_size_t, mem_type, hdferr)
+            call h5tinsert_f(mem_type, member, 0_size_t, word, hdferr)
+            call require(hdferr, file, where//' '//member, 'h5tinsert_f')
+        end if
+        buf = c_loc(entry%values)
+        if (size(entry%values) > 0) call h5dread_f(dset_id, mem_type, buf, hdferr)
         call require(hdferr, file, where, 'h5dread_f')
-        do m = 1, n
-            member = member_name(type_id, m - 1)
-            if (is_integer(m)) then
-                call ckpt%add(entry_t(prefix//trim(member), .true., 0, [1, 1], null(), [values(m)]))
-            else
-                call ckpt%add(entry_t(prefix//trim(member), .false., 0, [1, 1], [transfer(values(m), 1.0_dp)], null()))
-            end if
-        end do
-        call h5tclose_f(mem_type, hdferr)
-        call h5tclose_f(type_id, hdferr)
-        call h5dclose_f(dset_id, hdferr)
-    end subroutine read_scalars
+        if (present(member)) call h5tclose_f(mem_type, hdferr)
+    end subroutine read_values
 
     !> Member m (from 0) of compound type type_id.
     function member_name(type_id, m) result(name)

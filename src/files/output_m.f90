@@ -101,12 +101,13 @@ module output_m
         logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
         logical :: native_created = .false.        !< /snapshots/native exists (output_native_s)
         integer :: n_checkpoints = 0               !< checkpoints written
-        !> the checkpoint's datasets, open from the first checkpoint (output_checkpoint_s)
-        integer(hid_t), allocatable :: ckpt_ids(:, :)         !< (dataset, slot)
-        integer, allocatable :: ckpt_dims(:, :, :)            !< (2, dataset, slot): their shapes
+        !> the checkpoint's datasets, open from the first checkpoint (output_checkpoint_s),
+        !> each known by its first entry
+        integer(hid_t), allocatable :: ckpt_ids(:, :)         !< (first entry, slot)
+        integer, allocatable :: ckpt_dims(:, :, :)            !< (2, first entry, slot): their shapes
         character(len=64), allocatable :: ckpt_names(:)       !< the entries' names
-        integer, allocatable :: ckpt_set(:)                   !< an entry's dataset
-        integer(hid_t), allocatable :: ckpt_types(:)          !< an owner's scalars' memory type
+        integer, allocatable :: ckpt_set(:)                   !< an entry's dataset: its first entry
+        integer(hid_t), allocatable :: ckpt_types(:)          !< an owner's scalars' compound type
         integer(hid_t) :: ckpt_current_id = -1                !< /checkpoint/current
         real(dp), allocatable :: estimate_buf(:, :, :)   !< (SERIES_CHUNK, N_OUTPUT_FIELDS, 3)
     contains

@@ -1,13 +1,10 @@
-!> A checkpoint in memory: everything a run needs to continue exactly, as named entries
-!> that the types holding it put and get (&output checkpoint_every, &time restart_from).
-!>
-!> checkpoint_t is a record, not an owner: each type puts its own entries, named
-!> 'owner/name', with its save_checkpoint and gets them back with its restore_checkpoint
-!> (state_t, mesh_t, stepper_t, energy_monitor_t, step_controller_t, error_estimator_t,
-!> step_driver_t, adaptive_mesh_t, error_companions_t, run_t: docs/output.md lists them).
-!> An entry is reals or integers, a scalar or an array of rank 1 or 2; integers are kept as
-!> integers (int64), a logical as the integer 0 or 1 under a name ending in _flag.
-!> The files layer maps the record to the file's /checkpoint/slotN/<owner>/ and back.
+!> A checkpoint in memory: everything a run needs to continue exactly (&output
+!> checkpoint_every, &time restart_from), as named entries. It is a record, not an owner:
+!> each type puts its own entries 'owner/name' with its save_checkpoint and gets them back
+!> with its restore_checkpoint (docs/output.md, "Checkpoints", lists them). An entry is
+!> reals or integers (int64), a scalar or an array of rank 1 or 2; a logical is the integer
+!> 0 or 1 under a name ending in _flag. The files layer maps the record to the file's
+!> /checkpoint/slotN/<owner>/ and back.
 module checkpoint_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -16,14 +13,15 @@ module checkpoint_m
     private
     public :: checkpoint_t, entry_t
 
-    !> One named value: reals or integers, rank 0, 1 or 2 (dims: 1 past the rank).
+    !> One named value: reals or integers, rank 0, 1 or 2 (dims: 1 past the rank), held as
+    !> 64-bit words (a real's bits, transfer()), which the files layer writes and reads as
+    !> int64 or float64 after is_integer.
     type :: entry_t
         character(len=:), allocatable :: name   !< 'owner/name'
         logical :: is_integer = .false.
         integer :: rank = 0
         integer :: dims(2) = 1
-        real(dp), allocatable :: reals(:)
-        integer(int64), allocatable :: ints(:)
+        integer(int64), allocatable :: values(:)
     end type entry_t
 
     type :: checkpoint_t
@@ -34,6 +32,7 @@ module checkpoint_m
         generic :: put => put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
         generic :: get => get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
         procedure :: add, has, find
+        procedure, private :: word
         procedure, private :: put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
         procedure, private :: get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
     end type checkpoint_t
@@ -80,7 +79,6 @@ contains
         integer, intent(in) :: rank
         type(entry_t) :: entry
         integer :: k
-
         character(len=:), allocatable :: file
 
         file = 'the checkpoint'
@@ -94,12 +92,23 @@ contains
         call fatal(EXIT_INPUT, 'time.restart_from', file//' has no '//name)
     end function find
 
+    !> The one word of scalar entry `name` (find's refusals).
+    integer(int64) function word(self, name, is_integer)
+        class(checkpoint_t), intent(in) :: self
+        character(len=*), intent(in) :: name
+        logical, intent(in) :: is_integer
+        type(entry_t) :: entry
+
+        entry = self%find(name, is_integer, 0)
+        word = entry%values(1)
+    end function word
+
     subroutine put_real(self, name, value)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: value
 
-        call self%add(entry_t(name, .false., 0, [1, 1], [value], null()))
+        call self%add(entry_t(name, .false., 0, [1, 1], [transfer(value, 0_int64)]))
     end subroutine put_real
 
     subroutine put_reals(self, name, values)
@@ -107,7 +116,7 @@ contains
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: values(:)
 
-        call self%add(entry_t(name, .false., 1, [size(values), 1], values, null()))
+        call self%add(entry_t(name, .false., 1, [size(values), 1], transfer(values, 0_int64, size(values))))
     end subroutine put_reals
 
     subroutine put_real2(self, name, values)
@@ -115,7 +124,7 @@ contains
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: values(:, :)
 
-        call self%add(entry_t(name, .false., 2, shape(values), reshape(values, [size(values)]), null()))
+        call self%add(entry_t(name, .false., 2, shape(values), transfer(values, 0_int64, size(values))))
     end subroutine put_real2
 
     subroutine put_int(self, name, value)
@@ -123,7 +132,7 @@ contains
         character(len=*), intent(in) :: name
         integer, intent(in) :: value
 
-        call self%put_int64(name, int(value, int64))
+        call self%add(entry_t(name, .true., 0, [1, 1], [int(value, int64)]))
     end subroutine put_int
 
     subroutine put_int64(self, name, value)
@@ -131,7 +140,7 @@ contains
         character(len=*), intent(in) :: name
         integer(int64), intent(in) :: value
 
-        call self%add(entry_t(name, .true., 0, [1, 1], null(), [value]))
+        call self%add(entry_t(name, .true., 0, [1, 1], [value]))
     end subroutine put_int64
 
     subroutine put_ints(self, name, values)
@@ -139,7 +148,7 @@ contains
         character(len=*), intent(in) :: name
         integer(int64), intent(in) :: values(:)
 
-        call self%add(entry_t(name, .true., 1, [size(values), 1], null(), values))
+        call self%add(entry_t(name, .true., 1, [size(values), 1], values))
     end subroutine put_ints
 
     !> A logical, as the integer 1 (true) or 0 under a name ending in _flag.
@@ -148,17 +157,15 @@ contains
         character(len=*), intent(in) :: name
         logical, intent(in) :: flag
 
-        call self%put_int64(name//'_flag', merge(1_int64, 0_int64, flag))
+        call self%add(entry_t(name//'_flag', .true., 0, [1, 1], [merge(1_int64, 0_int64, flag)]))
     end subroutine put_flag
 
     subroutine get_real(self, name, value)
         class(checkpoint_t), intent(in) :: self
         character(len=*), intent(in) :: name
         real(dp), intent(out) :: value
-        type(entry_t) :: entry
 
-        entry = self%find(name, .false., 0)
-        value = entry%reals(1)
+        value = transfer(self%word(name, .false.), value)
     end subroutine get_real
 
     subroutine get_reals(self, name, values)
@@ -168,7 +175,7 @@ contains
         type(entry_t) :: entry
 
         entry = self%find(name, .false., 1)
-        values = entry%reals
+        values = transfer(entry%values, 0.0_dp, size(entry%values))
     end subroutine get_reals
 
     subroutine get_real2(self, name, values)
@@ -178,27 +185,23 @@ contains
         type(entry_t) :: entry
 
         entry = self%find(name, .false., 2)
-        values = reshape(entry%reals, entry%dims)
+        values = reshape(transfer(entry%values, 0.0_dp, size(entry%values)), entry%dims)
     end subroutine get_real2
 
     subroutine get_int(self, name, value)
         class(checkpoint_t), intent(in) :: self
         character(len=*), intent(in) :: name
         integer, intent(out) :: value
-        integer(int64) :: wide
 
-        call self%get_int64(name, wide)
-        value = int(wide)
+        value = int(self%word(name, .true.))
     end subroutine get_int
 
     subroutine get_int64(self, name, value)
         class(checkpoint_t), intent(in) :: self
         character(len=*), intent(in) :: name
         integer(int64), intent(out) :: value
-        type(entry_t) :: entry
 
-        entry = self%find(name, .true., 0)
-        value = entry%ints(1)
+        value = self%word(name, .true.)
     end subroutine get_int64
 
     subroutine get_ints(self, name, values)
@@ -208,7 +211,7 @@ contains
         type(entry_t) :: entry
 
         entry = self%find(name, .true., 1)
-        values = entry%ints
+        values = entry%values
     end subroutine get_ints
 
     !> The logical put_flag wrote under name//'_flag'.
@@ -216,10 +219,8 @@ contains
         class(checkpoint_t), intent(in) :: self
         character(len=*), intent(in) :: name
         logical, intent(out) :: flag
-        integer(int64) :: value
 
-        call self%get_int64(name//'_flag', value)
-        flag = value /= 0
+        flag = self%word(name//'_flag', .true.) /= 0
     end subroutine get_flag
 
 end module checkpoint_m

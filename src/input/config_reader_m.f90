@@ -5,7 +5,7 @@
 !> syntax, names, types, &material); value ranges are checked by validate_m.
 module config_reader_m
     use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use config_m, only: config_t, initial_t
@@ -141,7 +141,7 @@ contains
         real(dp), allocatable, intent(out) :: table(:, :)
         type(string_t), allocatable :: lines(:)
         character(len=:), allocatable :: where, text, first, rest
-        integer :: k, j, n, stat, last
+        integer :: k, j, n, stat, last, ios
         character(len=LEN_MSG) :: msg
 
         if (file == '') return
@@ -161,9 +161,10 @@ contains
             first = text(:index(text // ' ', ' ') - 1)
             rest = trim(adjustl(text(len(first) + 1:)))
             n = n + 1
-            table(n, :) = [number(first), number(rest)]
-            if (index(rest, ' ') > 0 .or. .not. all(ieee_is_finite(table(n, :)))) &
-                call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // int_str(k) // ': got ' // &
+            ios = verify(text, '0123456789+-.eEdD ') + index(rest, ' ')   ! two numbers, nothing else
+            if (ios == 0) read (text, *, iostat=ios) table(n, :)
+            if (ios == 0 .and. .not. all(ieee_is_finite(table(n, :)))) ios = 1
+            if (ios /= 0) call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // int_str(k) // ': got ' // &
                 quoted(excerpt(text)) // '; each line must be two finite numbers, position and value, apart by ' // &
                 "blanks or a comma ('#' starts a comment)")
             if (n > 1) then
@@ -177,17 +178,6 @@ contains
                               ' rows; a table needs at least two rows (position, value) covering the rod')
         table = table(:n, :)
     end subroutine read_table
-
-    !> The real number `text` (digits, sign, point, exponent), or NaN if it is none.
-    pure real(dp) function number(text)
-        character(len=*), intent(in) :: text
-        integer :: ios
-
-        number = ieee_value(number, ieee_quiet_nan)
-        if (len(text) == 0 .or. verify(text, '0123456789+-.eEdD') /= 0) return
-        read (text, *, iostat=ios) number
-        if (ios /= 0) number = ieee_value(number, ieee_quiet_nan)
-    end function number
 
     !> After the namelist read of assignment k of grp: on failure, stop naming the variable,
     !> the value given, what is allowed, and gfortran's message.

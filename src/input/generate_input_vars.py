@@ -3,11 +3,9 @@
 
     python3 src/input/generate_input_vars.py src/input/config_m.f90 OUT_DIR
 
-The build runs it (CMakeLists.txt) whenever config_m.f90 changes. The types of config_m
-are the one list of input variables: every component of config_t of a derived type is a
-namelist group (named as the component, in the order of config_t), and every component of
-that type is an input variable of the group (in the order of the type). From them this
-writes, into OUT_DIR, two files that input_vars_m includes:
+The build runs it (CMakeLists.txt) whenever config_m.f90 changes. config_m's header says how
+its types are the groups and variables (and its trailing comments [unit] and 'not an
+input'); from them this writes, into OUT_DIR, two files that input_vars_m includes:
 
   input_vars_table.inc   GROUP_NAMES and INPUT_VARS (group, name, kind, keyword, unit)
   input_vars_access.inc  get_value (an input's value into an item) and read_namelist: one
@@ -22,9 +20,6 @@ What a component's declaration says (one component per line):
   logical :: flag = .false.                     KIND_LOGICAL
   character(len=LEN_NAME) :: word = 'a'         KIND_STRING, a keyword (stored in lower case)
   character(len=LEN_PATH) :: path = ''          KIND_STRING
-A trailing comment that ends in [text] gives the unit column of the &material echo
-(material_m); a trailing comment that starts with 'not an input' leaves the component out,
-whatever its declaration (an allocatable array: &initial's tables).
 Anything else inside a group's type stops the generator with a message naming the line.
 """
 import os

@@ -14,13 +14,12 @@
 module input_vars_m
     use kinds_m, only: dp
     use config_m, only: config_t, initial_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! read_namelist's locals
-    use errors_m, only: check_allocation
     use strings_m, only: lower, keyword, int_str
     implicit none
     private
     public :: input_var_t, input_item_t, INPUT_VARS, GROUP_NAMES
     public :: KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL, KIND_COEFFS, KIND_PAIR
-    public :: find_input, var_kind, input_item, input_items, table_items, read_namelist
+    public :: var_kind, input_item, input_items, table_items, read_namelist
     public :: group_list, var_list, kind_description, changes_history
 
     !> Kinds of input variables (codes as in the reader's messages).
@@ -55,19 +54,7 @@ module input_vars_m
         logical :: flag = .false.
     end type input_item_t
 
-
 contains
-
-    !> Index in INPUT_VARS of variable `name` (any case) of `group`; 0 if there is none.
-    pure integer function find_input(group, name)
-        character(len=*), intent(in) :: group, name
-        integer :: k
-
-        find_input = 0
-        do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group == group .and. lower(INPUT_VARS(k)%name) == lower(name)) find_input = k
-        end do
-    end function find_input
 
     !> Whether input variable `var` changes the computed history, so that a restart must
     !> keep it (docs/input.md, &time restart_from): every variable of the physics, contact,
@@ -100,8 +87,9 @@ contains
         integer :: k
 
         kind = ' '
-        k = find_input(group, name)
-        if (k > 0) kind = INPUT_VARS(k)%kind
+        do k = 1, size(INPUT_VARS)
+            if (INPUT_VARS(k)%group == group .and. lower(INPUT_VARS(k)%name) == lower(name)) kind = INPUT_VARS(k)%kind
+        end do
     end function var_kind
 
     !> The value of input variable INPUT_VARS(k) in cfg.
@@ -122,22 +110,14 @@ contains
     function input_items(cfg) result(items)
         type(config_t), intent(in) :: cfg
         type(input_item_t), allocatable :: items(:)
-        character(len=512) :: msg
-        integer :: k, n, stat
-        logical :: recorded(size(INPUT_VARS))
+        integer :: k
 
-        recorded = INPUT_VARS%group /= 'material' .or. cfg%material%present
-        allocate (items(count(recorded) + 2), stat=stat, errmsg=msg)
-        call check_allocation(stat, msg, 'the input record')
-        n = 0
+        items = [input_item_t ::]
         do k = 1, size(INPUT_VARS)
-            if (.not. recorded(k)) cycle
-            n = n + 1
-            items(n) = input_item(cfg, k)
+            if (INPUT_VARS(k)%group /= 'material' .or. cfg%material%present) items = [items, input_item(cfg, k)]
         end do
-        items(n + 1) = string_item('input.source', trim(cfg%source))
-        items(n + 2) = string_item('input.overrides', trim(cfg%overrides))
-        items = [items, table_items(cfg%initial)]
+        items = [items, string_item('input.source', trim(cfg%source)), &
+                 string_item('input.overrides', trim(cfg%overrides)), table_items(cfg%initial)]
     end function input_items
 
     !> The tables read from &initial's *_file, as items 'initial.<field>_table' (positions,

@@ -66,7 +66,6 @@ contains
             '; the initial displacement must satisfy the contact constraint u0(1) <= g')
     end subroutine validate_initial
 
-
     subroutine require_finite_array(coefficients, where)
         real(dp), intent(in) :: coefficients(0:)
         character(len=*), intent(in) :: where
@@ -77,7 +76,6 @@ contains
                 format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
         end do
     end subroutine require_finite_array
-
 
     !> The positions of init (step ends, table rows) over length: as fractions of the rod, as
     !> the profiles take them (material_m's nondimensionalise divides them so for a run).
@@ -97,7 +95,6 @@ contains
         if (allocated(rod%eta0_table)) rod%eta0_table(:, 1) = init%eta0_table(:, 1) / length
     end function on_rod
 
-
     !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= length (1, or ell in m).
     subroutine require_step(step, where, length)
         real(dp), intent(in) :: step(2), length
@@ -110,7 +107,6 @@ contains
             format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= ' // &
             format_real(length) // ' (the rod''s length: 1, or material.ell in m)')
     end subroutine require_step
-
 
     !> An initial datum x, given as `what`, finite and at most MAX_MAGNITUDE in magnitude;
     !> `must`: the subject of the message ('must', 'every coefficient must').
@@ -131,7 +127,6 @@ contains
         call fatal(EXIT_INPUT, where, 'got ' // what // '; ' // must // ' be ' // bound)
     end subroutine require_datum
 
-
     !> A table (if given) covers the rod [0, length] (to round-off), its values finite and at
     !> most MAX_MAGNITUDE in magnitude.
     subroutine require_table(table, where, file, length)
@@ -151,7 +146,6 @@ contains
                                format_real(table(k, 1)) // " in '" // trim(file) // "'", 'every value must')
         end do
     end subroutine require_table
-
 
     !> The initial profile `name` (polynomial plus optional step and table) must vanish at
     !> the boundary point x of its finite element space; evaluated by the same profile()
@@ -181,6 +175,5 @@ contains
         call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // format_real(value) // what // &
                    '; must be 0 at x = ' // format_real(x) // ' (boundary condition ' // why // ')')
     end subroutine require_boundary_zero
-
 
 end module validate_initial_m

@@ -172,6 +172,7 @@ contains
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
         character(len=:), allocatable, intent(out) :: value
+        character(len=:), allocatable :: what
         integer(hid_t) :: file_id, attr_id, str_type
         integer(hsize_t) :: npoints
         integer(size_t) :: type_size
@@ -182,38 +183,39 @@ contains
         type(c_ptr) :: buf   ! h5aread_f wants a variable, not an expression
         character(kind=c_char), allocatable, target :: fixed(:)
 
-        call open_attr(file, name, 1_hsize_t, file_id, attr_id, npoints)
+        what = 'attribute '//name
+        call open_attr(file, name, file_id, attr_id, npoints, scalar=.true.)
         ! the type h5aget_type_f returns is a copy, usable as the memory type: the string is
         ! read as stored, with no character-set conversion (which HDF5 does not do)
         call h5aget_type_f(attr_id, str_type, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aget_type_f failed')
+        if (hdferr < 0) call fail(file, what, 'h5aget_type_f failed')
         call h5tget_class_f(str_type, type_class, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tget_class_f failed')
-        if (type_class /= H5T_STRING_F) call fail(file, 'attribute '//name, 'not a string attribute')
+        if (hdferr < 0) call fail(file, what, 'h5tget_class_f failed')
+        if (type_class /= H5T_STRING_F) call fail(file, what, 'not a string attribute')
         call h5tis_variable_str_f(str_type, is_variable, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tis_variable_str_f failed')
+        if (hdferr < 0) call fail(file, what, 'h5tis_variable_str_f failed')
         if (is_variable) then
             buf = c_loc(vl_ptr)
         else
             call h5tget_size_f(str_type, type_size, hdferr)
-            if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tget_size_f failed')
+            if (hdferr < 0) call fail(file, what, 'h5tget_size_f failed')
             allocate (fixed(max(1_size_t, type_size)), stat=stat, errmsg=message)
             call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
             fixed = c_char_' '
             buf = c_loc(fixed)
         end if
         call h5aread_f(attr_id, str_type, buf, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
+        if (hdferr < 0) call fail(file, what, 'h5aread_f failed')
         if (is_variable) then
             value = from_c_string(vl_ptr(1), '')
-            if (h5_free_memory(vl_ptr(1)) < 0) call fail(file, 'attribute '//name, 'H5free_memory failed')
+            if (h5_free_memory(vl_ptr(1)) < 0) call fail(file, what, 'H5free_memory failed')
         else
             ! null-terminated, null-padded or space-padded: stop at the first NUL, drop
             ! trailing blanks
             value = trim(from_c_chars(fixed))
         end if
         call h5tclose_f(str_type, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5tclose_f failed')
+        if (hdferr < 0) call fail(file, what, 'h5tclose_f failed')
         call close_attr(file, name, file_id, attr_id)
     end subroutine read_attr_str
 
@@ -224,7 +226,7 @@ contains
         real(dp), intent(out) :: value
         real(dp), allocatable :: values(:)
 
-        call read_attr_values(file, name, 1_hsize_t, values)
+        call read_attr_real_1d(file, name, values, scalar=.true.)
         value = values(1)
     end subroutine read_attr_real
 
@@ -236,38 +238,29 @@ contains
         integer, intent(out) :: value
         real(dp), allocatable :: values(:)
 
-        call read_attr_values(file, name, 1_hsize_t, values)
+        call read_attr_real_1d(file, name, values, scalar=.true.)
         value = nint(values(1))
     end subroutine read_attr_int
 
-    !> Float-array root attribute `name` (any number of elements).
-    subroutine read_attr_real_1d(file, name, values)
+    !> Root attribute `name` as float64 values: any number, with scalar = .true. one.
+    subroutine read_attr_real_1d(file, name, values, scalar)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
         real(dp), allocatable, intent(out) :: values(:)
-
-        call read_attr_values(file, name, -1_hsize_t, values)
-    end subroutine read_attr_real_1d
-
-    !> Root attribute `name` as float64 values; npoints_wanted >= 0: it must have that many.
-    subroutine read_attr_values(file, name, npoints_wanted, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: name
-        integer(hsize_t), intent(in) :: npoints_wanted
-        real(dp), allocatable, intent(out) :: values(:)
+        logical, intent(in), optional :: scalar
         integer(hid_t) :: file_id, attr_id
         integer(hsize_t) :: npoints
         integer :: hdferr, stat
         character(len=256) :: message
 
-        call open_attr(file, name, npoints_wanted, file_id, attr_id, npoints)
+        call open_attr(file, name, file_id, attr_id, npoints, scalar)
         allocate (values(npoints), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'what is read from '''//trim(file)//'''')
         hdferr = 0
         if (npoints > 0) call h5aread_f(attr_id, H5T_NATIVE_DOUBLE, values, [npoints], hdferr)
         if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aread_f failed')
         call close_attr(file, name, file_id, attr_id)
-    end subroutine read_attr_values
+    end subroutine read_attr_real_1d
 
     ! ---------------------------------------------------------------- private helpers
 
@@ -305,28 +298,30 @@ contains
         if (hdferr < 0) call fail(file, what, 'h5fclose_f failed')
     end subroutine close_file
 
-    !> Open `file` and root attribute `name`, with its number of elements; when
-    !> npoints_wanted >= 0 it must be that.
-    subroutine open_attr(file, name, npoints_wanted, file_id, attr_id, npoints)
+    !> Open `file` and root attribute `name`, with its number of elements (one with scalar).
+    subroutine open_attr(file, name, file_id, attr_id, npoints, scalar)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
-        integer(hsize_t), intent(in) :: npoints_wanted
+        logical, intent(in), optional :: scalar
         integer(hid_t), intent(out) :: file_id, attr_id
         integer(hsize_t), intent(out) :: npoints
         integer(hid_t) :: space_id
         integer :: hdferr
+        character(len=:), allocatable :: what
 
-        file_id = open_file(file, 'attribute '//name)
+        what = 'attribute '//name
+        file_id = open_file(file, what)
         call h5aopen_f(file_id, name, attr_id, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'no such root attribute (h5aopen_f failed)')
+        if (hdferr < 0) call fail(file, what, 'no such root attribute (h5aopen_f failed)')
         call h5aget_space_f(attr_id, space_id, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aget_space_f failed')
+        if (hdferr < 0) call fail(file, what, 'h5aget_space_f failed')
         call h5sget_simple_extent_npoints_f(space_id, npoints, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sget_simple_extent_npoints_f failed')
+        if (hdferr < 0) call fail(file, what, 'h5sget_simple_extent_npoints_f failed')
         call h5sclose_f(space_id, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5sclose_f failed')
-        if (npoints_wanted >= 0 .and. npoints /= npoints_wanted) &
-            call fail(file, 'attribute '//name, 'attribute is not a scalar')
+        if (hdferr < 0) call fail(file, what, 'h5sclose_f failed')
+        if (present(scalar)) then
+            if (scalar .and. npoints /= 1) call fail(file, what, 'attribute is not a scalar')
+        end if
     end subroutine open_attr
 
     subroutine close_attr(file, name, file_id, attr_id)

@@ -1,10 +1,8 @@
 !> What HDF5 1.10's Fortran API lacks, bound to its C API: the single-writer/multiple-reader
-!> (SWMR) mode, and H5free_memory for the strings HDF5 allocates. The writer (output_m)
-!> runs in SWMR write mode between its structural changes: HDF5 then writes a flush's
-!> metadata children before their parents (chunk index nodes before what points to them),
-!> so a run killed at any moment leaves its last flush readable (docs/output.md, "A killed
-!> run"). The file left by a killed SWMR writer is still marked as open for writing: only a
-!> SWMR reader opens it (h5_read_m, and h5py.File(path, 'r', swmr=True)).
+!> (SWMR) mode, in which the writer (output_m) runs between its structural changes so that a
+!> killed run leaves its last flush readable (output_file_s), and H5free_memory for the
+!> strings HDF5 allocates. The file of a killed SWMR writer is still marked as open for
+!> writing: only a SWMR reader opens it (h5_read_m, and h5py.File(path, 'r', swmr=True)).
 module h5_swmr_m
     use iso_c_binding, only: c_int, c_int64_t, c_char, c_null_char, c_ptr
     use hdf5, only: hid_t

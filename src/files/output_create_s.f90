@@ -11,6 +11,8 @@ submodule (output_m) output_create_s
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
+    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+
 contains
 
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
@@ -87,38 +89,41 @@ contains
     subroutine create_datasets(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
-        integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
-        integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t]
         integer(hsize_t) :: row(2)
         integer :: hdferr, k
 
         call w%make_group('/mesh')
         ! /mesh/x stays open until finish(), for describe_si
         call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id, &
-                          'position x along the rod (nondimensional, scale: position)', '1', scale='x')
+                          'position x along the rod (nondimensional, scale: position)', &
+                          '1', scale='x')
         call w%make_group('/series')
         associate (t => SERIES(S_T))
-            call w%create_extendible('/series/'//trim(t%name), H5T_IEEE_F64LE, EMPTY, CHUNK, w%series_ids(S_T), &
-                                     described(t%long_name, t%scale), t%units, scale='t')
+            call w%create_extendible('/series/'//trim(t%name), H5T_IEEE_F64LE, EMPTY, CHUNK, &
+                                     w%series_ids(S_T), described(t%long_name, t%scale), &
+                                     t%units, scale='t')
+            call w%make_group('/snapshots')
+            call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, &
+                                     w%snap_t_id, described(t%long_name, t%scale), &
+                                     t%units, scale='t')
         end associate
         do k = 1, N_SERIES
             if (k == S_T) cycle
-            associate (series => SERIES(k))
-                call w%create_extendible('/series/'//trim(series%name), &
-                                         merge(H5T_STD_I32LE, H5T_IEEE_F64LE, series%is_integer), EMPTY, CHUNK, &
-                                         w%series_ids(k), described(series%long_name, series%scale), &
-                                         series%units, coords=[w%series_ids(S_T)])
+            associate (f => SERIES(k))
+                call w%create_extendible('/series/'//trim(f%name), &
+                                         merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
+                                         EMPTY, CHUNK, w%series_ids(k), &
+                                         described(f%long_name, f%scale), f%units, &
+                                         coords=[w%series_ids(S_T)])
             end associate
         end do
-        call w%make_group('/snapshots')
-        call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, w%snap_t_id, &
-                                 described(SERIES(S_T)%long_name, SERIES(S_T)%scale), SERIES(S_T)%units, scale='t')
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
         do k = 1, N_SNAPSHOT_FIELDS
-            associate (field => SNAPSHOTS(k))
-                call w%create_extendible('/snapshots/'//trim(field%name), H5T_IEEE_F64LE, [row(1), 0_hsize_t], &
-                                         row, w%snap_field_ids(k), described(field%long_name, field%scale), &
-                                         field%units, coords=[w%snap_t_id, w%mesh_x_id], compress=.true.)
+            associate (f => SNAPSHOTS(k))
+                call w%create_extendible('/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
+                                         [row(1), 0_hsize_t], row, w%snap_field_ids(k), &
+                                         described(f%long_name, f%scale), f%units, &
+                                         coords=[w%snap_t_id, w%mesh_x_id], compress=.true.)
             end associate
         end do
         call h5lcreate_hard_f(w%file_id, '/mesh/x', w%file_id, '/snapshots/x', hdferr)
@@ -234,7 +239,8 @@ contains
 
     !> A 1D dataset at `path` of type file_type (float64, or int32 from whole numbers),
     !> written once and whole, and labelled (label()): dset_id, open.
-    subroutine create_fixed(w, path, file_type, values, dset_id, long_name, units, si, scale, coords)
+    subroutine create_fixed(w, path, file_type, values, dset_id, long_name, units, si, &
+                            scale, coords)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: path, long_name, units
         integer(hid_t), intent(in) :: file_type
@@ -270,9 +276,12 @@ contains
         call w%need_open('write_events()')
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call w%make_group('/events')
-        call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id, described(trim(SERIES(S_T)%long_name)// &
-                          ' of a change of the contact state (interpolated in the step that crosses it)', &
-                          SERIES(S_T)%scale), SERIES(S_T)%units, si=SERIES(S_T)%scale, scale='t')
+        associate (time => SERIES(S_T))
+            call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id, &
+                              described(trim(time%long_name)//' of a change of the contact '// &
+                                        'state (interpolated in the step that crosses it)', &
+                                        time%scale), time%units, si=time%scale, scale='t')
+        end associate
         call create_fixed(w, '/events/kind', H5T_STD_I32LE, real(kind, dp), kind_id, &
                           'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
                           '1', si='', coords=[t_id])
@@ -307,7 +316,8 @@ contains
         call w%attr('units', trim(units), on=dset_id)
         if (present(si)) then
             do k = 1, w%n_si
-                if (w%si_names(k) == si) call put_si(w, dset_id, w%si_factors(k), trim(w%si_units(k)))
+                if (w%si_names(k) /= si) cycle
+                call put_si(w, dset_id, w%si_factors(k), trim(w%si_units(k)))
             end do
         end if
         if (present(scale)) then

@@ -1,12 +1,8 @@
-!> The per-snapshot error estimates of a run with &output error_estimate (docs/output.md):
-!> a submodule of output_m, so that it reaches the writer's open file.
-!>
-!>     /snapshots/error_estimate/<field>         (n_snap,)  float64   time and space together
-!>     /snapshots/error_estimate_time/<field>    (n_snap,)  float64   its time part
-!>     /snapshots/error_estimate_space/<field>   (n_snap,)  float64   its space part
-!>
-!> One value per snapshot: the estimated relative L2 error |f_h - f| / |f_h| of the field
-!> (error_companion_m computes it). Created by the first append and kept open until
+!> The per-snapshot error estimates of a run with &output error_estimate: a submodule of
+!> output_m, so that it reaches the writer's open file. /snapshots/error_estimate/<field>,
+!> and its time and space parts in error_estimate_time and error_estimate_space
+!> (docs/output.md), hold one value per snapshot: the estimated relative L2 error |f_h - f| / |f_h| of the
+!> field (error_companion_m computes it). Created by the first append and kept open until
 !> finish(); the values are buffered between flushes, as the series are.
 submodule (output_m) output_estimate_s
     implicit none
@@ -16,6 +12,7 @@ submodule (output_m) output_estimate_s
                                                 '/snapshots/error_estimate_time', '/snapshots/error_estimate_space']
     character(len=*), parameter :: WHAT(3) = [character(len=40) :: '(time and space)', &
                                               '(time part)', '(space part)']
+    integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
 
 contains
 
@@ -67,10 +64,10 @@ contains
         do part = 1, size(GROUPS)
             call w%make_group(trim(GROUPS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                call w%create_extendible(path_of(part, k), H5T_IEEE_F64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], &
+                call w%create_extendible(path_of(part, k), H5T_IEEE_F64LE, [0_hsize_t], CHUNK, &
                                          w%estimate_ids(k, part), 'estimated relative L2 error of '// &
-                                         trim(FIELDS(OUTPUT_ORDER(k))%long_name)//' at each snapshot '// &
-                                         trim(WHAT(part)), '1')
+                                         trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
+                                         ' at each snapshot '//trim(WHAT(part)), '1')
             end do
         end do
     end subroutine open_estimate

@@ -149,7 +149,6 @@ contains
         call w%leave_swmr()
         w%closing = .true.
         call tidy(w)
-        call w%flush_series()
         call w%attr('status', status)
         call w%attr('logical_attributes', w%logical_names)
         call w%flush()   ! with its space reserved; closing then writes nothing new

@@ -1,13 +1,7 @@
-!> The HDF5 writer of the output file (docs/output.md). Layout as h5py sees it:
-!>
-!>     /mesh/x                                          (s+1,)          float64
-!>     /series/<name>   one per fields_m's SERIES table (n_series,)     float64 or int32
-!>     /snapshots/t                                     (n_snap,)       float64
-!>     /snapshots/<name>   fields_m's SNAPSHOTS (fields, sigma)  (n_snap, s+1)  float64
-!>     root attributes: input values 'group.variable', version, counters, 'status'
-!>     dataset attributes: long_name, units (from the tables)
-!>
-!> Fortran sees the snapshot fields with the dimensions reversed, (s+1, n_snap).
+!> The HDF5 writer of the output file: /mesh/x, /series/<name> (fields_m's SERIES),
+!> /snapshots/t and /snapshots/<name> (fields_m's SNAPSHOTS), root and dataset attributes;
+!> docs/output.md gives the layout as h5py sees it (Fortran sees the snapshot fields with
+!> the dimensions reversed, (s+1, n_snap)).
 !> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
 !> no run leaves a truncated file under the final name (docs/output.md); a run resumed in
 !> place writes `<prefix>.resume.h5.part` (RESUMED_SUFFIX), which finish() renames over
@@ -204,8 +198,8 @@ module output_m
             character(len=*), intent(in) :: path
         end subroutine writer_make_group
 
-        module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, long_name, units, &
-                                                   si, scale, coords, compress)
+        module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, &
+                                                   long_name, units, si, scale, coords, compress)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: path, long_name, units
             integer(hid_t), intent(in) :: file_type

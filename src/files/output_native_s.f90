@@ -1,19 +1,16 @@
 !> The snapshots of an adaptive mesh on their own meshes (/snapshots/native, docs/output.md):
-!> a submodule of output_m, so that it reaches the writer's open file.
-!>
-!>     /snapshots/native/x, /snapshots/native/<field>   (sum of counts,)  float64
-!>     /snapshots/native/offset, /snapshots/native/count (n_snap,)        int64
-!>
-!> Snapshot j holds the nodes x[offset[j] : offset[j] + count[j]] and the exact nodal
-!> values of every field there (the P1 solution the run computed); /snapshots/<field>
-!> hold the same P1 functions evaluated on the fixed grid /mesh/x. Every append opens,
-!> extends, writes and closes the datasets.
+!> a submodule of output_m, so that it reaches the writer's open file. Snapshot j holds the
+!> nodes native/x[offset[j] : offset[j] + count[j]] and the exact nodal values of every
+!> field there (the P1 solution the run computed); /snapshots/<field> hold the same P1
+!> functions evaluated on the fixed grid /mesh/x. Every append opens, extends, writes and
+!> closes the datasets.
 submodule (output_m) output_native_s
     use hdf5, only: h5dopen_f, H5T_STD_I64LE
     implicit none
 
     character(len=*), parameter :: GROUP = '/snapshots/native'
-    integer, parameter :: VALUES_CHUNK = 4096   !< float64 entries per chunk (32 KiB)
+    integer(hsize_t), parameter :: VALUES_CHUNK(1) = [4096_hsize_t]   !< float64 entries (32 KiB)
+    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
 
 contains
 
@@ -46,21 +43,21 @@ contains
     !> or by the first checkpoint of an adaptive mesh (write_checkpoint), so that SWMR
     !> writing need not end for it later (output_file_s).
     module procedure writer_create_native
-        integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t]
         integer(hid_t) :: dset_id, x_id
         integer :: k
 
         call w%leave_swmr()
         call w%make_group(GROUP)
         w%native_created = .true.
-        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, EMPTY, [int(VALUES_CHUNK, hsize_t)], x_id, &
+        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, EMPTY, VALUES_CHUNK, x_id, &
                                  'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
                                  '1', si='position', scale='x')
         do k = 1, N_SNAPSHOT_FIELDS
-            associate (field => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
-                call w%create_extendible(path, H5T_IEEE_F64LE, EMPTY, [int(VALUES_CHUNK, hsize_t)], dset_id, &
-                                         described(trim(field%long_name)//' at the nodes of its own mesh (native/x)', &
-                                                   field%scale), field%units, si=field%scale, coords=[x_id])
+            associate (f => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
+                call w%create_extendible(path, H5T_IEEE_F64LE, EMPTY, VALUES_CHUNK, dset_id, &
+                                         described(trim(f%long_name)//' at the nodes of its own '// &
+                                                   'mesh (native/x)', f%scale), &
+                                         f%units, si=f%scale, coords=[x_id])
                 call w%close_dataset(dset_id, path)
             end associate
         end do
@@ -75,8 +72,8 @@ contains
         character(len=*), intent(in) :: name, long_name
         integer(hid_t) :: dset_id
 
-        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, [0_hsize_t], [int(SERIES_CHUNK, hsize_t)], &
-                                 dset_id, long_name, '1', si='', coords=[w%snap_t_id])
+        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, EMPTY, CHUNK, dset_id, &
+                                 long_name, '1', si='', coords=[w%snap_t_id])
         call w%close_dataset(dset_id, GROUP//'/'//name)
     end subroutine create_index
 

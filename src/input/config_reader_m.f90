@@ -35,8 +35,7 @@ contains
         character(len=*), intent(in), optional :: overrides(:)
         type(string_t), allocatable :: lines(:)
         type(group_t), allocatable :: groups(:), sets(:)
-        integer :: k, stat
-        character(len=LEN_MSG) :: msg
+        integer :: k
         logical :: halt_on_overflow
 
         ! A value like 1e400 reads as +Inf, which validation rejects with a message; a Debug
@@ -45,16 +44,12 @@ contains
         call ieee_set_halting_mode(ieee_overflow, .false.)
         cfg%source = source
         ! the overrides are checked first: a misspelt --set fails before stdin is read
+        sets = [group_t ::]
         if (present(overrides)) then
-            allocate (sets(size(overrides)), stat=stat, errmsg=msg)
-            call check_allocation(stat, msg, 'the command-line overrides')
             do k = 1, size(overrides)
-                sets(k) = parse_override(overrides(k))
+                sets = [sets, parse_override(overrides(k))]
             end do
             cfg%overrides = override_summary(overrides)
-        else
-            allocate (sets(0), stat=stat, errmsg=msg)
-            call check_allocation(stat, msg, 'the command-line overrides')
         end if
         call read_source(source, lines)
         call strip_comments(lines)

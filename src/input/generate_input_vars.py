@@ -22,6 +22,7 @@ What a component's declaration says (one component per line):
   character(len=LEN_PATH) :: path = ''          KIND_STRING
 Anything else inside a group's type stops the generator with a message naming the line.
 """
+import collections
 import os
 import re
 import sys
@@ -40,10 +41,7 @@ COMPONENT = re.compile(
 UNIT = re.compile(r"\[([^\[\]]*)\]\s*$")
 
 
-class Var:
-    def __init__(self, group, name, kind, keyword, unit, local):
-        self.group, self.name, self.kind, self.keyword, self.unit, self.local = \
-            group, name, kind, keyword, unit, local
+Var = collections.namedtuple("Var", "group name kind keyword unit local")
 
 
 def fail(path, number, message):

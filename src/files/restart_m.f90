@@ -1,24 +1,16 @@
-!> Checkpoint contents and restart (&output checkpoint_every, &time restart_from).
-!>
-!> A checkpoint lives in the group /checkpoint of the output file, in one of two slots
-!> (slot0, slot1; /checkpoint/current says which is complete, see output_checkpoint_s). A
-!> slot holds one group per owner, each with that owner's named datasets: entry
-!> 'owner/name' of checkpoint_m's record is /checkpoint/slotN/owner/name, a scalar member
-!> name of the compound /checkpoint/slotN/owner/scalars (integers as integers, a logical as
-!> 0/1 under a name ending in _flag; docs/output.md lists them).
-!> /checkpoint's attribute layout (output_m's CHECKPOINT_LAYOUT) tells this layout from the
-!> positional one of earlier versions (slotN/counters, control, mesh, ...: arrays of reals
-!> told apart by position and length), which a restart refuses. A restart reads the last
-!> checkpoint of a file (complete, failed, or the .h5.part of a killed run), copies the
-!> series and snapshots up to it into the new file and continues the time loop from there,
-!> so the result is bit-for-bit that of an uninterrupted run. A restart from the run's own
-!> <prefix>.h5.part resumes it in place (output_m's RESUMED_SUFFIX; docs/robustness.md).
+!> Restart (&time restart_from): the last checkpoint of a file (complete, failed, or the
+!> .h5.part of a killed run; its layout: docs/output.md, "Checkpoints") read into
+!> checkpoint_m's record once this run may continue it, and the series and snapshots up to
+!> it copied into the new file, so that the continued run is bit-for-bit an uninterrupted
+!> one. A restart from the run's own <prefix>.h5.part resumes it in place (output_m's
+!> RESUMED_SUFFIX); the positional layout of earlier versions is refused with what to do
+!> (docs/robustness.md).
 module restart_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, number_of_steps
-    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, table_items, KIND_REAL, &
-                            KIND_INTEGER, KIND_STRING, KIND_LOGICAL
+    use input_vars_m, only: INPUT_VARS, input_item_t, input_item, changes_history, table_items, KIND_INTEGER, &
+                            KIND_STRING, KIND_LOGICAL
     use strings_m, only: format_real, int_str
     use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
     use reals_m, only: equal
@@ -26,7 +18,7 @@ module restart_m
     use checkpoint_read_m, only: read_entries, has_group_attribute
     use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file, rename_file, remove_file
-    use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, read_attr_real, &
+    use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists, is_hdf5_file
     use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX
     implicit none
@@ -47,9 +39,8 @@ contains
         type(config_t), intent(in) :: cfg
         type(checkpoint_t), intent(out) :: ckpt
         logical, intent(out) :: in_place
-        integer, allocatable :: current(:)
         real(dp) :: t
-        integer :: step
+        integer :: step, slot
         character(len=:), allocatable :: prefix
 
         prefix = trim(cfg%output%prefix)
@@ -64,8 +55,9 @@ contains
             'restarts from; choose another output.prefix, or continue the run with --resume')
         in_place = same_file(file, prefix//'.h5.part')
         if (in_place) call take_over_resumed(prefix//RESUMED_SUFFIX, file)
-        if (.not. dataset_exists(file, '/checkpoint/current')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
-            "' holds no checkpoint; the run must have &output checkpoint_every > 0 and reached a checkpoint")
+        slot = current_slot(file)
+        if (slot < 0) call fatal(EXIT_INPUT, WHERE, "'"//file//"' holds no complete checkpoint; the run must "// &
+                                 'have &output checkpoint_every > 0 and reach a checkpoint')
         if (.not. has_group_attribute(file, '/checkpoint', 'layout')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "': its checkpoint is in the positional layout of earlier versions of rodcontact (/checkpoint/slotN/"// &
             'counters, control, mesh, ...: arrays of reals); this version reads only its own layout ('// &
@@ -73,11 +65,7 @@ contains
             'version that wrote the file')
         call require_same_history_inputs(file, cfg)
         call require_history_datasets(file)
-        call read_int_1d(file, '/checkpoint/current', current)
-        ! -1: the run was killed while writing its first checkpoint (output_checkpoint_s)
-        if (current(1) < 0) call fatal(EXIT_INPUT, WHERE, "'"//file// &
-            "' holds no complete checkpoint; the run must have reached a checkpoint")
-        call read_entries(file, '/checkpoint/slot'//int_str(current(1)), ckpt)
+        call read_entries(file, '/checkpoint/slot'//int_str(slot), ckpt)
         call require_fit(file, cfg, ckpt)
         call ckpt%get('state/t', t)
         call ckpt%get('state/step', step)
@@ -88,8 +76,8 @@ contains
     end subroutine read_checkpoint
 
     !> The checkpoint's level fits this run's mesh (&mesh n_elements, or on an adaptive mesh
-    !> the checkpoint's node keys) and holds what this run continues (an adaptive mesh, the
-    !> error estimate's companions).
+    !> the checkpoint's node keys) and it holds the error estimate's companions if this run
+    !> continues them (&output error_estimate may change across a restart).
     subroutine require_fit(file, cfg, ckpt)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
@@ -100,8 +88,6 @@ contains
 
         s = cfg%mesh%n_elements
         if (cfg%mesh%adaptive) then
-            if (.not. ckpt%has('adaptive_mesh/keys')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
-                                                                 "': its checkpoint has no adaptive mesh")
             call ckpt%get('adaptive_mesh/keys', keys)
             s = size(keys) - 1
         end if
@@ -131,17 +117,12 @@ contains
     !> (it continued part's history), it takes part's place; without one it is dropped.
     subroutine take_over_resumed(resumed, part)
         character(len=*), intent(in) :: resumed, part
-        integer, allocatable :: current(:)
         character(len=:), allocatable :: message
         logical :: ok
 
         if (.not. file_exists(resumed)) return
         ok = is_hdf5_file(resumed)
-        if (ok) ok = dataset_exists(resumed, '/checkpoint/current')
-        if (ok) then
-            call read_int_1d(resumed, '/checkpoint/current', current)
-            ok = current(1) >= 0
-        end if
+        if (ok) ok = current_slot(resumed) >= 0
         if (.not. ok) then
             call remove_file(resumed)
             return
@@ -150,18 +131,28 @@ contains
         if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//' (taking over the later checkpoint of a resumed run)')
     end subroutine take_over_resumed
 
+    !> The slot of the last complete checkpoint of `file` (/checkpoint/current), -1 if none
+    !> (also after a kill while the first was written: output_checkpoint_s).
+    integer function current_slot(file) result(slot)
+        character(len=*), intent(in) :: file
+        integer, allocatable :: current(:)
+
+        slot = -1
+        if (.not. dataset_exists(file, '/checkpoint/current')) return
+        call read_int_1d(file, '/checkpoint/current', current)
+        slot = current(1)
+    end function current_slot
+
     !> Every input variable that changes the computed history (input_vars_m's
     !> changes_history) must have the value recorded in `file` as root attribute
     !> group.variable; &material counts when either run has it; the tables of &initial's
-    !> files the contents recorded (require_same_tables).
+    !> files (their names are input variables too) the rows recorded.
     subroutine require_same_history_inputs(file, cfg)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
-        type(input_item_t) :: item
-        real(dp) :: x
-        real(dp), allocatable :: xs(:)
-        integer :: k, i
-        character(len=:), allocatable :: text
+        type(config_t) :: defaults
+        type(input_item_t) :: item, was
+        integer :: k
         logical :: recorded
 
         do k = 1, size(INPUT_VARS)
@@ -177,100 +168,81 @@ contains
             end if
             if (.not. recorded) then
                 ! an input added after the version that wrote the file: its default is what that run computed
-                if (is_default(cfg, k)) cycle
+                if (same(item, input_item(defaults, k))) cycle
                 call refuse(file, item%name, 'not recorded', 'a value other than its default')
             end if
-            select case (item%kind)
-            case (KIND_REAL)
-                call read_attr_real(file, item%name, x)
-                if (.not. equal(x, item%reals(1))) call refuse(file, item%name, format_real(x), format_real(item%reals(1)))
-            case (KIND_INTEGER)
-                call read_attr_int(file, item%name, i)
-                if (i /= item%int) call refuse(file, item%name, int_str(i), int_str(item%int))
-            case (KIND_STRING)
-                call read_attr_str(file, item%name, text)
-                if (text /= item%text) call refuse(file, item%name, "'"//text//"'", "'"//item%text//"'")
-            case (KIND_LOGICAL)
-                call read_attr_int(file, item%name, i)
-                if ((i /= 0) .neqv. item%flag) call refuse(file, item%name, logical_str(i /= 0), logical_str(item%flag))
-            case default   ! polynomial coefficients, (amplitude, x_end)
-                call read_attr_real_1d(file, item%name, xs)
-                if (size(xs) /= size(item%reals)) then
-                    call refuse(file, item%name, real_list(xs), real_list(item%reals))
-                else if (.not. all(equal(xs, item%reals))) then
-                    call refuse(file, item%name, real_list(xs), real_list(item%reals))
-                end if
-            end select
+            was = recorded_item(file, item)
+            if (.not. same(was, item)) call refuse(file, item%name, value_text(was), value_text(item))
         end do
-        call require_same_tables(file, cfg)
-    end subroutine require_same_history_inputs
-
-    !> The tables of &initial's files (their names are input variables, checked by
-    !> require_same_history_inputs) must have the rows recorded in `file`, not only the names.
-    subroutine require_same_tables(file, cfg)
-        character(len=*), intent(in) :: file
-        type(config_t), intent(in) :: cfg
-        real(dp), allocatable :: xs(:)
-        integer :: k
-
         associate (tables => table_items(cfg%initial))
             do k = 1, size(tables)
-                associate (name => tables(k)%name, rows => tables(k)%reals)
-                    if (.not. attr_exists(file, name)) call refuse(file, name, 'not recorded', 'a table')
-                    call read_attr_real_1d(file, name, xs)
-                    if (size(xs) /= size(rows)) then
-                        call refuse(file, name, int_str(size(xs) / 2)//' rows', int_str(size(rows) / 2)//' rows')
-                    else if (.not. all(equal(xs, rows))) then
-                        call refuse(file, name, 'the rows recorded there', 'other values in its '//int_str(size(xs) / 2)//' rows')
-                    end if
-                end associate
+                if (.not. attr_exists(file, tables(k)%name)) call refuse(file, tables(k)%name, 'not recorded', 'a table')
+                was = recorded_item(file, tables(k))
+                if (.not. same(was, tables(k))) call refuse(file, tables(k)%name, int_str(size(was%reals) / 2)// &
+                    ' rows (those recorded there)', int_str(size(tables(k)%reals) / 2)//' rows of other values')
             end do
         end associate
-    end subroutine require_same_tables
+    end subroutine require_same_history_inputs
 
-    !> Has input variable k of cfg its default value (config_m's types)?
-    logical function is_default(cfg, k)
-        type(config_t), intent(in) :: cfg
-        integer, intent(in) :: k
-        type(config_t) :: defaults
-        type(input_item_t) :: a, b
+    !> Input `item` as `file` records it (root attribute item%name).
+    function recorded_item(file, item) result(was)
+        character(len=*), intent(in) :: file
+        type(input_item_t), intent(in) :: item
+        type(input_item_t) :: was
+        integer :: i
 
-        a = input_item(cfg, k)
-        b = input_item(defaults, k)
-        select case (a%kind)
-        case (KIND_REAL)
-            is_default = equal(a%reals(1), b%reals(1))
+        was = item
+        select case (item%kind)
         case (KIND_INTEGER)
-            is_default = a%int == b%int
+            call read_attr_int(file, item%name, was%int)
         case (KIND_STRING)
-            is_default = a%text == b%text
+            call read_attr_str(file, item%name, was%text)
         case (KIND_LOGICAL)
-            is_default = a%flag .eqv. b%flag
-        case default
-            is_default = size(a%reals) == size(b%reals)
-            if (is_default) is_default = all(equal(a%reals, b%reals))
+            call read_attr_int(file, item%name, i)
+            was%flag = i /= 0
+        case default   ! a real, polynomial coefficients, (amplitude, x_end), a table's rows
+            call read_attr_real_1d(file, item%name, was%reals)
         end select
-    end function is_default
+    end function recorded_item
 
-    pure function logical_str(flag) result(text)
-        logical, intent(in) :: flag
-        character(len=:), allocatable :: text
+    !> Two values of one input agree (reals: reals_m's equal).
+    logical function same(a, b)
+        type(input_item_t), intent(in) :: a, b
 
-        text = trim(merge('.true. ', '.false.', flag))
-    end function logical_str
+        select case (a%kind)
+        case (KIND_INTEGER)
+            same = a%int == b%int
+        case (KIND_STRING)
+            same = a%text == b%text
+        case (KIND_LOGICAL)
+            same = a%flag .eqv. b%flag
+        case default
+            same = size(a%reals) == size(b%reals)
+            if (same) same = all(equal(a%reals, b%reals))
+        end select
+    end function same
 
-    !> '0, 40, -80, 40, 0, ...' for messages.
-    pure function real_list(values) result(text)
-        real(dp), intent(in) :: values(:)
+    !> An input's value for messages: 100, 'euler', .true., 0, 40, -80, 40.
+    function value_text(item) result(text)
+        type(input_item_t), intent(in) :: item
         character(len=:), allocatable :: text
         integer :: k
 
-        text = ''
-        do k = 1, size(values)
-            if (k > 1) text = text//', '
-            text = text//format_real(values(k))
-        end do
-    end function real_list
+        select case (item%kind)
+        case (KIND_INTEGER)
+            text = int_str(item%int)
+        case (KIND_STRING)
+            text = "'"//item%text//"'"
+        case (KIND_LOGICAL)
+            text = trim(merge('.true. ', '.false.', item%flag))
+        case default   ! (a polynomial's coefficients count from 0)
+            text = ''
+            do k = lbound(item%reals, 1), ubound(item%reals, 1)
+                text = text//', '//format_real(item%reals(k))
+            end do
+            text = text(3:)
+        end select
+    end function value_text
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
     !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables.
@@ -279,7 +251,6 @@ contains
         character(len=*), intent(in) :: file
         real(dp), intent(in) :: t_checkpoint
         real(dp), allocatable :: column(:), rows(:, :), snap_t(:), snap(:, :), snaps(:, :, :)
-        integer, allocatable :: whole(:)
         real(dp) :: t_last
         integer :: k, n, stat
         character(len=256) :: message
@@ -289,15 +260,8 @@ contains
         n = rows_to_copy(column, t_last)
         allocate (rows(N_SERIES, n), stat=stat, errmsg=message)   ! one contiguous column per entry
         call check_allocation(stat, message, 'the copied series')
-        do k = 1, N_SERIES
-            if (SERIES(k)%is_integer) then
-                call read_int_1d(file, '/series/'//trim(SERIES(k)%name), whole)
-                column = real(whole, dp)
-            else
-                call read_real_1d(file, '/series/'//trim(SERIES(k)%name), column)
-            end if
-            call require_rows(file, '/series/'//trim(SERIES(k)%name), size(column), n)
-            rows(k, :) = column(1:n)
+        do k = 1, N_SERIES   ! (an integer series read as float64, which holds it exactly)
+            rows(k, :) = leading(file, '/series/'//trim(SERIES(k)%name), n)
         end do
         do k = 1, n
             call writer%append_series(rows(:, k))
@@ -347,8 +311,7 @@ contains
         integer, intent(in) :: n
         character(len=*), parameter :: GROUPS(3) = [character(len=32) :: '/snapshots/error_estimate', &
                                                     '/snapshots/error_estimate_time', '/snapshots/error_estimate_space']
-        real(dp), allocatable :: column(:), values(:, :, :)
-        character(len=:), allocatable :: path
+        real(dp), allocatable :: values(:, :, :)
         integer :: j, k, part, stat
         character(len=256) :: message
 
@@ -356,10 +319,7 @@ contains
         call check_allocation(stat, message, 'the copied error estimates')
         do part = 1, size(GROUPS)
             do k = 1, N_OUTPUT_FIELDS
-                path = trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
-                call read_real_1d(file, path, column)
-                call require_rows(file, path, size(column), n)
-                values(k, part, :) = column(1:n)
+                values(k, part, :) = leading(file, trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name), n)
             end do
         end do
         do j = 1, n
@@ -373,7 +333,7 @@ contains
         character(len=*), intent(in) :: file
         integer, intent(in) :: n
         integer, allocatable :: offset(:), count(:)
-        real(dp), allocatable :: x(:), column(:), values(:, :)
+        real(dp), allocatable :: x(:), values(:, :)
         integer :: j, k, stat
         character(len=256) :: message
 
@@ -385,15 +345,24 @@ contains
         allocate (values(size(x), N_SNAPSHOT_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the copied native snapshots')
         do k = 1, N_SNAPSHOT_FIELDS
-            call read_real_1d(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), column)
-            call require_rows(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), size(column), size(x))
-            values(:, k) = column(1:size(x))
+            values(:, k) = leading(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), size(x))
         end do
         do j = 1, n
             call require_rows(file, '/snapshots/native/x', size(x), offset(j) + count(j))
             call writer%append_native(x(offset(j) + 1:offset(j) + count(j)), values(offset(j) + 1:offset(j) + count(j), :))
         end do
     end subroutine copy_native
+
+    !> The first n values of the 1D dataset `dset` of `file` (require_rows).
+    function leading(file, dset, n) result(values)
+        character(len=*), intent(in) :: file, dset
+        integer, intent(in) :: n
+        real(dp), allocatable :: values(:)
+
+        call read_real_1d(file, dset, values)
+        call require_rows(file, dset, size(values), n)
+        values = values(:n)
+    end function leading
 
     !> A dataset of the copied history has fewer rows than its time column: not a file this
     !> version of rodcontact wrote.

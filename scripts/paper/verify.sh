@@ -117,6 +117,9 @@ set encoding utf8
 set terminal pngcairo size 700,480 font ",10"
 set output "figures/penetration_eps.png"
 unset title
+# log axes (reset above cleared the convergence plot's): seven decades of eps, slope 1 a line
+set logscale xy; set autoscale xfix
+set format x "10^{%L}"; set format y "10^{%L}"
 set xlabel "ε"; set ylabel "max_t [u(1,t) - g]_+"
 set key top left
 plot "$tmp/pen_exp1.dat" u 1:2 w lp pt 7 t "experiment 1", "$tmp/pen_exp2.dat" u 1:2 w lp pt 5 t "experiment 2", \

@@ -1,15 +1,6 @@
 !> rodcontact: a thermoviscoelastic rod with mass diffusion and second sound hitting a rigid
 !> obstacle (Aouadi, Copetti & Fernandez, ESAIM: M2AN 2017). Thin driver: read, validate, run.
-!>
-!>   rodcontact < input.nml      namelist on standard input
-!>   rodcontact input.nml        namelist file as argument ('-' for standard input)
-!>   rodcontact input.nml --set group.variable=value ...   overrides after the file
-!>   rodcontact input.nml [--set ...] --resume             continue <prefix>.h5.part in place
-!>   rodcontact --summary file.h5 ... | --summary-header [file.h5]   one CSV row per run
-!>   rodcontact --events file.h5 ...                       one CSV row per contact event
-!>     (in the run's units: SI with &material; --nondimensional: the file's own values)
-!>   rodcontact --check input.nml [--set ...]              read and validate only: exit 0 or 2
-!>   rodcontact --help | --version
+!> The usage is print_help's text (rodcontact --help).
 program rodcontact
     use iso_fortran_env, only: output_unit
     use config_m, only: config_t
@@ -24,30 +15,19 @@ program rodcontact
     use version_m, only: PROGRAM_VERSION, VERSION_LINE
     implicit none
     type(config_t) :: cfg
-    character(len=:), allocatable :: source, table
-    integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
-    integer :: k, max_len
-    logical :: check_only, nondimensional
+    character(len=:), allocatable :: source, table, overrides(:)
+    integer, allocatable :: summary_args(:)
+    logical :: check_only, resume, nondimensional
 
-    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
+    allocate (character(len=0) :: overrides(0))
+    call parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
     if (table /= '') then
         call write_table(table, summary_args, nondimensional)
         stop
     end if
-    max_len = max_argument_length()
-    block
-        ! the --set values: argument set_arg(k) without its first set_skip(k) characters
-        character(len=max_len) :: overrides(size(set_arg))
-
-        do k = 1, size(set_arg)
-            overrides(k) = argument(set_arg(k))
-            overrides(k) = overrides(k)(set_skip(k) + 1:)
-        end do
-        call read_config(source, cfg, overrides)
-    end block
+    call read_config(source, cfg, overrides)
     ! --resume: restart from the run's own .part, which the run then replaces (restart_m)
-    if (any([(argument(k) == '--resume', k = 1, command_argument_count())])) &
-        cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
+    if (resume) cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
     call validate_config(cfg, scheme_rules())
     call nondimensionalise(cfg)   ! with &material (SI inputs); echoes what it derived
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
@@ -89,16 +69,16 @@ contains
         end do
     end subroutine write_table
 
-    !> The input source ('-' = standard input), where the --set values are (argument
-    !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
-    !> the arguments that are files of --summary, --events or --summary-header (table: which;
-    !> every argument after it but --nondimensional; none without it), and whether --check
-    !> was given (--resume is read by the program itself). --help and --version print and stop.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
+    !> The input source ('-' = standard input), the --set values (of '--set X' and
+    !> '--set=X', in their order), the arguments that are files of --summary, --events or
+    !> --summary-header (table: which; every argument after it but --nondimensional; none
+    !> without it), and whether --check and --resume were given. --help and --version print
+    !> and stop.
+    subroutine parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
         character(len=:), allocatable, intent(out) :: source
-        integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
+        character(len=:), allocatable, intent(inout) :: overrides(:)   !< empty
         integer, allocatable, intent(out) :: summary_args(:)
-        logical, intent(out) :: check_only
+        logical, intent(out) :: check_only, resume
         character(len=:), allocatable, intent(out) :: table
         logical, intent(out) :: nondimensional
         character(len=:), allocatable :: arg
@@ -109,9 +89,10 @@ contains
         source = '-'
         source_given = .false.
         check_only = .false.
+        resume = .false.
         table = ''
         nondimensional = .false.
-        allocate (set_arg(0), set_skip(0), summary_args(0))
+        allocate (summary_args(0))
         i = 1
         do while (i <= n_args)
             arg = argument(i)
@@ -123,7 +104,7 @@ contains
                 write (output_unit, '(a)') VERSION_LINE
                 stop
             case ('--summary', '--events', '--summary-header')
-                if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
+                if (source_given .or. size(overrides) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
                     arg // ' takes only HDF5 files, no input file, --set or --check')
                 table = arg
                 do k = i + 1, n_args
@@ -135,16 +116,18 @@ contains
                 exit
             case ('--nondimensional')
                 nondimensional = .true.
-            case ('--check', '--resume')
-                check_only = check_only .or. arg == '--check'
+            case ('--check')
+                check_only = .true.
+            case ('--resume')
+                resume = .true.
             case ('--set')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
                                             'group.variable=value, e.g. --set model.varpi=0.3')
                 i = i + 1
-                set_arg = [set_arg, i]
-                set_skip = [set_skip, 0]
+                arg = argument(i)
+                overrides = [character(len=max(len(overrides), len(arg))) :: overrides, arg]
             case default
-                call take_operand(arg, i, source, source_given, set_arg, set_skip)
+                call take_operand(arg, source, source_given, overrides)
             end select
             i = i + 1
         end do
@@ -152,18 +135,15 @@ contains
             '--nondimensional is for --summary, --events and --summary-header')
     end subroutine parse_command_line
 
-    !> Argument i, `arg`, names no option: '--set=X' (appended to set_arg, set_skip), or the
+    !> An argument, `arg`, that names no option: '--set=X' (X appended to overrides), or the
     !> input file (source; source_given: whether one was given before).
-    subroutine take_operand(arg, i, source, source_given, set_arg, set_skip)
+    subroutine take_operand(arg, source, source_given, overrides)
         character(len=*), intent(in) :: arg
-        integer, intent(in) :: i
-        character(len=:), allocatable, intent(inout) :: source
+        character(len=:), allocatable, intent(inout) :: source, overrides(:)
         logical, intent(inout) :: source_given
-        integer, allocatable, intent(inout) :: set_arg(:), set_skip(:)
 
         if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
-            set_arg = [set_arg, i]
-            set_skip = [set_skip, 6]
+            overrides = [character(len=max(len(overrides), len(arg) - 6)) :: overrides, arg(7:)]
             return
         end if
         if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', "unknown option '" // &
@@ -221,16 +201,6 @@ contains
         end do
         word = word // "'"
     end function shell_word
-
-    integer function max_argument_length() result(n)
-        integer :: i, length
-
-        n = 1
-        do i = 1, command_argument_count()
-            call get_command_argument(i, length=length)
-            n = max(n, length)
-        end do
-    end function max_argument_length
 
     subroutine print_help()
         write (output_unit, '(a)') &

@@ -11,7 +11,7 @@ module errors_m
     integer, parameter :: EXIT_INPUT = 2    !< bad input: file, syntax, unknown variable, out-of-range value
     integer, parameter :: EXIT_NUMERIC = 3  !< numerical failure: non-finite value, solver failure, no convergence
     integer, parameter :: EXIT_OUTPUT = 4   !< output failure: cannot create or write the file
-    !> stopped by SIGTERM, SIGINT or SIGUSR1: checkpoint written, <prefix>.h5.part left to restart from
+    !> stopped by a signal (stop_signal_m): checkpoint in <prefix>.h5.part
     integer, parameter :: EXIT_INTERRUPTED = 5
 
     interface

@@ -1,8 +1,8 @@
-/* File identity for fsys_m: whether two paths name the same file (through any mix of
- * relative paths, symbolic and hard links). Kept in C because struct stat's layout is
- * platform-specific. */
+/* What fsys_m needs of POSIX in C: the errno of each failure as a return value, and file
+ * identity (struct stat's layout is platform-specific). */
 #include <errno.h>
 #include <fcntl.h>
+#include <stdio.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -43,4 +43,27 @@ int rc_reserve_file_size(const char *path, long long bytes)
     if (rc == EOPNOTSUPP || rc == EINVAL)
         return 0;
     return rc;
+}
+
+/* mkdir(path, 0755): 0, or the errno of its failure. */
+int rc_mkdir(const char *path)
+{
+    return mkdir(path, 0755) == 0 ? 0 : errno;
+}
+
+/* rename(from, to): 0, or the errno of its failure. */
+int rc_rename(const char *from, const char *to)
+{
+    return rename(from, to) == 0 ? 0 : errno;
+}
+
+/* Create (or truncate) path as an empty file: 0, or the errno of the failure. fopen, not
+ * open(2), whose variadic prototype bind(C) cannot describe. */
+int rc_create_empty(const char *path)
+{
+    FILE *stream = fopen(path, "w");
+
+    if (stream == NULL)
+        return errno;
+    return fclose(stream) == 0 ? 0 : errno;
 }

@@ -1,9 +1,6 @@
 !> Filesystem helpers (mkdir -p, rename, unlink, existence tests) through iso_c_binding to
 !> POSIX, so that no shell is started (no execute_command_line) and every failure comes
-!> back with the system's own reason (strerror).
-!>
-!> errno is read through glibc's `__errno_location` (also provided by musl); this ties the
-!> module to Linux, which is the platform rodcontact is built for.
+!> back with the system's own reason (strerror of the errno that fsys_c.c returns).
 module fsys_m
     use iso_c_binding, only: c_char, c_int, c_long_long, c_ptr, c_size_t, c_null_char, c_associated, &
                              c_f_pointer
@@ -15,52 +12,31 @@ module fsys_m
               parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size, &
               from_c_string
 
-    integer(c_int), parameter :: F_OK = 0_c_int          !< access(2): existence only
-    integer(c_int), parameter :: MODE_0755 = 493_c_int   !< octal 0755 = rwxr-xr-x
-
+    ! each rc_* of src/base/fsys_c.c returns 0 or the errno of its failure
     interface
-        function c_mkdir(path, mode) bind(C, name='mkdir') result(rc)
+        function c_mkdir(path) bind(C, name='rc_mkdir') result(err)
             import :: c_char, c_int
             character(kind=c_char), intent(in) :: path(*)
-            ! mode_t is a 32-bit unsigned int on Linux; 0755 fits a c_int
-            integer(c_int), value, intent(in) :: mode
-            integer(c_int) :: rc
+            integer(c_int) :: err
         end function c_mkdir
 
-        function c_rename(from, to) bind(C, name='rename') result(rc)
+        function c_rename(from, to) bind(C, name='rc_rename') result(err)
             import :: c_char, c_int
-            character(kind=c_char), intent(in) :: from(*)
-            character(kind=c_char), intent(in) :: to(*)
-            integer(c_int) :: rc
+            character(kind=c_char), intent(in) :: from(*), to(*)
+            integer(c_int) :: err
         end function c_rename
+
+        function c_create_empty(path) bind(C, name='rc_create_empty') result(err)
+            import :: c_char, c_int
+            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int) :: err
+        end function c_create_empty
 
         function c_unlink(path) bind(C, name='unlink') result(rc)
             import :: c_char, c_int
             character(kind=c_char), intent(in) :: path(*)
             integer(c_int) :: rc
         end function c_unlink
-
-
-        function c_access(path, mode) bind(C, name='access') result(rc)
-            import :: c_char, c_int
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int), value, intent(in) :: mode
-            integer(c_int) :: rc
-        end function c_access
-
-        ! fopen/fclose rather than open(2): open is variadic, which bind(C) cannot describe
-        function c_fopen(path, mode) bind(C, name='fopen') result(stream)
-            import :: c_char, c_ptr
-            character(kind=c_char), intent(in) :: path(*)
-            character(kind=c_char), intent(in) :: mode(*)
-            type(c_ptr) :: stream
-        end function c_fopen
-
-        function c_fclose(stream) bind(C, name='fclose') result(rc)
-            import :: c_ptr, c_int
-            type(c_ptr), value, intent(in) :: stream
-            integer(c_int) :: rc
-        end function c_fclose
 
         function c_strerror(errnum) bind(C, name='strerror') result(text)
             import :: c_int, c_ptr
@@ -74,24 +50,19 @@ module fsys_m
             integer(c_size_t) :: n
         end function c_strlen
 
-        function c_errno_location() bind(C, name='__errno_location') result(p)
-            import :: c_ptr
-            type(c_ptr) :: p
-        end function c_errno_location
-
-        function c_reserve(path, bytes) bind(C, name='rc_reserve_file_size') result(err)   ! src/base/fsys_c.c
+        function c_reserve(path, bytes) bind(C, name='rc_reserve_file_size') result(err)
             import :: c_char, c_int, c_long_long
             character(kind=c_char), intent(in) :: path(*)
             integer(c_long_long), value, intent(in) :: bytes
             integer(c_int) :: err
         end function c_reserve
 
-        function c_write_errno() bind(C, name='rc_write_errno') result(err)   ! src/base/fsys_c.c
+        function c_write_errno() bind(C, name='rc_write_errno') result(err)
             import :: c_int
             integer(c_int) :: err
         end function c_write_errno
 
-        function c_same_file(a, b) bind(C, name='rc_same_file') result(same)   ! src/base/fsys_c.c
+        function c_same_file(a, b) bind(C, name='rc_same_file') result(same)
             import :: c_char, c_int
             character(kind=c_char), intent(in) :: a(*), b(*)
             integer(c_int) :: same
@@ -110,7 +81,6 @@ contains
 
         character(len=:), allocatable :: p
         integer :: i, err
-        integer(c_int) :: rc
 
         ok = .false.
         p = trim(path)
@@ -126,9 +96,8 @@ contains
             if (i == 1) cycle                 ! the root '/'
             if (p(i-1:i-1) == '/') cycle      ! 'a//b': the prefix 'a/' is 'a', already done
             if (dir_exists(p(1:i-1))) cycle
-            rc = c_mkdir(p(1:i-1)//c_null_char, MODE_0755)
-            if (rc /= 0) then
-                err = errno()
+            err = c_mkdir(p(1:i-1)//c_null_char)
+            if (err /= 0) then
                 ! another process may have created it between the test and mkdir
                 if (dir_exists(p(1:i-1))) cycle
                 if (file_exists(p(1:i-1))) then
@@ -151,15 +120,12 @@ contains
         logical, intent(out) :: ok
         character(len=:), allocatable, intent(out) :: message
 
-        integer(c_int) :: rc
+        integer :: err
 
-        rc = c_rename(trim(from)//c_null_char, trim(to)//c_null_char)
-        ok = (rc == 0)
-        if (ok) then
-            message = ''
-        else
-            message = "cannot rename '"//trim(from)//"' to '"//trim(to)//"': "//strerror(errno())
-        end if
+        err = c_rename(trim(from)//c_null_char, trim(to)//c_null_char)
+        ok = err == 0
+        message = ''
+        if (.not. ok) message = "cannot rename '"//trim(from)//"' to '"//trim(to)//"': "//strerror(err)
     end subroutine rename_file
 
     !> Remove a file if it exists. Errors are ignored: callers use this to clean up after
@@ -177,7 +143,7 @@ contains
         character(len=*), intent(in) :: path
         logical :: yes
 
-        yes = (c_access(trim(path)//c_null_char, F_OK) == 0)
+        inquire (file=trim(path), exist=yes)   ! gfortran: access(2), so directories too
     end function file_exists
 
     !> True when paths a and b both exist and are the same file (same device and inode:
@@ -195,7 +161,7 @@ contains
         character(len=*), intent(in) :: path
         logical :: yes
 
-        yes = (c_access(trim(path)//'/.'//c_null_char, F_OK) == 0)
+        inquire (file=trim(path)//'/.', exist=yes)
     end function dir_exists
 
     !> Directory part of `path`: 'out/run' -> 'out', '/run' -> '/', 'run' -> ''.
@@ -236,33 +202,13 @@ contains
         logical, intent(out) :: ok
         character(len=:), allocatable, intent(out) :: message
 
-        type(c_ptr) :: stream
-        integer(c_int) :: rc
-
-        ok = .false.
-        stream = c_fopen(trim(path)//c_null_char, 'w'//c_null_char)
-        if (.not. c_associated(stream)) then
-            message = strerror(errno())
-            return
-        end if
-        rc = c_fclose(stream)
-        if (rc /= 0) then
-            message = strerror(errno())
-            return
-        end if
-        ok = .true.
-        message = ''
-    end subroutine create_empty_file
-
-    !> Current value of C errno; read it right after the failing call.
-    function errno() result(err)
         integer :: err
 
-        integer(c_int), pointer :: p
-
-        call c_f_pointer(c_errno_location(), p)
-        err = int(p)
-    end function errno
+        err = c_create_empty(trim(path)//c_null_char)
+        ok = err == 0
+        message = ''
+        if (.not. ok) message = strerror(err)
+    end subroutine create_empty_file
 
     !> Reserve disk space for the first `bytes` bytes of file `path` (it grows to that size if
     !> shorter; its contents stay). ok=.false. and the system's reason ('No space left on

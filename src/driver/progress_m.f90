@@ -1,5 +1,5 @@
-!> Progress report on stderr (the README, "exit status"): step, t, % done, ETA and contact state,
-!> for runs longer than about 2 s only, and never with `&output quiet=.true.`.
+!> Progress report on stderr (README, 'Usage'): step, t, % done, ETA and contact state, for
+!> runs longer than about 2 s only, and never with `&output quiet=.true.`.
 !>
 !>     call progress%start(n_steps, quiet)
 !>     do step = 1, n_steps
@@ -16,6 +16,7 @@ module progress_m
     use iso_fortran_env, only: error_unit, int64
     use ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
+    use strings_m, only: int_str
     implicit none
     private
     public :: progress_t
@@ -69,18 +70,10 @@ contains
         logical, intent(in) :: quiet
         character(len=*), intent(in), optional :: unit
 
+        call clear(this)
         this%n_steps = n_steps
-        this%unit = ''
         if (present(unit)) this%unit = unit
         this%enabled = (.not. quiet) .and. n_steps > 0
-        this%shown = .false.
-        this%live = .false.
-        this%line_length = 0
-        this%last_step = 0
-        this%last_t = 0.0_dp
-        this%last_contact = .false.
-        this%next_check = huge(1)
-        this%stride = 1
         if (.not. this%enabled) return
 
         this%live = c_isatty(2_c_int) == 1_c_int
@@ -104,26 +97,22 @@ contains
 
         real(dp) :: elapsed, per_step, eta
         integer :: stride
+        integer(int64) :: count_now
 
         this%last_step = step
         this%last_t = t
         this%last_contact = in_contact
         if (step < this%next_check) return
 
-        elapsed = seconds_since(this%count_start, this%count_rate)
+        call system_clock(count_now)
+        elapsed = real(count_now - this%count_start, dp) / real(this%count_rate, dp)
         per_step = elapsed / real(max(step, 1), dp)
         eta = per_step * real(max(this%n_steps - step, 0), dp)
 
         if (.not. this%shown) this%shown = progress_wanted(elapsed, step, this%n_steps)
 
-        if (this%shown) then
-            if (this%live) then
-                call write_live(this, format_progress_line(step, this%n_steps, t, in_contact, eta, trim(this%unit)))
-            else if (step >= this%next_plain) then
-                write (error_unit, '(a)') format_progress_line(step, this%n_steps, t, in_contact, eta, trim(this%unit))
-                flush (error_unit)
-            end if
-        end if
+        if (this%shown .and. (this%live .or. step >= this%next_plain)) &
+            call write_line(this, format_progress_line(step, this%n_steps, t, in_contact, eta, trim(this%unit)))
         if (step >= this%next_plain) this%next_plain = next_milestone(step, this%n_steps)
 
         ! Next clock reading about CHECK_SECONDS from now, and never past the next plain line.
@@ -149,46 +138,36 @@ contains
 
         eta = 0.0_dp
         if (this%last_step < this%n_steps) eta = -1.0_dp   ! stopped early: no ETA
-        if (this%enabled .and. this%shown) then
-            if (this%live) then
-                call write_live(this, format_progress_line(this%last_step, this%n_steps, this%last_t, &
-                                                           this%last_contact, eta, trim(this%unit)))
-                write (error_unit, '(a)') ''
-            else if (this%last_step < this%n_steps .or. this%next_plain <= this%n_steps) then
-                write (error_unit, '(a)') format_progress_line(this%last_step, this%n_steps, this%last_t, &
-                                                               this%last_contact, eta, trim(this%unit))
-            end if
+        if (this%enabled .and. this%shown .and. &
+            (this%live .or. this%last_step < this%n_steps .or. this%next_plain <= this%n_steps)) then
+            call write_line(this, format_progress_line(this%last_step, this%n_steps, this%last_t, &
+                                                       this%last_contact, eta, trim(this%unit)))
+            if (this%live) write (error_unit, '(a)') ''
             flush (error_unit)
         end if
-        this%enabled = .false.
-        this%shown = .false.
-        this%next_check = huge(1)
+        call clear(this)
     end subroutine finish
 
-    !> Rewrite the live terminal line: carriage return, text, blanks over a longer old line.
-    subroutine write_live(this, line)
+    !> report as an inactive one (intent(out): every component to its default).
+    subroutine clear(report)
+        type(progress_t), intent(out) :: report
+    end subroutine clear
+
+    !> Write a report line: on a terminal rewrite the live line (carriage return, text, blanks
+    !> over a longer old line), else a line of its own.
+    subroutine write_line(this, line)
         class(progress_t), intent(inout) :: this
         character(len=*), intent(in) :: line
 
-        integer :: pad
-
-        pad = max(this%line_length - len(line), 0)
-        write (error_unit, '(a)', advance='no') achar(13)//line//repeat(' ', pad)
+        if (this%live) then
+            write (error_unit, '(a)', advance='no') achar(13)//line// &
+                repeat(' ', max(this%line_length - len(line), 0))
+            this%line_length = len(line)
+        else
+            write (error_unit, '(a)') line
+        end if
         flush (error_unit)
-        this%line_length = len(line)
-    end subroutine write_live
-
-    !> Wall seconds since count_start.
-    function seconds_since(count_start, count_rate) result(seconds)
-        integer(int64), intent(in) :: count_start
-        integer(int64), intent(in) :: count_rate
-        real(dp) :: seconds
-
-        integer(int64) :: count_now
-
-        call system_clock(count_now)
-        seconds = real(count_now - count_start, dp) / real(count_rate, dp)
-    end function seconds_since
+    end subroutine write_line
 
     !> Should a run that has taken `elapsed` seconds for `step` of `n_steps` steps be
     !> reported? Yes once its prediction has settled (SETTLE_SECONDS) and predicts a
@@ -237,7 +216,6 @@ contains
 
     !> One report line, e.g.
     !>   'step  5000/10000   50.0%  t = 0.500000  ETA 12s  contact'
-    !> The step field is as wide as n_steps, so the line keeps its length during a run.
     pure function format_progress_line(step, n_steps, t, in_contact, eta_seconds, unit) result(line)
         integer, intent(in) :: step
         integer, intent(in) :: n_steps
@@ -247,41 +225,27 @@ contains
         character(len=*), intent(in), optional :: unit   !< of t, after it (' s')
         character(len=:), allocatable :: line
 
-        character(len=16) :: n_text, step_text
         character(len=8) :: percent_text
-        integer :: width
         character(len=32) :: t_text
         real(dp) :: percent
-        character(len=7) :: state
 
-        write (n_text, '(i0)') n_steps
-        write (step_text, '(i0)') step
-        width = max(len_trim(n_text), len_trim(step_text))
-        step_text = adjustr(step_text)
         if (n_steps > 0) then
             percent = 100.0_dp * real(step, dp) / real(n_steps, dp)
         else
             percent = 0.0_dp
         end if
         write (percent_text, '(f5.1,a)') percent, '%'
-        if (.not. ieee_is_finite(t)) then
-            write (t_text, '(f15.6)') t        ! NaN / Infinity, without comparing them
-        else if (abs(t) < 1.0e6_dp) then
-            write (t_text, '(f15.6)') t        ! not f0.6: that drops the leading zero of 0.5
-        else
-            write (t_text, '(es12.5)') t
+        ! not f0.6: that drops the leading zero of 0.5; NaN and Infinity are not compared
+        write (t_text, '(f15.6)') t
+        if (ieee_is_finite(t)) then
+            if (abs(t) >= 1.0e6_dp) write (t_text, '(es12.5)') t
         end if
-        t_text = adjustl(t_text)
-        if (in_contact) then
-            state = 'contact'
-        else
-            state = 'free'
-        end if
-
-        line = 'step '//step_text(len(step_text) - width + 1:)//'/'//trim(n_text) &
-               //'  '//trim(percent_text)//'  t = '//trim(t_text)
+        ! the step as wide as n_steps, so that the line keeps its length during a run
+        line = 'step '//repeat(' ', max(len(int_str(n_steps)) - len(int_str(step)), 0))// &
+               int_str(step)//'/'//int_str(n_steps)//'  '//trim(percent_text)// &
+               '  t = '//trim(adjustl(t_text))
         if (present(unit)) line = line//unit
-        line = line//'  ETA '//format_duration(eta_seconds)//'  '//trim(state)
+        line = line//'  ETA '//format_duration(eta_seconds)//'  '//trim(merge('contact', 'free   ', in_contact))
     end function format_progress_line
 
     !> A duration for people: '42s', '3m05s', '2h07m', '--' when unknown (negative or not finite).
@@ -292,14 +256,10 @@ contains
         character(len=24) :: buffer
         integer(int64) :: total
 
+        text = '--'
         ! ieee_is_finite first: comparing a NaN would raise (and trap in Debug builds)
-        if (.not. ieee_is_finite(seconds)) then
-            text = '--'
-            return
-        else if (seconds < 0.0_dp .or. seconds >= 1.0e12_dp) then
-            text = '--'
-            return
-        end if
+        if (.not. ieee_is_finite(seconds)) return
+        if (seconds < 0.0_dp .or. seconds >= 1.0e12_dp) return
         total = nint(seconds, int64)
         if (total < 60_int64) then
             write (buffer, '(i0,a)') total, 's'

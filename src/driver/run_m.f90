@@ -215,11 +215,8 @@ contains
                 if (cfg%output%checkpoint_every > 0) then
                     if (mod(state%step, cfg%output%checkpoint_every) == 0) call checkpoint(run, cfg)
                 end if
-                if (cfg%time%adaptive) then
-                    call progress%update(progress_position(cfg, state%t), scale * state%t, run%result%in_contact)
-                else
-                    call progress%update(state%step, scale * state%t, run%result%in_contact)
-                end if
+                call progress%update(merge(progress_position(cfg, state%t), state%step, cfg%time%adaptive), &
+                                     scale * state%t, run%result%in_contact)
                 ! a signal stops the run after this step, with a checkpoint of it (close_output)
                 if (.not. last) then
                     if (stop_signal_arrived()) interrupted = stop_signal_name()
@@ -241,11 +238,8 @@ contains
         if (interrupted /= '') then
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
             ! checkpoint, so the file must hold exactly those an uninterrupted run has
-            if (cfg%output%checkpoint_every == 0) then
-                call checkpoint(run, cfg)
-            else if (mod(run%state%step, cfg%output%checkpoint_every) /= 0) then
-                call checkpoint(run, cfg)
-            end if
+            if (cfg%output%checkpoint_every == 0 .or. &
+                mod(run%state%step, max(cfg%output%checkpoint_every, 1)) /= 0) call checkpoint(run, cfg)
         end if
         if (failure /= '' .and. run%last_written > 0 .and. run%last_written == run%state%step) then
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
@@ -275,12 +269,10 @@ contains
         call report_end(run, cfg, '.h5', 'complete', wall)
     end subroutine close_output
 
-    !> The run's last line on stderr (unless &output quiet): where its file is, its status,
-    !> the contact onsets and releases (how many, the first of each, to 15 digits as
-    !> --summary prints it) and the wall time, with &material in seconds, e.g.
-    !>   rodcontact: out/exp1.h5 complete; contact: 1 onset (first t = 0.197312345678901), 1
-    !>   release (first t = 0.58123456789012); 30000 steps, t = 3, wall 12 s; times nondimensional
-    !> (one line). suffix: '.h5', or '.h5.part' for a file left to be continued.
+    !> The run's last line on stderr (unless &output quiet; README, 'Usage'): where its
+    !> file is, its status, the contact onsets and releases (how many, the first of each, to
+    !> 15 digits as --summary prints it) and the wall time, with &material in seconds.
+    !> suffix: '.h5', or '.h5.part' for a file left to be continued.
     subroutine report_end(run, cfg, suffix, status, wall)
         type(run_t), intent(in) :: run
         type(config_t), intent(in) :: cfg

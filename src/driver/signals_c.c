@@ -6,6 +6,8 @@
 #include <signal.h>
 #include <string.h>
 
+/* in the order of stop_signal_m's names */
+static const int signals[] = {SIGTERM, SIGINT, SIGUSR1};
 static volatile sig_atomic_t received = 0;
 
 static void record_signal(int sig)
@@ -19,7 +21,6 @@ static void record_signal(int sig)
  * pending is delivered here, once the handler records it. */
 int rc_install_stop_handlers(void)
 {
-    static const int signals[] = {SIGTERM, SIGINT, SIGUSR1};
     struct sigaction action;
     sigset_t stop_set;
     size_t k;
@@ -28,27 +29,23 @@ int rc_install_stop_handlers(void)
     action.sa_handler = record_signal;
     sigemptyset(&action.sa_mask);
     action.sa_flags = SA_RESTART | SA_RESETHAND;
-    for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
-        if (sigaction(signals[k], &action, NULL) != 0)
-            return -1;
     sigemptyset(&stop_set);
     for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
-        sigaddset(&stop_set, signals[k]);
+        if (sigaction(signals[k], &action, NULL) != 0 || sigaddset(&stop_set, signals[k]) != 0)
+            return -1;
     return sigprocmask(SIG_UNBLOCK, &stop_set, NULL) == 0 ? 0 : -1;
 }
 
-/* The number of the signal received since the handlers were installed, 0 if none. */
+/* Which stop signal was received since the handlers were installed: 1 SIGTERM, 2 SIGINT,
+ * 3 SIGUSR1, 0 none. */
 int rc_stop_signal(void)
 {
-    return received;
-}
+    size_t k;
 
-/* The numbers of SIGTERM, SIGINT, SIGUSR1 (platform-dependent; for the names). */
-void rc_stop_signal_numbers(int *term, int *intr, int *usr1)
-{
-    *term = SIGTERM;
-    *intr = SIGINT;
-    *usr1 = SIGUSR1;
+    for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
+        if (received == signals[k])
+            return (int)k + 1;
+    return 0;
 }
 
 /* Ignore SIGXFSZ, whose default action kills a process that writes past its file size

@@ -1,7 +1,5 @@
-!> Clean stop on a signal (docs/output.md; README, exit status 5): install handlers for SIGTERM, SIGINT
-!> and SIGUSR1 (src/driver/signals_c.c) and ask, once per time step, whether one has arrived. The
-!> handler only sets a flag; run_m finishes the step, writes a checkpoint and closes the
-!> file as <prefix>.h5.part with status 'interrupted: <signal>' (exit EXIT_INTERRUPTED).
+!> Clean stop on a signal (docs/output.md; README, exit status 5): the handlers of
+!> src/driver/signals_c.c, and whether a signal has arrived, asked once per time step.
 module stop_signal_m
     use iso_c_binding, only: c_int
     use errors_m, only: fatal, EXIT_OUTPUT
@@ -24,12 +22,10 @@ module stop_signal_m
             import :: c_int
             integer(c_int) :: rc
         end function c_ignore_xfsz
-
-        subroutine c_numbers(term, intr, usr1) bind(C, name='rc_stop_signal_numbers')
-            import :: c_int
-            integer(c_int), intent(out) :: term, intr, usr1
-        end subroutine c_numbers
     end interface
+
+    !> rc_stop_signal's 1, 2, 3
+    character(len=*), parameter :: NAMES(3) = [character(len=7) :: 'SIGTERM', 'SIGINT', 'SIGUSR1']
 
 contains
 
@@ -55,21 +51,11 @@ contains
     !> 'SIGTERM', 'SIGINT' or 'SIGUSR1' when one of them has arrived, else ''.
     function stop_signal_name() result(name)
         character(len=:), allocatable :: name
-        integer(c_int) :: sig, term, intr, usr1
+        integer :: k
 
         name = ''
-        sig = c_stop_signal()
-        if (sig == 0) return
-        call c_numbers(term, intr, usr1)
-        if (sig == term) then
-            name = 'SIGTERM'
-        else if (sig == intr) then
-            name = 'SIGINT'
-        else if (sig == usr1) then
-            name = 'SIGUSR1'
-        else
-            name = 'signal'
-        end if
+        k = c_stop_signal()
+        if (k > 0) name = trim(NAMES(k))
     end function stop_signal_name
 
 end module stop_signal_m

@@ -1,31 +1,11 @@
-!> One-line summary of a rodcontact HDF5 file (docs/output.md) for parameter scans: whether
-!> and when the rod touched the obstacle, how far it went, how the energy decayed, and what
-!> the run cost. `rodcontact --summary file.h5` prints summary_row(summarise_file(file));
-!> scripts/scan.sh joins the rows of all points of a scan (docs/scans.md). The row stays short:
-!> of the contact events (/events) it holds the counts and the first and last times; the full
-!> lists, one row per event, are `rodcontact --events file.h5` (write_event_rows).
-!>
-!> Definitions, on the stored series t_k, E_k, u_k = u(1,t_k), p_k = [u_k - g]_+ and the
-!> contact stress sigma_k = sigma(1,t_k) (k = 0..K):
-!> - in contact at entry k when p_k > 0 or sigma_k < 0: the normal compliance (3.4) stress
-!>   -(1/eps) p_k is nonzero exactly when p_k > 0; with law = 'signorini' u(1,t) <= g and
-!>   the contact shows in the multiplier sigma_k only;
-!> - contact_time = sum of (t_k - t_{k-1}) over the entries k >= 1 in contact: with
-!>   series_every = 1 it is dt times the number of implicit Euler steps in contact;
-!> - first/last_contact_t = t_k of the first/last entry in contact;
-!> - energy_ratio = E_K / E_0;
-!> - decay_rate = -(least-squares slope of log E_k against t_k) over the entries with
-!>   t_k >= (t_0 + t_K)/2 (the second half of the run) and E_k > 0, so E ~ exp(-rate t)
-!>   there; the fit window is reported as decay_fit_from_t, decay_fit_to_t.
-!> A value that does not apply (no contact, fewer than two points to fit, E_0 = 0, an
-!> attribute the file lacks) is NaN in summary_t and an empty field in the CSV row.
-!> Units: those of the run's input (file_in_si): a run with &material in SI (times in s,
-!> lengths in m, the decay rate in 1/s; the root attributes scale.time, scale.displacement),
-!> else the file's own nondimensional values ('[1]'); each column's name says which.
+!> The rows of `rodcontact --summary` (summary_row(summarise_file(file)): one per run, what
+!> scripts/scan.sh joins) and `--events` (write_event_rows: one per contact event) of
+!> rodcontact HDF5 files. Each column's definition and units (file_in_si): docs/scans.md.
+!> A value that does not apply is NaN in summary_t and an empty field in the CSV row.
 module summary_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use kinds_m, only: dp
-    use strings_m, only: format_real, doubled_quotes
+    use strings_m, only: format_real, doubled_quotes, int_str
     use h5_read_m, only: read_real_1d, read_int_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
                          dataset_exists
     use fsys_m, only: file_exists
@@ -60,9 +40,11 @@ module summary_m
         !> root attributes 'error_estimate.<field>' (&output error_estimate; NaN if absent),
         !> the fields in ESTIMATE_FIELDS' order
         real(dp) :: error_estimate(6) = 0.0_dp
-        !> /events: the onset and the release times (none when absent: has_events false)
+        !> /events in time order: each event's time and whether it is an onset (else a
+        !> release); none when absent (has_events false)
         logical :: has_events = .false.
-        real(dp), allocatable :: onset_t(:), release_t(:)
+        real(dp), allocatable :: event_t(:)
+        logical, allocatable :: onset(:)
         logical :: si = .false.                        !< times in s, lengths in m (else nondimensional)
     end type summary_t
 
@@ -155,7 +137,6 @@ contains
         logical, intent(in) :: nondimensional   !< the file's own values, not SI
         type(summary_t) :: s
         real(dp), allocatable :: t(:), energy(:), u_end(:), penetration(:), contact_stress(:)
-        real(dp) :: g
         integer :: k
         character(len=:), allocatable :: status
 
@@ -164,9 +145,7 @@ contains
         call read_real_1d(file, '/series/u_end', u_end)
         call read_real_1d(file, '/series/penetration', penetration)
         call read_real_1d(file, '/series/contact_stress', contact_stress)
-        g = ieee_value(0.0_dp, ieee_quiet_nan)
-        if (attr_exists(file, 'contact.g')) call read_attr_real(file, 'contact.g', g)
-        s = summarise_series(t, energy, u_end, penetration, contact_stress, g)
+        s = summarise_series(t, energy, u_end, penetration, contact_stress, attr_or_nan(file, 'contact.g'))
         s%file = file
         s%status = ''
         if (attr_exists(file, 'status')) then
@@ -174,20 +153,24 @@ contains
             s%status = status
         end if
         if (attr_exists(file, 'steps')) call read_attr_int(file, 'steps', s%steps)
-        s%wall_seconds = ieee_value(0.0_dp, ieee_quiet_nan)
-        if (attr_exists(file, 'wall_seconds')) call read_attr_real(file, 'wall_seconds', s%wall_seconds)
-        s%time_error = ieee_value(0.0_dp, ieee_quiet_nan)
-        if (attr_exists(file, 'step_control_error_sum_relative')) &
-            call read_attr_real(file, 'step_control_error_sum_relative', s%time_error)
-        s%error_estimate = ieee_value(0.0_dp, ieee_quiet_nan)
+        s%wall_seconds = attr_or_nan(file, 'wall_seconds')
+        s%time_error = attr_or_nan(file, 'step_control_error_sum_relative')
         do k = 1, size(ESTIMATE_FIELDS)
-            if (attr_exists(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)))) &
-                call read_attr_real(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)), s%error_estimate(k))
+            s%error_estimate(k) = attr_or_nan(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)))
         end do
         call read_events(file, s)
         if (.not. nondimensional) s%si = file_in_si(file)
         if (s%si) call to_si(file, s)
     end function summarise_file
+
+    !> The real root attribute `name` of file; NaN when the file lacks it.
+    function attr_or_nan(file, name) result(x)
+        character(len=*), intent(in) :: file, name
+        real(dp) :: x
+
+        x = ieee_value(0.0_dp, ieee_quiet_nan)
+        if (attr_exists(file, name)) call read_attr_real(file, name, x)
+    end function attr_or_nan
 
     !> Whether the file of a run is read in SI: its root attribute 'units' ('SI' or
     !> 'nondimensional'), or in a file without it, whether it has SI scales (&material).
@@ -214,7 +197,7 @@ contains
         s%contact_time = tf * s%contact_time; s%t_max_u_end = tf * s%t_max_u_end
         s%decay_fit_from_t = tf * s%decay_fit_from_t; s%decay_fit_to_t = tf * s%decay_fit_to_t
         s%t_final = tf * s%t_final; s%decay_rate = s%decay_rate / tf
-        s%onset_t = tf * s%onset_t; s%release_t = tf * s%release_t
+        s%event_t = tf * s%event_t
         s%max_penetration = lf * s%max_penetration; s%max_u_end = lf * s%max_u_end; s%g = lf * s%g
     end subroutine to_si
 
@@ -238,7 +221,7 @@ contains
         end select
     end function unit_label
 
-    !> The onset and release times of /events (absent in files of older versions).
+    !> The contact events of /events (absent in files of older versions).
     subroutine read_events(file, s)
         character(len=*), intent(in) :: file
         type(summary_t), intent(inout) :: s
@@ -246,16 +229,15 @@ contains
         integer, allocatable :: kind(:)
         integer :: n
 
-        allocate (s%onset_t(0), s%release_t(0))
-        s%has_events = .false.
+        allocate (s%event_t(0), s%onset(0))
         if (.not. dataset_exists(file, '/events/t')) return
         if (.not. dataset_exists(file, '/events/kind')) return
         s%has_events = .true.
         call read_real_1d(file, '/events/t', t)
         call read_int_1d(file, '/events/kind', kind)
         n = min(size(t), size(kind))
-        s%onset_t = pack(t(1:n), kind(1:n) > 0)
-        s%release_t = pack(t(1:n), kind(1:n) <= 0)
+        s%event_t = t(1:n)
+        s%onset = kind(1:n) > 0
     end subroutine read_events
 
     !> 'file,event,kind,t [s]' (or t [1]): the CSV header of write_event_rows.
@@ -271,36 +253,13 @@ contains
     subroutine write_event_rows(unit, s)
         integer, intent(in) :: unit
         type(summary_t), intent(in) :: s
-        integer :: i, j, n
+        integer :: n
 
         if (.not. s%has_events) return
-        i = 1
-        j = 1
-        do n = 1, size(s%onset_t) + size(s%release_t)
-            ! merge the two sorted lists (an onset before a release at the same time)
-            if (j > size(s%release_t)) then
-                call put('onset', s%onset_t(i))
-                i = i + 1
-            else if (i > size(s%onset_t)) then
-                call put('release', s%release_t(j))
-                j = j + 1
-            else if (s%onset_t(i) <= s%release_t(j)) then
-                call put('onset', s%onset_t(i))
-                i = i + 1
-            else
-                call put('release', s%release_t(j))
-                j = j + 1
-            end if
+        do n = 1, size(s%event_t)
+            write (unit, '(a)') csv_field(s%file) // ',' // int_str(n) // ',' // &
+                trim(merge('onset  ', 'release', s%onset(n))) // ',' // num(s%event_t(n))
         end do
-    contains
-        subroutine put(kind, t)
-            character(len=*), intent(in) :: kind
-            real(dp), intent(in) :: t
-            character(len=16) :: buf
-
-            write (buf, '(i0)') n
-            write (unit, '(a)') csv_field(s%file) // ',' // trim(buf) // ',' // kind // ',' // num(t)
-        end subroutine put
     end subroutine write_event_rows
 
     !> Why `file` cannot be summarised ('' when it can): it does not exist, is not a readable
@@ -349,18 +308,12 @@ contains
     pure function summary_row(s) result(line)
         type(summary_t), intent(in) :: s
         character(len=:), allocatable :: line
-        character(len=16) :: buf
-        character(len=:), allocatable :: steps, contact
+        character(len=:), allocatable :: steps
         integer :: k
 
-        contact = 'no'
-        if (s%contact) contact = 'yes'
         steps = ''
-        if (s%steps >= 0) then
-            write (buf, '(i0)') s%steps
-            steps = trim(buf)
-        end if
-        line = csv_field(s%file) // ',' // csv_field(s%status) // ',' // contact // &
+        if (s%steps >= 0) steps = int_str(s%steps)
+        line = csv_field(s%file) // ',' // csv_field(s%status) // ',' // trim(merge('yes', 'no ', s%contact)) // &
                ',' // num(s%first_contact_t) // ',' // num(s%last_contact_t) // ',' // num(s%contact_time) // &
                ',' // num(s%max_penetration) // ',' // num(s%max_u_end) // ',' // num(s%t_max_u_end) // &
                ',' // num(ratio_to_g(s)) // ',' // num(s%energy_ratio) // ',' // num(s%decay_rate) // &
@@ -378,22 +331,20 @@ contains
         type(summary_t), intent(in) :: s
         character(len=:), allocatable :: text
 
-        if (.not. s%has_events .or. .not. allocated(s%onset_t) .or. .not. allocated(s%release_t)) then
+        if (.not. s%has_events .or. .not. allocated(s%event_t) .or. .not. allocated(s%onset)) then
             text = ',,,,,'
             return
         end if
-        text = first_last(s%onset_t) // ',' // first_last(s%release_t)
+        text = first_last(pack(s%event_t, s%onset)) // ',' // first_last(pack(s%event_t, .not. s%onset))
     end function event_columns
 
     !> 'n,first,last' of the times t (first and last empty when there are none).
     pure function first_last(t) result(text)
         real(dp), intent(in) :: t(:)
         character(len=:), allocatable :: text
-        character(len=16) :: buf
 
-        write (buf, '(i0)') size(t)
-        text = trim(buf) // ',,'
-        if (size(t) > 0) text = trim(buf) // ',' // num(t(1)) // ',' // num(t(size(t)))
+        text = int_str(size(t)) // ',,'
+        if (size(t) > 0) text = int_str(size(t)) // ',' // num(t(1)) // ',' // num(t(size(t)))
     end function first_last
 
     !> max u(1,t)/g; NaN when g is unknown (NaN) or 0 (a summary_t not filled in).

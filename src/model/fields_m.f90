@@ -59,7 +59,7 @@ module fields_m
                           S_ITERATIONS = 6, S_DT = 7, S_N_ELEMENTS = 8, N_SCALAR_SERIES = 8
     integer, parameter :: N_ENERGY_PARTS = 8
     integer, parameter :: N_SERIES = N_SCALAR_SERIES + N_ENERGY_PARTS
-    integer :: k_   !< the index of S_ENERGY_PARTS' implied do
+    integer :: k_   !< the index of the implied do loops of S_ENERGY_PARTS and SNAPSHOTS
     integer, parameter :: S_ENERGY_PARTS(N_ENERGY_PARTS) = N_SCALAR_SERIES + [(k_, k_ = 1, N_ENERGY_PARTS)]
     type(series_t), parameter :: SERIES(N_SERIES) = [ &
         series_t('t', 'time t_n', .false., '1', 'time'), &
@@ -94,12 +94,7 @@ module fields_m
     !> The /snapshots datasets in their order: the fields of OUTPUT_ORDER (one row each,
     !> N_OUTPUT_FIELDS of them), then sigma.
     type(snapshot_t), parameter :: SNAPSHOTS(N_SNAPSHOT_FIELDS) = [ &
-        snapshot_t(OUT(1)%name, OUT(1)%long_name, OUT(1)%units, OUT(1)%scale), &
-        snapshot_t(OUT(2)%name, OUT(2)%long_name, OUT(2)%units, OUT(2)%scale), &
-        snapshot_t(OUT(3)%name, OUT(3)%long_name, OUT(3)%units, OUT(3)%scale), &
-        snapshot_t(OUT(4)%name, OUT(4)%long_name, OUT(4)%units, OUT(4)%scale), &
-        snapshot_t(OUT(5)%name, OUT(5)%long_name, OUT(5)%units, OUT(5)%scale), &
-        snapshot_t(OUT(6)%name, OUT(6)%long_name, OUT(6)%units, OUT(6)%scale), &
+        (snapshot_t(OUT(k_)%name, OUT(k_)%long_name, OUT(k_)%units, OUT(k_)%scale), k_ = 1, N_OUTPUT_FIELDS), &
         snapshot_t('sigma', 'stress sigma = alpha u_x + varpi v_x - gamma1 theta - gamma2 P', '1', 'stress')]
 
 contains

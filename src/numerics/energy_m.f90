@@ -137,24 +137,18 @@ contains
             end do
             return
         end if
-        ! N_i of nodes i, i + 1 (halved for a = b: a_i (2 a_i + a_{i-1})); the coupling's is
+        ! N_i of nodes i, i + 1, halved for a = b: a_i (2 a_i + a_{i-1}); the coupling's is
         ! halved at the end (exact; kept out of the loop, which it would slow down)
         lanes = 0.0_dp
         do i = 1, s - 1, 2
             lanes(:, PART_STRAIN) = lanes(:, PART_STRAIN) + (u(i:i + 1) - u(i - 1:i))**2
-            lanes(:, PART_KINETIC) = lanes(:, PART_KINETIC) &
-                                     + w(i:i + 1, F_V) * (2.0_dp * w(i:i + 1, F_V) + w(i - 1:i, F_V))
-            lanes(:, PART_THERMAL) = lanes(:, PART_THERMAL) &
-                                     + w(i:i + 1, F_THETA) * (2.0_dp * w(i:i + 1, F_THETA) + w(i - 1:i, F_THETA))
-            lanes(:, PART_CHEMICAL) = lanes(:, PART_CHEMICAL) &
-                                      + w(i:i + 1, F_P) * (2.0_dp * w(i:i + 1, F_P) + w(i - 1:i, F_P))
-            lanes(:, PART_COUPLING) = lanes(:, PART_COUPLING) &
-                                      + w(i:i + 1, F_P) * (2.0_dp * w(i:i + 1, F_THETA) + w(i - 1:i, F_THETA)) &
-                                      + w(i:i + 1, F_THETA) * (2.0_dp * w(i:i + 1, F_P) + w(i - 1:i, F_P))
-            lanes(:, PART_HEAT_FLUX) = lanes(:, PART_HEAT_FLUX) &
-                                       + w(i:i + 1, F_Q) * (2.0_dp * w(i:i + 1, F_Q) + w(i - 1:i, F_Q))
-            lanes(:, PART_MASS_FLUX) = lanes(:, PART_MASS_FLUX) &
-                                       + w(i:i + 1, F_ETA) * (2.0_dp * w(i:i + 1, F_ETA) + w(i - 1:i, F_ETA))
+            do k = 1, size(MASS_PARTS)
+                associate (a => w(i - 1:i + 1, MASS_A(k)), b => w(i - 1:i + 1, MASS_B(k)), &
+                           lane => lanes(:, MASS_PARTS(k)))
+                    lane = lane + a(2:3) * (2.0_dp * b(2:3) + b(1:2))
+                    if (MASS_A(k) /= MASS_B(k)) lane = lane + b(2:3) * (2.0_dp * a(2:3) + a(1:2))
+                end associate
+            end do
         end do
         sums = lanes(1, :) + lanes(2, :)
         sums(PART_COUPLING) = 0.5_dp * sums(PART_COUPLING)

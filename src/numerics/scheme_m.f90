@@ -28,6 +28,7 @@ module scheme_m
     use mesh_m, only: mesh_t
     use banded_m, only: band_t
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use errors_m, only: check_allocation
     use slots_m, only: scatter_fields
     implicit none
     private
@@ -164,67 +165,50 @@ contains
         end associate
     end function initial_data_present
 
-    !> Assemble the matrix of (6.1) restricted to the fields with slots(f) > 0, nodes
-    !> interleaved: unknown (node i, field f) is row/column nf*i + slots(f), nf = count(slots>0).
-    !> Dirichlet unknowns get identity rows. The contact term is not included. The element
-    !> blocks are computed again only where the element size changes (a uniform mesh has
-    !> one size, a graded mesh a few, in runs).
+    !> The matrix of (6.1) restricted to the fields with slots(f) > 0 as a band (the check
+    !> and fallback of the block LU, and the paper's Section 7 blocks), nodes interleaved:
+    !> unknown (node i, field f) is row/column nf*i + slots(f), nf = count(slots>0). The
+    !> entries are assemble_blocks' (Dirichlet unknowns with identity rows, no contact term).
     subroutine assemble_matrix(model, mesh, dt, slots, a)
         type(model_t), intent(in) :: model
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(in) :: dt
         integer, intent(in) :: slots(N_FIELDS)
         type(band_t), intent(inout) :: a
-        integer :: nf, kw, s, e, e_last, row, col
-        real(dp) :: h_e, blocks(2, 2, N_FIELDS, N_FIELDS)
-        logical :: nonzero(N_FIELDS, N_FIELDS)   !< blocks(:, :, row, col) has a nonzero entry
+        real(dp), allocatable :: d(:, :, :)
+        integer :: nf, kw, s, i, row, col, r, c
+        integer :: stat
+        character(len=256) :: message
 
         s = mesh%s()
         nf = count(slots > 0)
         kw = band_width(slots)
+        allocate (d(N_FIELDS, N_FIELDS, 0:3 * s), stat=stat, errmsg=message)   ! D_i, then E_i and F_i
+        call check_allocation(stat, message, 'the blocks of the band')
+        call assemble_blocks(model, mesh, dt, d(:, :, :s), d(:, :, s + 1:2 * s), d(:, :, 2 * s + 1:))
         call a%init(nf * (s + 1), kw, kw)
-        ! runs e..e_last of elements of one size (the contact node's element s alone), each
-        ! element block added over the run in one call (the same sums as element by element)
-        e = 1
-        do while (e <= s)
-            h_e = mesh%h(e)
-            e_last = e
-            do while (e_last + 1 < s)
-                if (.not. equal(mesh%h(e_last + 1), h_e)) exit
-                e_last = e_last + 1
-            end do
-            do row = 1, N_FIELDS
-                do col = 1, N_FIELDS
-                    blocks(:, :, row, col) = element_block(model, h_e, dt, row, col, last=e == s)
-                    nonzero(row, col) = .not. all(is_zero(blocks(:, :, row, col)))
+        do i = 0, s
+            do col = 1, N_FIELDS
+                do row = 1, N_FIELDS
+                    if (slots(row) == 0 .or. slots(col) == 0) cycle
+                    r = nf * i + slots(row)
+                    c = nf * i + slots(col)
+                    call a%add(r, c, d(row, col, i))
+                    ! E_i, F_i: entries outside the band are zero (band_width)
+                    if (i == s .or. abs(r - c) + nf > kw) cycle
+                    call a%add(r, c + nf, d(row, col, s + 1 + i))
+                    call a%add(r + nf, c, d(row, col, 2 * s + 1 + i))
                 end do
             end do
-            do row = 1, N_FIELDS
-                if (slots(row) == 0) cycle
-                do col = 1, N_FIELDS
-                    if (slots(col) == 0 .or. .not. nonzero(row, col)) cycle
-                    call a%add_block2_run(nf * (e - 1) + slots(row), nf * (e - 1) + slots(col), nf, &
-                                          blocks(:, :, row, col), e_last - e + 1)
-                end do
-            end do
-            e = e_last + 1
-        end do
-        do row = 1, N_FIELDS
-            if (slots(row) == 0) cycle
-            if (is_dirichlet(row, 0, s)) call a%set_identity_row(slots(row))
-            if (is_dirichlet(row, s, s)) call a%set_identity_row(nf * s + slots(row))
         end do
     end subroutine assemble_matrix
 
-    !> The matrix of assemble_matrix with every field in the system (slots_m) as its
-    !> node blocks, for block_tridiagonal_m's factor: d(:, :, i) = D_i (node i),
-    !> e(:, :, i) = E_i (row node i, column node i+1), f(:, :, i) = F_i (row node i+1, column
-    !> node i), each s+1 (d) or s (e, f) blocks. The same entries bit for bit: assemble_matrix
-    !> adds into a zero band, at each entry, the element on its left and then the element on
-    !> its right (runs in element order; a block it skips is zero, and adding a zero to a sum
-    !> that starts at +0 changes nothing), and replaces the Dirichlet rows as set_identity_row.
-    !> Element blocks are computed again only where the element size changes (and for the
-    !> contact node's element).
+    !> The matrix of (6.1) with every field as its node blocks (block_tridiagonal_m's factor;
+    !> assemble_matrix's band): d(:, :, i) = D_i (node i), e(:, :, i) = E_i (row node i,
+    !> column node i+1), f(:, :, i) = F_i (row node i+1, column node i), each s+1 (d) or s
+    !> (e, f) blocks. D_i is the sum of the element on its left and then the element on its
+    !> right, starting at +0. Element blocks are computed again only where the element size
+    !> changes (and for the contact node's element). Dirichlet unknowns get identity rows.
     subroutine assemble_blocks(model, mesh, dt, d, e, f)
         type(model_t), intent(in) :: model
         type(mesh_t), intent(in) :: mesh
@@ -232,45 +216,32 @@ contains
         real(dp), intent(out), contiguous :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)   !< (N_FIELDS, N_FIELDS, 0:)
         real(dp), parameter :: ZERO(N_FIELDS, N_FIELDS) = 0.0_dp
         real(dp) :: h_e, m(2, 2), m11(N_FIELDS, N_FIELDS), m12(N_FIELDS, N_FIELDS), m21(N_FIELDS, N_FIELDS), &
-                    m22(N_FIELDS, N_FIELDS), d_right(N_FIELDS, N_FIELDS), d_inner(N_FIELDS, N_FIELDS)
+                    m22(N_FIELDS, N_FIELDS)
         integer :: s, el, row, col
-        logical :: changed, next_changed
 
         s = mesh%s()
         h_e = 0.0_dp
-        d_right = 0.0_dp   ! (all set at el = 1)
-        d_inner = 0.0_dp
-        changed = .true.
+        d(:, :, 0) = ZERO
         do el = 1, s
-            if (changed) then
+            if (el == 1 .or. el == s .or. .not. equal(mesh%h(el), h_e)) then
                 h_e = mesh%h(el)
                 do col = 1, N_FIELDS
                     do row = 1, N_FIELDS
                         m = element_block(model, h_e, dt, row, col, last=el == s)
-                        m11(row, col) = m(1, 1); m21(row, col) = m(2, 1)
-                        m12(row, col) = m(1, 2); m22(row, col) = m(2, 2)
+                        m11(row, col) = m(1, 1)
+                        m21(row, col) = m(2, 1)
+                        m12(row, col) = m(1, 2)
+                        m22(row, col) = m(2, 2)
                     end do
                 end do
-                m12 = ZERO + m12
+                m12 = ZERO + m12   ! -0 as +0, as a sum into a zero matrix gives
                 m21 = ZERO + m21
-                d_right = ZERO + m22             ! D of the element's right node, before the next element
-                d_inner = d_right + m11          ! D between two elements of this size
+                m22 = ZERO + m22
             end if
-            if (el == 1) then
-                d(:, :, 0) = ZERO + m11
-            else if (changed) then
-                d(:, :, el - 1) = d(:, :, el - 1) + m11
-            else
-                d(:, :, el - 1) = d_inner       ! the element before has this size too
-            end if
+            d(:, :, el - 1) = d(:, :, el - 1) + m11
+            d(:, :, el) = m22
             e(:, :, el - 1) = m12
             f(:, :, el - 1) = m21
-            ! element el + 1 of another size (or the last element): D of node el is d_right plus its
-            ! part; else d_inner, written then
-            next_changed = el + 1 >= s
-            if (.not. next_changed) next_changed = .not. equal(mesh%h(el + 1), h_e)
-            if (next_changed) d(:, :, el) = d_right
-            changed = next_changed
         end do
         call dirichlet_blocks(s, d, e, f)
     end subroutine assemble_blocks

@@ -206,17 +206,17 @@ contains
     end subroutine sized_level
 
     !> The level, the level before and the time counters into a checkpoint under owner (e.g.
-    !> 'state'): owner/level and owner/previous (s+1, 1+N_FIELDS; pack_level; previous with
-    !> no rows before a multistep scheme's first step or for a single-step scheme, so that
-    !> every checkpoint of a run has the same entries), owner/step, t, dt_last, t_anchor, ...
+    !> 'state'): owner/level and owner/previous (s+1, 1+N_FIELDS: the columns u, then w;
+    !> previous with no rows before a multistep scheme's first step or for a single-step
+    !> scheme, so that every checkpoint of a run has the same entries), owner/step, t, ...
     subroutine state_save_checkpoint(self, ckpt, owner)
         class(state_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
         character(len=*), intent(in) :: owner
 
-        call ckpt%put(owner//'/level', pack_level(self%u, self%w))
+        call ckpt%put(owner//'/level', reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS]))
         if (allocated(self%u_prev)) then
-            call ckpt%put(owner//'/previous', pack_level(self%u_prev, self%w_prev))
+            call ckpt%put(owner//'/previous', reshape([self%u_prev, self%w_prev], [self%s + 1, 1 + N_FIELDS]))
         else
             call ckpt%put(owner//'/previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
         end if
@@ -257,14 +257,5 @@ contains
         call ckpt%get(owner//'/t_anchor', self%t_anchor)
         call ckpt%get(owner//'/step_anchor', self%step_anchor)
     end subroutine state_restore_checkpoint
-
-    !> (s+1, 1+N_FIELDS) array with the columns u and fields_m's F_* (the layout of a checkpoint's state).
-    pure function pack_level(u, w) result(packed)
-        real(dp), intent(in) :: u(0:), w(0:, :)
-        real(dp) :: packed(size(u), 1 + N_FIELDS)
-
-        packed(:, 1) = u
-        packed(:, 2:) = w
-    end function pack_level
 
 end module state_m

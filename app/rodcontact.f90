@@ -69,11 +69,9 @@ contains
         end do
     end subroutine write_table
 
-    !> The input source ('-' = standard input), the --set values (of '--set X' and
-    !> '--set=X', in their order), the arguments that are files of --summary, --events or
-    !> --summary-header (table: which; every argument after it but --nondimensional; none
-    !> without it), and whether --check and --resume were given. --help and --version print
-    !> and stop.
+    !> The input source ('-' = standard input), the --set values in their order, the files
+    !> of the table (--summary, --events or --summary-header: every argument after it but
+    !> --nondimensional) and the flags. --help and --version print and stop.
     subroutine parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
         character(len=:), allocatable, intent(out) :: source
         character(len=:), allocatable, intent(inout) :: overrides(:)   !< empty

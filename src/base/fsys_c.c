@@ -16,9 +16,7 @@ int rc_same_file(const char *a, const char *b)
     return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-/* errno when it says that a write failed for want of space or by a device fault (disk
- * full, file size limit, quota, I/O error, read-only file system), else 0: for the message
- * of an output failure, read right after the failing HDF5 call (output_m). */
+/* errno when it says that a write failed for want of space or by a device fault, else 0. */
 int rc_write_errno(void)
 {
     int e = errno;
@@ -26,11 +24,8 @@ int rc_write_errno(void)
     return (e == ENOSPC || e == EFBIG || e == EDQUOT || e == EIO || e == EROFS) ? e : 0;
 }
 
-/* Make sure the first `bytes` bytes of file `path` have disk space (posix_fallocate; the
- * file grows to `bytes` if shorter, with zeros, and existing data stay as they are). 0 on
- * success or when the file system cannot reserve space at all, else the errno (ENOSPC: disk
- * full, EFBIG: file size limit, ...). The output writer calls it before each flush
- * (output_m), so that a flush never fails half-way for want of space. */
+/* posix_fallocate of the first `bytes` bytes of `path` (fsys_m's reserve_file_size): 0 also
+ * when the file system cannot reserve space at all, else the errno. */
 int rc_reserve_file_size(const char *path, long long bytes)
 {
     int fd, rc;

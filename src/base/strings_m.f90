@@ -44,9 +44,7 @@ contains
             e = e - 1
         end if
         digits = buf(1:1) // buf(3:e - 1)
-        do while (len(digits) > 1 .and. digits(len(digits):) == '0')
-            digits = digits(:len(digits) - 1)
-        end do
+        digits = digits(:max(1, verify(digits, '0', back=.true.)))
         if (expo >= 0 .and. expo < 6) then
             if (len(digits) <= expo + 1) then
                 s = digits // repeat('0', expo + 1 - len(digits))
@@ -69,19 +67,15 @@ contains
         real(dp), intent(in) :: x
         character(len=:), allocatable :: text
         character(len=32) :: buffer
-        integer :: decimals, last
+        integer :: decimals
 
         if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e6_dp) then
             decimals = max(0, 3 - floor(log10(abs(x))))
             write (buffer, '(f0.' // int_str(decimals) // ')') x
             text = trim(adjustl(buffer))
             if (decimals > 0) then   ! no trailing zeros, no bare point
-                last = len_trim(text)
-                do while (text(last:last) == '0')
-                    last = last - 1
-                end do
-                if (text(last:last) == '.') last = last - 1
-                text = text(:last)
+                text = text(:verify(text, '0', back=.true.))
+                text = text(:verify(text, '.', back=.true.))
             end if
             if (text(1:1) == '.') text = '0'//text
         else if (is_zero(x)) then
@@ -202,19 +196,11 @@ contains
     pure function from_c_chars(chars) result(text)
         character(kind=c_char), intent(in) :: chars(:)
         character(len=:), allocatable :: text
-        integer :: k, n
+        integer :: n
 
-        n = size(chars)
-        do k = 1, size(chars)
-            if (chars(k) == c_null_char) then
-                n = k - 1
-                exit
-            end if
-        end do
-        allocate (character(len=n) :: text)
-        do k = 1, n
-            text(k:k) = chars(k)
-        end do
+        n = findloc(chars, c_null_char, dim=1) - 1
+        if (n < 0) n = size(chars)
+        text = transfer(chars(1:n), repeat(' ', n))
     end function from_c_chars
 
 end module strings_m

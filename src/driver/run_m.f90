@@ -1,8 +1,5 @@
-!> One simulation run: the time loop from the initial state (or a checkpoint) to the end,
-!> with its output. It wires the parts together and owns none of their work: the step
-!> driver (step_driver_m) takes each accepted step, the types that are saved pack and
-!> restore their checkpoints (checkpoint_m), the files layer writes (run_output_m,
-!> run_attributes_m, provenance_m, restart_m); this module says when.
+!> One simulation run, from the initial state (or a checkpoint) to the end, with its output:
+!> the parts do the work (docs/architecture.md, 'One adaptive step'), this module says when.
 module run_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64, error_unit
@@ -164,10 +161,9 @@ contains
         call run%writer%flush()
     end subroutine open_output
 
-    !> The time loop: accepted steps (the step driver) with their output, remeshes and
-    !> checkpoints, until the end, a numerical failure or a stop signal (interrupted: its
-    !> name; the run stops after the step in progress, or before the first step when the
-    !> signal came during the set-up).
+    !> The time loop: accepted steps with their output, remeshes and checkpoints, until the
+    !> end, a numerical failure or a stop signal (interrupted: its name; after the step in
+    !> progress, or before the first step when the signal came during the set-up).
     subroutine time_loop(run, cfg, failure, interrupted)
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
@@ -368,11 +364,9 @@ contains
         if (cfg%output%error_estimate) call write_error_estimate(run%writer, run%companions, run%state)
     end subroutine snapshot
 
-    !> Dense output of the step just taken from t_before (run_output_m): the series entries
-    !> at the times k series_dt and (snapshot_land = .false.) the snapshots at k snapshot_dt
-    !> in (t_before, t_n]; no error estimate (validate_m refuses &output error_estimate with
-    !> snapshot_land = .false.). at_end: an entry or snapshot so written is at t_n (to
-    !> round-off), so the last step's own would repeat it.
+    !> Dense output of the step just taken from t_before (run_output_m's series entries and,
+    !> with snapshot_land = .false., snapshots, which validate_m allows only without an error
+    !> estimate). at_end: one so written is at t_n, so the last step's own would repeat it.
     subroutine write_dense_output(run, cfg, t_before, at_end)
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg

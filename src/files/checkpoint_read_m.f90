@@ -173,11 +173,8 @@ contains
 
         call h5_library_init()
         call h5fopen_f(file, H5F_ACC_RDONLY_F, file_id, hdferr)
-        if (hdferr < 0) then
-            file_id = open_swmr_read(file)
-            hdferr = merge(0, -1, file_id >= 0)
-        end if
-        call require(hdferr, file, '/', 'h5fopen_f')
+        if (hdferr < 0) file_id = open_swmr_read(file)
+        if (file_id < 0) call require(-1, file, '/', 'h5fopen_f')
     end function open_file
 
     subroutine require(hdferr, file, what, call_name)

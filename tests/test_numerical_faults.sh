@@ -16,6 +16,8 @@
 #                   found that passes validation and produces a non-finite value (see
 #                   docs/robustness.md). In a Debug build (-ffpe-trap=overflow) the overflow
 #                   traps: there the case expects SIGFPE with a backtrace through stepper_m.
+#   si_seconds      paper_max_iter's input in SI units (&material): the message and the status
+#                   attribute give t in seconds ('t = 8.8867E-04 s'; issue 36)
 #
 #   bash tests/test_numerical_faults.sh <path to rodcontact> <source dir> <scratch dir>
 # Exit status: 0 all passed, 1 a case failed, 77 skipped (no program, or no Python with h5py).
@@ -182,6 +184,41 @@ if [[ $traps == yes ]]; then
     fi
 else
     run_case "$name" 10 1 1 "non-finite value|diverg" "$text"
+fi
+
+# (c) with &material (SI input, tests/tools/si_input.py; the time scale is 0.8887 s) the
+# step's t is in seconds, with the unit, in the message and the status attribute (issue 36):
+# the splitting of the SI material's varpi = 0 diverges
+name=si_seconds
+n_case=$((n_case + 1))
+dir="$scratch/$name"
+rm -rf "$dir" && mkdir -p "$dir"
+printf '%s\n' "$EXP1" "&solver method = 'paper', max_iter = 3 /" "&output prefix='$dir/run' quiet=.true. /" \
+    > "$dir/plain.nml"
+"$PY" "$source_dir/tests/tools/si_input.py" "$dir/plain.nml" ell=0.01 > "$dir/input.nml"
+"$prog" "$dir/input.nml" > "$dir/stdout" 2> "$dir/stderr" < /dev/null
+status=$?
+message=$(head -n 1 "$dir/stderr")
+check=$("$PY" - "$dir/run.h5" "$message" 2>&1 <<'PYTHON'
+import re, sys
+import h5py
+path, message = sys.argv[1], sys.argv[2]
+label = re.match(r"rodcontact: error in solver: (step (\d+) \(t = *(\S+) s\)): ", message)
+if not label:
+    sys.exit(f"expected 'step N (t = T s): ' in the message, got {message!r}")
+dt = 1e-3 * 0.8886729015544042   # the SI step
+if abs(float(label[3]) - int(label[2]) * dt) > 1e-4 * int(label[2]) * dt:
+    sys.exit(f"t = {label[3]} s is not step {label[2]} * dt = {int(label[2]) * dt} s")
+status = h5py.File(path, "r").attrs["status"]
+status = status.decode() if isinstance(status, bytes) else str(status)
+if not status.startswith("failed: " + label[1] + ": "):
+    sys.exit(f"status attribute: expected 'failed: {label[1]}: ...', got {status!r}")
+PYTHON
+)
+if [[ $status -eq 3 && -z "$check" ]]; then
+    echo "PASS $name: $message"
+else
+    fail "$name" "exit status $status (expected 3); $check"
 fi
 
 echo "test_numerical_faults: $n_case cases, $n_failed failed"

@@ -18,6 +18,7 @@ module step_driver_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, model_t, with_contact_mass
+    use material_m, only: nondim_t, nondim_groups
     use state_m, only: state_t, copy_state, keep_copy, set_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
@@ -32,7 +33,7 @@ module step_driver_m
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: step_driver_t, step_failure
+    public :: step_driver_t
 
     type :: step_driver_t
         private
@@ -57,6 +58,10 @@ module step_driver_m
         logical :: saved_without_level = .false.
         logical :: in_contact = .false.        !< the contact state after the last accepted step
         logical :: warned_forced = .false.
+        !> a step's t in the input's units (step_label): with &material in s (the time
+        !> scale omega of (2.10)), else nondimensional
+        real(dp) :: t_scale = 1.0_dp
+        character(len=2) :: t_unit = ''
     contains
         procedure :: init => driver_init
         procedure :: take_step => driver_take_step
@@ -68,6 +73,7 @@ module step_driver_m
         procedure :: dense_level => driver_dense_level
         procedure :: dense_weights => driver_dense_weights
         procedure :: past_level => driver_past_level
+        procedure :: step_label => driver_step_label
     end type step_driver_t
 
     interface   ! choosing, trying, judging and accepting one step (src/adaptivity/step_driver_trial_s.f90)
@@ -101,6 +107,7 @@ contains
         type(state_t), intent(in) :: state
         type(stepper_t), intent(in) :: stepper
         type(energy_monitor_t), intent(in) :: monitor
+        type(nondim_t) :: groups
 
         self%adaptive = cfg%time%adaptive
         self%mesh_adaptive = cfg%mesh%adaptive
@@ -115,6 +122,11 @@ contains
         call self%control%init(cfg%time, stepper%scheme, scale=energy_norm(monitor%current_energy()))
         call self%estimator%push(state%u, state%w, 0.0_dp)
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
+        if (cfg%material%present) then
+            groups = nondim_groups(cfg%material)
+            self%t_scale = groups%omega
+            self%t_unit = ' s'
+        end if
     end subroutine driver_init
 
     !> Continue from a checkpoint: state (restored, on its mesh) is the level the run
@@ -271,18 +283,20 @@ contains
         call state%mesh%record_remesh(rise)
     end subroutine driver_remesh
 
-    !> 'step n (t = ...): reason' for a failure message and the status attribute; with
+    !> 'step n (t = ...): reason' for a failure message, the status attribute and a
+    !> checkpoint's description, t with &material in seconds ('t = 1.2345E-03 s'); with
     !> reason = '' just 'step n (t = ...)'.
-    function step_failure(n, t, reason) result(text)
+    function driver_step_label(self, n, t, reason) result(text)
+        class(step_driver_t), intent(in) :: self
         integer, intent(in) :: n
         real(dp), intent(in) :: t
         character(len=*), intent(in) :: reason
         character(len=:), allocatable :: text
-        character(len=40) :: buf
+        character(len=48) :: buf
 
-        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', t, ')'
+        write (buf, '(a,i0,a,es11.4,a)') 'step ', n, ' (t = ', self%t_scale * t, trim(self%t_unit)//')'
         text = trim(buf)
         if (reason /= '') text = text//': '//reason
-    end function step_failure
+    end function driver_step_label
 
 end module step_driver_m

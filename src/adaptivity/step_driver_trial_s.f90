@@ -122,7 +122,7 @@ contains
         end if
         call stepper%advance(state, result, trial%dt)
         if (.not. result%ok) then
-            failure = step_failure(state%step + 1, advance_time(state, trial%dt), trim(result%message))
+            failure = self%step_label(state%step + 1, advance_time(state, trial%dt), trim(result%message))
             return
         end if
         call contact_state(stepper%law, state, result, trial%contact, trial%gap_end)
@@ -249,7 +249,7 @@ contains
         call keep_level(self, state, trial)
         call monitor%observe(state, step_changed=.not. equal(trial%dt, trial%dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
-            failure = step_failure(state%step, state%t, 'the discrete energy is not finite')
+            failure = self%step_label(state%step, state%t, 'the discrete energy is not finite')
             return
         end if
         if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))

@@ -12,7 +12,7 @@ module run_m
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t
-    use step_driver_m, only: step_driver_t, step_failure
+    use step_driver_m, only: step_driver_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
     use strings_m, only: int_str, format_real, short_real
     use material_m, only: nondim_t, nondim_groups
@@ -250,7 +250,7 @@ contains
             call run%writer%finish('interrupted: '//interrupted, keep_part=.true.)
             call report_end(run, cfg, '.h5.part', 'interrupted: '//interrupted, wall)
             write (error_unit, '(a)') 'rodcontact: stopped by '//interrupted//' after '// &
-                step_failure(run%state%step, run%state%t, 'checkpoint written')//'; continue it with: '// &
+                run%driver%step_label(run%state%step, run%state%t, 'checkpoint written')//'; continue it with: '// &
                 run%resume_command
             flush (error_unit)
             stop EXIT_INTERRUPTED, quiet=.true.
@@ -343,7 +343,7 @@ contains
         end if
         if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
         call ckpt%put('run/wall_seconds', wall_seconds(run))
-        call run%writer%write_checkpoint(ckpt, step_failure(run%state%step, run%state%t, ''))
+        call run%writer%write_checkpoint(ckpt, run%driver%step_label(run%state%step, run%state%t, ''))
     end subroutine checkpoint
 
     !> The run's wall seconds so far, with those before the checkpoint it restarted from.

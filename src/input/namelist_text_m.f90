@@ -138,13 +138,11 @@ contains
         type(group_t) :: current
         character :: quote
         character(len=:), allocatable :: name
-        integer :: i, j, k, stat, body(2)
-        character(len=LEN_MSG) :: msg
+        integer :: i, j, k, body(2)
 
         name = ''
         body = 0
-        allocate (groups(0), stat=stat, errmsg=msg)
-        call check_allocation(stat, msg, 'the namelist groups')
+        groups = [group_t ::]
         do i = 1, size(lines)
             quote = ' '
             j = 1
@@ -196,14 +194,13 @@ contains
         type(group_t), intent(in) :: groups(:)
         integer :: k
 
+        k = findloc(groups%name, name, dim=1)
         if (len(name) == 0) call fatal(EXIT_INPUT, 'input', "'&' without a group name at line " // int_str(line) // &
                                        '; allowed groups: ' // group_list())
         if (.not. any(GROUP_NAMES == name)) call fatal(EXIT_INPUT, 'input', "unknown namelist group '&" // name // &
                                                        "' at line " // int_str(line) // '; allowed groups: ' // group_list())
-        do k = 1, size(groups)
-            if (groups(k)%name == name) call fatal(EXIT_INPUT, name, 'group &' // name // ' given twice (lines ' // &
-                int_str(groups(k)%line) // ' and ' // int_str(line) // '); each group may appear at most once')
-        end do
+        if (k > 0) call fatal(EXIT_INPUT, name, 'group &' // name // ' given twice (lines ' // &
+            int_str(groups(k)%line) // ' and ' // int_str(line) // '); each group may appear at most once')
     end subroutine check_group_name
 
     !> The text from position `from` to `to` (line, column) of lines, lines joined by a blank.

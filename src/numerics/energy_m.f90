@@ -9,7 +9,7 @@ module energy_m
     use state_m, only: state_t
     use mesh_m, only: mesh_t
     use reals_m, only: equal
-    use fe_m, only: inertia_difference_energy
+    use fe_m, only: add_inertia_difference
     use errors_m, only: check_allocation
     use checkpoint_m, only: checkpoint_t
     implicit none
@@ -171,8 +171,13 @@ contains
         type(mesh_t), intent(in) :: mesh
 
         energy = 0.0_dp
-        if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) energy = 0.5_dp * model%rho * &
-            inertia_difference_energy(mesh%h, model%mass_lumped, model%mass_end_moved, w(:, F_V))
+        if (.not. (model%mass_end_moved .or. model%mass_lumped > 0.0_dp)) return
+        block
+            real(dp) :: y(0:ubound(w, 1))   ! (M_v - M) v
+            y = 0.0_dp
+            call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w(:, F_V), y)
+            energy = 0.5_dp * model%rho * dot_product(w(:, F_V), y)
+        end block
     end function inertia_difference
 
     !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
@@ -236,14 +241,10 @@ contains
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         logical, intent(in), optional :: step_changed
-        real(dp) :: law_old, rise
-        logical :: had_law, changed
+        real(dp) :: rise
+        logical :: changed
 
-        law_old = self%law_energy
-        had_law = self%have_law
-        call measure(self, state)
-        if (.not. (had_law .and. self%have_law)) return
-        rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
+        call self%remeshed(state, rise)
         changed = .false.
         if (present(step_changed)) changed = step_changed .and. self%scheme_law%constant_steps
         if (changed) then
@@ -273,9 +274,10 @@ contains
                          self%u_work, self%w_work, self%law_energy, lin_now=sum(self%last_parts(:PART_MASS_FLUX)))
     end subroutine measure
 
-    !> The level has moved to a new mesh (transfer_m): its energies on the new mesh, and
-    !> the relative rise of the law energy across the move (0 where the law energy is not
-    !> defined before and after it; mesh_m's record_remesh keeps the largest).
+    !> The energies of the level (observe's new level, or the level moved to a new mesh by
+    !> transfer_m) and the relative rise of the law energy since the level measured before
+    !> (0 where the law energy is not defined before and after; mesh_m's record_remesh keeps
+    !> the largest rise across a remesh).
     subroutine monitor_remeshed(self, state, rise)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state

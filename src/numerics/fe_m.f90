@@ -10,7 +10,7 @@ module fe_m
     private
     public :: mesh_nodes, element_mass, element_stiffness, element_gradient
     public :: apply_assembled, apply_mass_graded, apply_stiffness_graded, evaluate_p1
-    public :: inertia_element, add_inertia_difference, inertia_difference_energy
+    public :: inertia_element, add_inertia_difference
 
 contains
 
@@ -122,8 +122,8 @@ contains
     !> the contact node x = 1) when end_moved, [h 0; 0 0]: the element's whole mass h on its
     !> other node, the contact node massless. lumped = 0, end_moved = .false.: element_mass(h).
     !> Every use of the velocity's mass goes through this function: the matrix
-    !> (scheme_m), the old level's term (add_inertia_difference) and the kinetic energy
-    !> (inertia_difference_energy), so that the energy is the scheme's own.
+    !> (scheme_m), and through add_inertia_difference the old level's term and the kinetic
+    !> energy (energy_m), so that the energy is the scheme's own.
     pure function inertia_element(h, lumped, end_moved, last) result(m)
         real(dp), intent(in) :: h, lumped
         logical, intent(in) :: end_moved, last
@@ -159,25 +159,5 @@ contains
         y(s - 1) = y(s - 1) + d(1, 1) * x(s - 1) + d(1, 2) * x(s)
         y(s) = y(s) + d(2, 1) * x(s - 1) + d(2, 2) * x(s)
     end subroutine add_inertia_difference
-
-    !> v^T (M_v - M) v (see add_inertia_difference): what the kinetic energy 1/2 rho v^T M_v v
-    !> adds to the consistent one.
-    pure real(dp) function inertia_difference_energy(h, lumped, end_moved, v) result(energy)
-        real(dp), intent(in) :: h(:), lumped
-        logical, intent(in) :: end_moved
-        real(dp), intent(in) :: v(0:)
-        real(dp) :: d(2, 2), d1(2, 2)
-        integer :: s
-
-        s = ubound(v, 1)
-        energy = 0.0_dp
-        if (lumped > 0.0_dp) then
-            d1 = inertia_element(1.0_dp, lumped, .false., .false.) - element_mass(1.0_dp)
-            energy = sum(h(1:s - 1) * (d1(1, 1) * v(0:s - 2)**2 + (d1(1, 2) + d1(2, 1)) * v(0:s - 2) * v(1:s - 1) &
-                                       + d1(2, 2) * v(1:s - 1)**2))
-        end if
-        d = inertia_element(h(s), lumped, end_moved, .true.) - element_mass(h(s))
-        energy = energy + d(1, 1) * v(s - 1)**2 + (d(1, 2) + d(2, 1)) * v(s - 1) * v(s) + d(2, 2) * v(s)**2
-    end function inertia_difference_energy
 
 end module fe_m

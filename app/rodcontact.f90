@@ -15,19 +15,30 @@ program rodcontact
     use version_m, only: PROGRAM_VERSION, VERSION_LINE
     implicit none
     type(config_t) :: cfg
-    character(len=:), allocatable :: source, table, overrides(:)
-    integer, allocatable :: summary_args(:)
-    logical :: check_only, resume, nondimensional
+    character(len=:), allocatable :: source, table
+    integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
+    integer :: k, max_len
+    logical :: check_only, nondimensional
 
-    allocate (character(len=0) :: overrides(0))
-    call parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
+    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
     if (table /= '') then
         call write_table(table, summary_args, nondimensional)
         stop
     end if
-    call read_config(source, cfg, overrides)
+    max_len = max_argument_length()
+    block
+        ! the --set values: argument set_arg(k) without its first set_skip(k) characters
+        character(len=max_len) :: overrides(size(set_arg))
+
+        do k = 1, size(set_arg)
+            overrides(k) = argument(set_arg(k))
+            overrides(k) = overrides(k)(set_skip(k) + 1:)
+        end do
+        call read_config(source, cfg, overrides)
+    end block
     ! --resume: restart from the run's own .part, which the run then replaces (restart_m)
-    if (resume) cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
+    if (any([(argument(k) == '--resume', k = 1, command_argument_count())])) &
+        cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
     call validate_config(cfg, scheme_rules())
     call nondimensionalise(cfg)   ! with &material (SI inputs); echoes what it derived
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
@@ -69,14 +80,16 @@ contains
         end do
     end subroutine write_table
 
-    !> The input source ('-' = standard input), the --set values in their order, the files
-    !> of the table (--summary, --events or --summary-header: every argument after it but
-    !> --nondimensional) and the flags. --help and --version print and stop.
-    subroutine parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
+    !> The input source ('-' = standard input), where the --set values are (argument
+    !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
+    !> the arguments that are files of --summary, --events or --summary-header (table: which;
+    !> every argument after it but --nondimensional; none without it), and whether --check
+    !> was given (--resume is read by the program itself). --help and --version print and stop.
+    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
         character(len=:), allocatable, intent(out) :: source
-        character(len=:), allocatable, intent(inout) :: overrides(:)   !< empty
+        integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
         integer, allocatable, intent(out) :: summary_args(:)
-        logical, intent(out) :: check_only, resume
+        logical, intent(out) :: check_only
         character(len=:), allocatable, intent(out) :: table
         logical, intent(out) :: nondimensional
         character(len=:), allocatable :: arg
@@ -87,10 +100,9 @@ contains
         source = '-'
         source_given = .false.
         check_only = .false.
-        resume = .false.
         table = ''
         nondimensional = .false.
-        allocate (summary_args(0))
+        allocate (set_arg(0), set_skip(0), summary_args(0))
         i = 1
         do while (i <= n_args)
             arg = argument(i)
@@ -102,7 +114,7 @@ contains
                 write (output_unit, '(a)') VERSION_LINE
                 stop
             case ('--summary', '--events', '--summary-header')
-                if (source_given .or. size(overrides) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
+                if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
                     arg // ' takes only HDF5 files, no input file, --set or --check')
                 table = arg
                 do k = i + 1, n_args
@@ -114,18 +126,16 @@ contains
                 exit
             case ('--nondimensional')
                 nondimensional = .true.
-            case ('--check')
-                check_only = .true.
-            case ('--resume')
-                resume = .true.
+            case ('--check', '--resume')
+                check_only = check_only .or. arg == '--check'
             case ('--set')
                 if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
                                             'group.variable=value, e.g. --set model.varpi=0.3')
                 i = i + 1
-                arg = argument(i)
-                overrides = [character(len=max(len(overrides), len(arg))) :: overrides, arg]
+                set_arg = [set_arg, i]
+                set_skip = [set_skip, 0]
             case default
-                call take_operand(arg, source, source_given, overrides)
+                call take_operand(arg, i, source, source_given, set_arg, set_skip)
             end select
             i = i + 1
         end do
@@ -133,15 +143,18 @@ contains
             '--nondimensional is for --summary, --events and --summary-header')
     end subroutine parse_command_line
 
-    !> An argument, `arg`, that names no option: '--set=X' (X appended to overrides), or the
+    !> Argument i, `arg`, names no option: '--set=X' (appended to set_arg, set_skip), or the
     !> input file (source; source_given: whether one was given before).
-    subroutine take_operand(arg, source, source_given, overrides)
+    subroutine take_operand(arg, i, source, source_given, set_arg, set_skip)
         character(len=*), intent(in) :: arg
-        character(len=:), allocatable, intent(inout) :: source, overrides(:)
+        integer, intent(in) :: i
+        character(len=:), allocatable, intent(inout) :: source
         logical, intent(inout) :: source_given
+        integer, allocatable, intent(inout) :: set_arg(:), set_skip(:)
 
         if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
-            overrides = [character(len=max(len(overrides), len(arg) - 6)) :: overrides, arg(7:)]
+            set_arg = [set_arg, i]
+            set_skip = [set_skip, 6]
             return
         end if
         if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', "unknown option '" // &
@@ -199,6 +212,16 @@ contains
         end do
         word = word // "'"
     end function shell_word
+
+    integer function max_argument_length() result(n)
+        integer :: i, length
+
+        n = 1
+        do i = 1, command_argument_count()
+            call get_command_argument(i, length=length)
+            n = max(n, length)
+        end do
+    end function max_argument_length
 
     subroutine print_help()
         write (output_unit, '(a)') &

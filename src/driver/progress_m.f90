@@ -199,19 +199,13 @@ contains
         integer, intent(in) :: step
         integer, intent(in) :: n_steps
         integer :: next
+        integer(int64) :: k
 
-        integer :: k
-        integer(int64) :: milestone
-
+        ! ceiling(k n_steps/10) > step exactly when k n_steps/10 > step: the first such k; int64:
+        ! k n_steps cannot overflow
+        k = int(N_MILESTONES, int64) * step / max(n_steps, 1) + 1
         next = huge(1)
-        do k = 1, N_MILESTONES
-            ! integer ceiling of k*n/10, in int64 so that k*n cannot overflow
-            milestone = (int(k, int64) * n_steps + N_MILESTONES - 1) / N_MILESTONES
-            if (milestone > step) then
-                next = int(milestone)
-                return
-            end if
-        end do
+        if (k <= N_MILESTONES .and. n_steps > 0) next = int((k * n_steps + N_MILESTONES - 1) / N_MILESTONES)
     end function next_milestone
 
     !> One report line, e.g.

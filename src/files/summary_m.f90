@@ -3,7 +3,8 @@
 !> rodcontact HDF5 files. Each column's definition and units (file_in_si): docs/scans.md.
 !> A value that does not apply is NaN in summary_t and an empty field in the CSV row.
 module summary_m
-    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+    use, intrinsic :: iso_fortran_env, only: int64
     use kinds_m, only: dp
     use strings_m, only: format_real, doubled_quotes, int_str
     use h5_read_m, only: read_real_1d, read_int_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
@@ -16,30 +17,33 @@ module summary_m
     public :: summary_header, summary_row, csv_field
     public :: events_header, write_event_rows, file_in_si
 
+    !> A quiet NaN: what a value that does not apply is
+    real(dp), parameter :: NAN = transfer(9221120237041090560_int64, 1.0_dp)   ! 0x7FF8000000000000
+
     !> The numbers of one run. NaN (or steps < 0) where a value does not apply.
     type :: summary_t
         character(len=:), allocatable :: file
         character(len=:), allocatable :: status        !< root attribute 'status' ('' if absent)
         logical :: contact = .false.                   !< p_k > 0 for some k
-        real(dp) :: first_contact_t = 0.0_dp
-        real(dp) :: last_contact_t = 0.0_dp
+        real(dp) :: first_contact_t = NAN
+        real(dp) :: last_contact_t = NAN
         real(dp) :: contact_time = 0.0_dp
-        real(dp) :: max_penetration = 0.0_dp           !< max_k p_k
-        real(dp) :: max_u_end = 0.0_dp                 !< max_k u(1,t_k)
-        real(dp) :: t_max_u_end = 0.0_dp               !< the first t_k where it is reached
-        real(dp) :: g = 0.0_dp                         !< contact.g of the run
-        real(dp) :: energy_ratio = 0.0_dp              !< E_K / E_0
-        real(dp) :: decay_rate = 0.0_dp                !< -d(log E)/dt fitted over the window
-        real(dp) :: decay_fit_from_t = 0.0_dp
-        real(dp) :: decay_fit_to_t = 0.0_dp
-        real(dp) :: t_final = 0.0_dp                   !< t_K, the last stored time
+        real(dp) :: max_penetration = NAN              !< max_k p_k
+        real(dp) :: max_u_end = NAN                    !< max_k u(1,t_k)
+        real(dp) :: t_max_u_end = NAN                  !< the first t_k where it is reached
+        real(dp) :: g = NAN                            !< contact.g of the run
+        real(dp) :: energy_ratio = NAN                 !< E_K / E_0
+        real(dp) :: decay_rate = NAN                   !< -d(log E)/dt fitted over the window
+        real(dp) :: decay_fit_from_t = NAN
+        real(dp) :: decay_fit_to_t = NAN
+        real(dp) :: t_final = NAN                      !< t_K, the last stored time
         integer :: steps = -1                          !< root attribute 'steps'
-        real(dp) :: wall_seconds = 0.0_dp              !< root attribute 'wall_seconds'
+        real(dp) :: wall_seconds = NAN                 !< root attribute 'wall_seconds'
         !> root attribute 'step_control_error_sum_relative' of adaptive steps (NaN if absent)
-        real(dp) :: time_error = 0.0_dp   ! set to NaN by summarise_file when absent
+        real(dp) :: time_error = NAN
         !> root attributes 'error_estimate.<field>' (&output error_estimate; NaN if absent),
         !> the fields in ESTIMATE_FIELDS' order
-        real(dp) :: error_estimate(6) = 0.0_dp
+        real(dp) :: error_estimate(6) = NAN
         !> /events in time order: each event's time and whether it is an onset (else a
         !> release); none when absent (has_events false)
         logical :: has_events = .false.
@@ -67,24 +71,16 @@ contains
         real(dp), intent(in) :: t(:), energy(:), u_end(:), penetration(:), contact_stress(:)
         real(dp), intent(in) :: g
         type(summary_t) :: s
-        real(dp) :: nan, t_half
+        real(dp) :: t_half
         integer :: k, n
         logical :: in_fit(size(t)), touching(size(t))
 
-        nan = ieee_value(0.0_dp, ieee_quiet_nan)
         s%g = g
         n = size(t)
-        if (n == 0) then
-            s%first_contact_t = nan; s%last_contact_t = nan; s%max_penetration = nan; s%max_u_end = nan
-            s%t_max_u_end = nan; s%energy_ratio = nan; s%decay_rate = nan; s%decay_fit_from_t = nan
-            s%decay_fit_to_t = nan; s%t_final = nan
-            return
-        end if
+        if (n == 0) return
         s%t_final = t(n)
         touching = penetration > 0.0_dp .or. contact_stress < 0.0_dp
         s%contact = any(touching)
-        s%first_contact_t = nan
-        s%last_contact_t = nan
         if (s%contact) then
             s%first_contact_t = t(findloc(touching, .true., dim=1))
             s%last_contact_t = t(findloc(touching, .true., dim=1, back=.true.))
@@ -96,20 +92,13 @@ contains
         s%max_penetration = maxval(penetration)
         s%max_u_end = maxval(u_end)
         s%t_max_u_end = t(maxloc(u_end, dim=1))
-        if (energy(1) > 0.0_dp) then
-            s%energy_ratio = energy(n) / energy(1)
-        else
-            s%energy_ratio = nan
-        end if
+        if (energy(1) > 0.0_dp) s%energy_ratio = energy(n) / energy(1)
         t_half = 0.5_dp * (t(1) + t(n))
         in_fit = t >= t_half .and. energy > 0.0_dp
         s%decay_rate = -log_slope(pack(t, in_fit), pack(energy, in_fit))
         if (count(in_fit) >= 2) then
             s%decay_fit_from_t = minval(t, mask=in_fit)
             s%decay_fit_to_t = maxval(t, mask=in_fit)
-        else
-            s%decay_fit_from_t = nan
-            s%decay_fit_to_t = nan
         end if
     end function summarise_series
 
@@ -119,7 +108,7 @@ contains
         real(dp) :: slope
         real(dp) :: x_mean, ly_mean, sxx
 
-        slope = ieee_value(0.0_dp, ieee_quiet_nan)
+        slope = NAN
         if (size(x) < 2) return
         ! centred sums: t ~ 1 and log E ~ -10 would lose digits in the raw normal equations
         x_mean = sum(x) / size(x)
@@ -168,7 +157,7 @@ contains
         character(len=*), intent(in) :: file, name
         real(dp) :: x
 
-        x = ieee_value(0.0_dp, ieee_quiet_nan)
+        x = NAN
         if (attr_exists(file, name)) call read_attr_real(file, name, x)
     end function attr_or_nan
 
@@ -206,19 +195,12 @@ contains
         character, intent(in) :: kind
         logical, intent(in) :: si
         character(len=:), allocatable :: label
+        character(len=*), parameter :: SI_UNITS(4) = [character(len=6) :: ' [s]', ' [m]', ' [1/s]', ' [s]']
+        integer :: k
 
-        select case (kind)
-        case ('T')
-            label = merge(' [s]', ' [1]', si)
-        case ('L')
-            label = merge(' [m]', ' [1]', si)
-        case ('R')
-            label = trim(merge(' [1/s]', ' [1]  ', si))
-        case ('W')
-            label = ' [s]'
-        case default
-            label = ''
-        end select
+        k = index('TLRW', kind)
+        label = ''
+        if (k > 0) label = trim(merge(SI_UNITS(k), ' [1]  ', si .or. kind == 'W'))
     end function unit_label
 
     !> The contact events of /events (absent in files of older versions).
@@ -352,7 +334,7 @@ contains
         type(summary_t), intent(in) :: s
         real(dp) :: ratio
 
-        ratio = ieee_value(0.0_dp, ieee_quiet_nan)
+        ratio = NAN
         if (ieee_is_finite(s%g)) then
             if (abs(s%g) > 0.0_dp) ratio = s%max_u_end / s%g
         end if

@@ -1,7 +1,7 @@
 !> Banded matrices in LAPACK general-band storage, factored with dgbtrf and solved by
-!> band_solve, a plain-loop substitution on dgbtrf's factors (the paper method's blocks;
-!> the monolithic method's check of its block LU, and its fallback). Every LAPACK info is
-!> decoded into a readable message.
+!> band_solve, a plain-loop substitution on dgbtrf's factors: the paper method's blocks, and
+!> the monolithic method's check of its block LU and fallback (stepper_m). Every LAPACK info
+!> is decoded into a readable message.
 module banded_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation
@@ -31,13 +31,9 @@ module banded_m
         logical :: factored = .false.
     contains
         procedure :: init => band_init
-        procedure :: zero => band_zero
         procedure :: add => band_add
-        procedure :: add_block2 => band_add_block2
-        procedure :: add_block2_run => band_add_block2_run
         procedure :: release => band_release
         procedure :: get => band_get
-        procedure :: set_identity_row => band_set_identity_row
         procedure :: matvec => band_matvec
         procedure :: factor => band_factor
         procedure :: solve => band_solve
@@ -59,7 +55,9 @@ contains
         if (allocated(self%ipiv)) deallocate (self%ipiv)
         allocate (self%ab(2 * kl + ku + 1, n), self%ipiv(n), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'a band matrix')
-        call self%zero()
+        self%ab = 0.0_dp
+        self%ipiv = 0
+        self%factored = .false.
     end subroutine band_init
 
     !> Free the storage of a matrix no longer used (e.g. one whose block LU solves instead):
@@ -72,14 +70,6 @@ contains
         self%factored = .false.
     end subroutine band_release
 
-    subroutine band_zero(self)
-        class(band_t), intent(inout) :: self
-
-        self%ab = 0.0_dp
-        self%ipiv = 0
-        self%factored = .false.
-    end subroutine band_zero
-
     !> A(i,j) += value. An entry outside the band is a programming error.
     subroutine band_add(self, i, j, value)
         class(band_t), intent(inout) :: self
@@ -90,56 +80,6 @@ contains
         self%ab(self%kl + self%ku + 1 + i - j, j) = self%ab(self%kl + self%ku + 1 + i - j, j) + value
     end subroutine band_add
 
-    !> A(i + (ia-1) stride, j + (ib-1) stride) += m(ia, ib) for ia, ib = 1, 2: the 2 x 2 block of
-    !> one element's two nodes (stride: unknowns per node) in one call, as four band_add.
-    subroutine band_add_block2(self, i, j, stride, m)
-        class(band_t), intent(inout) :: self
-        integer, intent(in) :: i, j, stride
-        real(dp), intent(in) :: m(2, 2)
-        integer :: ia, ib, r, c
-
-        if (abs(j - i) + stride > min(self%ku, self%kl)) then
-            do ia = 1, 2
-                do ib = 1, 2
-                    call self%add(i + (ia - 1) * stride, j + (ib - 1) * stride, m(ia, ib))
-                end do
-            end do
-            return
-        end if
-        do ia = 1, 2
-            do ib = 1, 2
-                r = i + (ia - 1) * stride
-                c = j + (ib - 1) * stride
-                self%ab(self%kl + self%ku + 1 + r - c, c) = self%ab(self%kl + self%ku + 1 + r - c, c) + m(ia, ib)
-            end do
-        end do
-    end subroutine band_add_block2
-
-    !> add_block2 for count consecutive elements: m added at (i + k stride, j + k stride),
-    !> k = 0, ..., count - 1, in that order (an entry shared by two elements gets the earlier
-    !> element's value first, as with one add_block2 per element), in one call.
-    subroutine band_add_block2_run(self, i, j, stride, m, count)
-        class(band_t), intent(inout) :: self
-        integer, intent(in) :: i, j, stride, count
-        real(dp), intent(in) :: m(2, 2)
-        integer :: k, c, d
-
-        if (abs(j - i) + stride > min(self%ku, self%kl)) then
-            do k = 0, count - 1
-                call self%add_block2(i + k * stride, j + k * stride, stride, m)
-            end do
-            return
-        end if
-        d = self%kl + self%ku + 1 + i - j   ! the storage row of entries (1,1) and (2,2)
-        do k = 0, count - 1
-            c = j + k * stride
-            self%ab(d, c) = self%ab(d, c) + m(1, 1)
-            self%ab(d + stride, c) = self%ab(d + stride, c) + m(2, 1)
-            self%ab(d - stride, c + stride) = self%ab(d - stride, c + stride) + m(1, 2)
-            self%ab(d, c + stride) = self%ab(d, c + stride) + m(2, 2)
-        end do
-    end subroutine band_add_block2_run
-
     !> A(i,j) (zero outside the band); only meaningful before factor().
     pure function band_get(self, i, j) result(value)
         class(band_t), intent(in) :: self
@@ -149,21 +89,6 @@ contains
         value = 0.0_dp
         if (j - i <= self%ku .and. i - j <= self%kl) value = self%ab(self%kl + self%ku + 1 + i - j, j)
     end function band_get
-
-    !> Replace row i by the identity row (a Dirichlet unknown) and clear column i.
-    subroutine band_set_identity_row(self, i)
-        class(band_t), intent(inout) :: self
-        integer, intent(in) :: i
-        integer :: j
-
-        do j = max(1, i - self%kl), min(self%n, i + self%ku)
-            self%ab(self%kl + self%ku + 1 + i - j, j) = 0.0_dp
-        end do
-        do j = max(1, i - self%ku), min(self%n, i + self%kl)
-            self%ab(self%kl + self%ku + 1 + j - i, i) = 0.0_dp
-        end do
-        self%ab(self%kl + self%ku + 1, i) = 1.0_dp
-    end subroutine band_set_identity_row
 
     !> y = A x; only meaningful before factor().
     pure function band_matvec(self, x) result(y)

@@ -65,8 +65,6 @@ module stepper_m
         ! work arrays, allocated once
         real(dp), allocatable :: b(:, :), w_new(:, :), work(:), x(:)
         real(dp), allocatable :: u_star(:), w_star(:, :)   !< multistep: the level a step starts from
-        !> the node blocks D_i, E_i, F_i of a system before its block LU (setup_monolithic)
-        real(dp), allocatable :: d_blocks(:, :, :), e_blocks(:, :, :), f_blocks(:, :, :)
         ! counters for the output attributes
         integer(kind=8) :: n_solves = 0, n_contact_steps = 0
     contains
@@ -180,15 +178,20 @@ contains
         type(monolithic_system_t), intent(out) :: sys
         type(step_result_t), intent(inout) :: result
         type(band_t) :: unfactored
-        integer :: info
+        !> the node blocks D_i, E_i, F_i (D_i's storage becomes the block LU's factors)
+        real(dp), allocatable :: d(:, :, :), e(:, :, :), f(:, :, :)
+        integer :: info, stat
         logical :: fast, blocks_ok
+        character(len=256) :: message
 
         fast = self%adaptive_steps .or. .not. self%mesh%is_uniform()
         sys%contact_dof = count(self%active) * self%s + self%slots(F_V)
+        allocate (d(NB_MAX, NB_MAX, 0:self%s), e(NB_MAX, NB_MAX, 0:self%s - 1), f(NB_MAX, NB_MAX, 0:self%s - 1), &
+                  stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the blocks of the system')
         ! the fields in the system (active): assemble_matrix's band, bit for bit
-        call require_blocks(self)
-        call assemble_blocks(self%step_model, self%mesh, dt_eff, self%d_blocks, self%e_blocks, self%f_blocks)
-        call sys%blocks%factor(self%d_blocks, self%e_blocks, self%f_blocks, info, fast, self%active)
+        call assemble_blocks(self%step_model, self%mesh, dt_eff, d, e, f)
+        call sys%blocks%factor(d, e, f, info, fast, self%active)
         blocks_ok = info == 0
         sys%use_blocks = blocks_ok .and. self%blocks_trusted
         if (.not. sys%use_blocks) then
@@ -228,26 +231,6 @@ contains
         sys%z(sys%contact_dof) = 1.0_dp
         call sys%solve(sys%z)
     end subroutine contact_response
-
-    !> The work arrays of assemble_blocks for self%s elements: E_i, F_i kept, D_i anew (the
-    !> block LU takes it as its factors' storage).
-    subroutine require_blocks(self)
-        type(stepper_t), intent(inout) :: self
-        integer :: stat, s
-        character(len=256) :: message
-
-        s = self%s
-        if (allocated(self%d_blocks)) deallocate (self%d_blocks)
-        allocate (self%d_blocks(NB_MAX, NB_MAX, 0:s), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the blocks of the system')
-        if (allocated(self%e_blocks)) then
-            if (ubound(self%e_blocks, 3) == s - 1) return
-            deallocate (self%e_blocks, self%f_blocks)
-        end if
-        allocate (self%e_blocks(NB_MAX, NB_MAX, 0:s - 1), self%f_blocks(NB_MAX, NB_MAX, 0:s - 1), &
-                  stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the blocks of the system')
-    end subroutine require_blocks
 
     !> Does the monolithic method solve with the block-tridiagonal LU (else dgbtrf's factors)?
     logical function stepper_uses_block_solver(self)

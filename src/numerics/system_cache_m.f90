@@ -46,7 +46,6 @@ module system_cache_m
         type(monolithic_system_t) :: systems(CACHE_SIZE)
         integer :: mesh_key = 1        !< the current mesh (invalidate: a new one)
         integer :: uses = 0            !< lookups so far
-        integer :: n_factored = 0      !< systems assembled and factored (misses)
     contains
         procedure :: lookup => cache_lookup
         procedure :: stored => cache_stored
@@ -89,7 +88,6 @@ contains
         self%systems(k)%dt_eff = dt_eff
         self%systems(k)%mesh_key = self%mesh_key
         self%systems(k)%last_used = self%uses
-        self%n_factored = self%n_factored + 1
     end subroutine cache_stored
 
     !> The mesh changed (or anything else in the matrix): no entry is used again.

@@ -3,7 +3,6 @@
 module events_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
-    use errors_m, only: check_allocation
     use checkpoint_m, only: checkpoint_t
     implicit none
     private
@@ -21,10 +20,9 @@ module events_m
     !> penalty release) is then met short step after step, each linear location falling short
     real(dp), parameter :: LINEAR_CUT_MIN = 1.0e-2_dp
 
-    !> The events of a run, in order.
+    !> The events of a run, in order (a run has few: each is appended).
     type :: event_log_t
         private
-        integer :: n = 0
         real(dp), allocatable :: t(:)
         integer, allocatable :: kind(:)
     contains
@@ -42,42 +40,27 @@ contains
         class(event_log_t), intent(inout) :: self
         real(dp), intent(in) :: t
         integer, intent(in) :: kind
-        real(dp), allocatable :: t_new(:)
-        integer, allocatable :: kind_new(:)
-        integer :: stat
-        character(len=256) :: message
 
-        if (.not. allocated(self%t)) then
-            allocate (self%t(16), self%kind(16), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the event list')
-        end if
-        if (self%n == size(self%t)) then
-            allocate (t_new(2 * self%n), kind_new(2 * self%n), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the event list')
-            t_new(:self%n) = self%t
-            kind_new(:self%n) = self%kind
-            call move_alloc(t_new, self%t)
-            call move_alloc(kind_new, self%kind)
-        end if
-        self%n = self%n + 1
-        self%t(self%n) = t
-        self%kind(self%n) = kind
+        self%t = [self%times(), t]
+        self%kind = [self%kinds(), kind]
     end subroutine log_add
 
-    !> The n event times.
+    !> The event times.
     pure function log_times(self) result(t)
         class(event_log_t), intent(in) :: self
-        real(dp) :: t(self%n)
+        real(dp), allocatable :: t(:)
 
-        if (self%n > 0) t = self%t(:self%n)
+        t = [real(dp) ::]
+        if (allocated(self%t)) t = self%t
     end function log_times
 
-    !> The n event kinds (EVENT_ONSET, EVENT_RELEASE).
+    !> The event kinds (EVENT_ONSET, EVENT_RELEASE).
     pure function log_kinds(self) result(kind)
         class(event_log_t), intent(in) :: self
-        integer :: kind(self%n)
+        integer, allocatable :: kind(:)
 
-        if (self%n > 0) kind = self%kind(:self%n)
+        kind = [integer ::]
+        if (allocated(self%kind)) kind = self%kind
     end function log_kinds
 
     !> The log into a checkpoint: events/t and events/kind (as the file's /events).
@@ -93,16 +76,11 @@ contains
     subroutine log_restore_checkpoint(self, ckpt)
         class(event_log_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
-        real(dp), allocatable :: t(:)
         integer(int64), allocatable :: kind(:)
-        integer :: k
 
-        call ckpt%get('events/t', t)
+        call ckpt%get('events/t', self%t)
         call ckpt%get('events/kind', kind)
-        self%n = 0
-        do k = 1, min(size(t), size(kind))
-            call self%add(t(k), int(kind(k)))
-        end do
+        self%kind = int(kind)
     end subroutine log_restore_checkpoint
 
     !> The time in [t_start, t_start + dt] at which the contact state of a step changes: the

@@ -43,14 +43,16 @@ contains
         real(dp), intent(out) :: level_new(0:, 0:)
         type(model_t), intent(in), optional :: model
         real(dp) :: x_old(0:ubound(k_old, 1)), x_new(0:ubound(k_new, 1))
-        integer :: f, s_old, s_new
+        integer(int64) :: k_union(0:ubound(k_old, 1) + ubound(k_new, 1))
+        integer :: f, s_old, s_new, n
         logical :: refinement_only, massless_end
 
         x_old = nodes_of_keys(k_old, n_fine)
         x_new = nodes_of_keys(k_new, n_fine)
         s_old = ubound(k_old, 1)
         s_new = ubound(k_new, 1)
-        refinement_only = all_found(k_old, k_new)
+        call merge_keys(k_old, k_new, k_union, n)
+        refinement_only = n == s_new   ! every old key is a new one
         massless_end = .false.
         if (present(model)) massless_end = model%mass_end_moved .and. min(s_old, s_new) > 1
         level_new(:, 0) = evaluate_p1(x_old, level_old(:, 0), x_new)
@@ -65,22 +67,6 @@ contains
             end if
         end do
     end subroutine transfer_level
-
-    !> Is every key of `needles` (increasing) in `haystack` (increasing)?
-    pure logical function all_found(needles, haystack)
-        integer(int64), intent(in) :: needles(0:), haystack(0:)
-        integer :: i, j
-
-        all_found = .false.
-        j = 0
-        do i = 0, ubound(needles, 1)
-            do while (j < ubound(haystack, 1) .and. haystack(j) < needles(i))
-                j = j + 1
-            end do
-            if (haystack(j) /= needles(i)) return
-        end do
-        all_found = .true.
-    end function all_found
 
     !> g = the L2 projection of the P1 function f (keys k_old) onto the P1 space of field
     !> `field` on keys k_new: M g = b with b_i = int f phi_i, integrated exactly on the

@@ -194,7 +194,9 @@ contains
         type(group_t), intent(in) :: groups(:)
         integer :: k
 
-        k = findloc(groups%name, name, dim=1)
+        do k = size(groups), 1, -1   ! a loop: findloc on groups%name copies the strided names (Debug warns)
+            if (groups(k)%name == name) exit
+        end do
         if (len(name) == 0) call fatal(EXIT_INPUT, 'input', "'&' without a group name at line " // int_str(line) // &
                                        '; allowed groups: ' // group_list())
         if (.not. any(GROUP_NAMES == name)) call fatal(EXIT_INPUT, 'input', "unknown namelist group '&" // name // &

@@ -1,8 +1,7 @@
 !> The checkpoint writer of output_m (the layout: docs/output.md, "Checkpoints"): a
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
-    use iso_c_binding, only: c_loc, c_ptr
-    use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f, h5screate_f, H5S_SCALAR_F, H5T_STD_I64LE, &
+    use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f, H5T_STD_I64LE, &
                     h5kind_to_type, H5_INTEGER_KIND, h5gopen_f, H5P_DEFAULT_F, &
                     h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F
     use checkpoint_m, only: entry_t

@@ -7,9 +7,6 @@
 submodule (output_m) output_estimate_s
     implicit none
 
-    !> the groups, in the order of the parts given to append_estimate: total, time, space
-    character(len=*), parameter :: GROUPS(3) = [character(len=32) :: '/snapshots/error_estimate', &
-                                                '/snapshots/error_estimate_time', '/snapshots/error_estimate_space']
     character(len=*), parameter :: WHAT(3) = [character(len=40) :: '(time and space)', &
                                               '(time part)', '(space part)']
     integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
@@ -25,11 +22,11 @@ contains
         character(len=256) :: message
 
         call w%need_open('append_estimate()')
-        if (size(values, 1) /= N_OUTPUT_FIELDS .or. size(values, 2) /= size(GROUPS)) &
+        if (size(values, 1) /= N_OUTPUT_FIELDS .or. size(values, 2) /= size(ESTIMATE_PARTS)) &
             call w%fail('internal error: append_estimate() given the wrong number of values')
         if (w%estimate_ids(1, 1) < 0) then
             call open_estimate(w)
-            allocate (w%estimate_buf(SERIES_CHUNK, N_OUTPUT_FIELDS, size(GROUPS)), stat=stat, errmsg=message)
+            allocate (w%estimate_buf(SERIES_CHUNK, N_OUTPUT_FIELDS, size(ESTIMATE_PARTS)), stat=stat, errmsg=message)
             if (stat /= 0) call w%fail('no memory for the error estimates ('//trim(message)//')')
         end if
         w%n_estimate_buf = w%n_estimate_buf + 1
@@ -44,9 +41,9 @@ contains
 
         if (w%n_estimate_buf == 0) return
         n = int(w%n_estimate_buf, hsize_t)
-        do part = 1, size(GROUPS)
+        do part = 1, size(ESTIMATE_PARTS)
             do k = 1, N_OUTPUT_FIELDS
-                call w%append_rows(w%estimate_ids(k, part), path_of(part, k), w%n_estimate_snap, [n], &
+                call w%append_rows(w%estimate_ids(k, part), estimate_path(part, k), w%n_estimate_snap, [n], &
                                    w%estimate_buf(1:n, k, part))
             end do
         end do
@@ -61,23 +58,15 @@ contains
         integer :: k, part
 
         call w%leave_swmr()   ! new groups: not in SWMR writing (output_file_s)
-        do part = 1, size(GROUPS)
-            call w%make_group(trim(GROUPS(part)))
+        do part = 1, size(ESTIMATE_PARTS)
+            call w%make_group('/snapshots/'//trim(ESTIMATE_PARTS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                call w%create_extendible(path_of(part, k), H5T_IEEE_F64LE, [0_hsize_t], CHUNK, &
+                call w%create_extendible(estimate_path(part, k), H5T_IEEE_F64LE, [0_hsize_t], CHUNK, &
                                          w%estimate_ids(k, part), 'estimated relative L2 error of '// &
                                          trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
                                          ' at each snapshot '//trim(WHAT(part)), '1')
             end do
         end do
     end subroutine open_estimate
-
-    !> The dataset of field OUTPUT_ORDER(k) in group GROUPS(part).
-    function path_of(part, k) result(path)
-        integer, intent(in) :: part, k
-        character(len=:), allocatable :: path
-
-        path = trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
-    end function path_of
 
 end submodule output_estimate_s

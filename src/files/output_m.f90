@@ -22,7 +22,7 @@ module output_m
     use h5_read_m, only: h5_library_init
     use checkpoint_m, only: checkpoint_t
     use fields_m, only: FIELDS, OUTPUT_ORDER, SNAPSHOTS, N_SNAPSHOT_FIELDS, N_OUTPUT_FIELDS, SERIES, N_SERIES, S_T
-    use h5_attr_m, only: put_attr
+    use iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
     use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
                     h5pset_cache_f, H5F_ACC_TRUNC_F, &
                     H5F_SCOPE_GLOBAL_F, H5F_CLOSE_STRONG_F, h5pcreate_f, h5pclose_f, &
@@ -32,11 +32,13 @@ module output_m
                     h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
                     H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
                     h5dwrite_f, h5dset_extent_f, h5dget_space_f, &
-                    H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER
+                    H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, h5screate_f, &
+                    H5S_SCALAR_F, H5S_NULL_F, h5acreate_f, h5aclose_f, h5awrite_f, h5aexists_f, h5adelete_f, &
+                    h5tcopy_f, h5tclose_f, h5tset_cset_f, H5T_STRING, H5T_CSET_UTF8_F
     implicit none
     private
     public :: h5_writer_t
-    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, CHECKPOINT_LAYOUT, RESUMED_SUFFIX
+    public :: SERIES_BUFFER_SIZE, SERIES_CHUNK, CHECKPOINT_LAYOUT, RESUMED_SUFFIX, ESTIMATE_PARTS, estimate_path
 
     !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
     !> reals (192 KiB) whatever the length of the run.
@@ -50,6 +52,10 @@ module output_m
     character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name, slotN/owner/scalars'
     !> The file of a run resumed in place, beside the <prefix>.h5.part it continues
     character(len=*), parameter :: RESUMED_SUFFIX = '.resume.h5.part'
+    !> The error estimate's parts: its datasets /snapshots/<part>/<field> (estimate_path), the
+    !> final estimate's root attributes <part>.<field>
+    character(len=*), parameter :: ESTIMATE_PARTS(3) = [character(len=20) :: 'error_estimate', &
+                                                        'error_estimate_time', 'error_estimate_space']
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
 
@@ -124,7 +130,6 @@ module output_m
         procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
-        procedure, private :: attr_target => writer_attr_target
         procedure, private :: make_group => writer_make_group
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: append_rows => writer_append_rows
@@ -299,19 +304,40 @@ contains
     subroutine writer_attr_scalar(w, name, value, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
-        class(*), intent(in) :: value
+        class(*), intent(in), target :: value
         integer(hid_t), intent(in), optional :: on   !< a dataset (default: the root group)
-        character(len=:), allocatable :: failed
+        integer, target :: flag
+        integer(hid_t) :: type_id
+        integer :: hdferr
 
         select type (value)
+        type is (real(dp))
+            call put_attr(w, name, on, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, -1, c_loc(value))
+        type is (integer)
+            call put_attr(w, name, on, H5T_STD_I32LE, H5T_NATIVE_INTEGER, -1, c_loc(value))
         type is (logical)
-            call put_attr(w%attr_target(name, on), name, merge(1, 0, value), failed)
+            flag = merge(1, 0, value)
+            call put_attr(w, name, on, H5T_STD_I32LE, H5T_NATIVE_INTEGER, -1, c_loc(flag))
             if (index(' '//w%logical_names//' ', ' '//name//' ') == 0) &
                 w%logical_names = trim(adjustl(w%logical_names//' '//name))
+        type is (character(len=*))
+            block   ! a variable-length string: a pointer to a NUL-terminated C string
+                character(kind=c_char, len=len(value) + 1), target :: chars
+                type(c_ptr), target :: str_ptr(1)
+
+                chars = value//c_null_char
+                str_ptr(1) = c_loc(chars)
+                call h5tcopy_f(H5T_STRING, type_id, hdferr)
+                call w%check(hdferr, 'h5tcopy_f (string type) for attribute '//name)
+                call h5tset_cset_f(type_id, H5T_CSET_UTF8_F, hdferr)
+                call w%check(hdferr, 'h5tset_cset_f for attribute '//name)
+                call put_attr(w, name, on, type_id, type_id, -1, c_loc(str_ptr))
+                call h5tclose_f(type_id, hdferr)
+                call w%check(hdferr, 'h5tclose_f (string type) for attribute '//name)
+            end block
         class default
-            call put_attr(w%attr_target(name, on), name, value, failed)
+            call w%fail('internal error: an attribute of an unknown type, '//name//' failed')
         end select
-        if (failed /= '') call w%fail(failed//' failed')
     end subroutine writer_attr_scalar
 
     !> Float64 array attribute (e.g. polynomial coefficients); replaced if present. An empty
@@ -319,20 +345,25 @@ contains
     subroutine writer_attr_array(w, name, values, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
-        real(dp), intent(in), contiguous :: values(:)
+        real(dp), intent(in), contiguous, target :: values(:)
         integer(hid_t), intent(in), optional :: on
-        character(len=:), allocatable :: failed
 
-        call put_attr(w%attr_target(name, on), name, values, failed)
-        if (failed /= '') call w%fail(failed//' failed')
+        call put_attr(w, name, on, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, size(values), c_loc(values))
     end subroutine writer_attr_array
 
-    !> The object an attribute goes on: dataset `on`, else the root group.
-    function writer_attr_target(w, name, on) result(obj_id)
+    !> Attribute `name` of type file_type on dataset `on` (default: the root group), from buf
+    !> in mem_type: a scalar (n < 0), empty (n = 0: a null dataspace) or n values. An older
+    !> one is deleted: HDF5 cannot re-create it in place (end-of-run values overwrite).
+    subroutine put_attr(w, name, on, file_type, mem_type, n, buf)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
         integer(hid_t), intent(in), optional :: on
-        integer(hid_t) :: obj_id
+        integer(hid_t), intent(in) :: file_type, mem_type
+        integer, intent(in) :: n
+        type(c_ptr), intent(in) :: buf
+        integer(hid_t) :: obj_id, space_id, attr_id
+        logical :: exists
+        integer :: hdferr
 
         call w%need_open("attribute '"//name//"' written")
         if (w%swmr) then
@@ -342,7 +373,31 @@ contains
         end if
         obj_id = w%file_id
         if (present(on)) obj_id = on
-    end function writer_attr_target
+        if (n < 0) call h5screate_f(H5S_SCALAR_F, space_id, hdferr)
+        if (n == 0) call h5screate_f(H5S_NULL_F, space_id, hdferr)
+        if (n > 0) call h5screate_simple_f(1, [int(n, hsize_t)], space_id, hdferr)
+        call w%check(hdferr, 'h5screate_f for attribute '//name)
+        call h5aexists_f(obj_id, name, exists, hdferr)
+        call w%check(hdferr, 'h5aexists_f attribute '//name)
+        if (exists) call h5adelete_f(obj_id, name, hdferr)
+        call w%check(hdferr, 'h5adelete_f attribute '//name)
+        call h5acreate_f(obj_id, name, file_type, space_id, attr_id, hdferr)
+        call w%check(hdferr, 'h5acreate_f attribute '//name)
+        if (n /= 0) call h5awrite_f(attr_id, mem_type, buf, hdferr)
+        call w%check(hdferr, 'h5awrite_f attribute '//name)
+        call h5aclose_f(attr_id, hdferr)
+        call w%check(hdferr, 'h5aclose_f attribute '//name)
+        call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f for attribute '//name)
+    end subroutine put_attr
+
+    !> The dataset of the error estimate's part ESTIMATE_PARTS(part) of field OUTPUT_ORDER(k).
+    pure function estimate_path(part, k) result(path)
+        integer, intent(in) :: part, k
+        character(len=:), allocatable :: path
+
+        path = '/snapshots/'//trim(ESTIMATE_PARTS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name)
+    end function estimate_path
 
     ! ---------------------------------------------------------------- private helpers
 

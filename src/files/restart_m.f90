@@ -16,11 +16,11 @@ module restart_m
     use reals_m, only: equal
     use checkpoint_m, only: checkpoint_t
     use checkpoint_read_m, only: read_entries, has_group_attribute
-    use fields_m, only: N_FIELDS, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
+    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file, rename_file, remove_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists, is_hdf5_file
-    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX
+    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX, ESTIMATE_PARTS, estimate_path
     implicit none
     private
     public :: read_checkpoint, copy_history
@@ -281,8 +281,7 @@ contains
             call writer%append_snapshot(snap_t(k), snaps(:, :, k))
         end do
         if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
-        if (dataset_exists(file, '/snapshots/error_estimate/'//trim(FIELDS(OUTPUT_ORDER(1))%name))) &
-            call copy_estimate(writer, file, n)
+        if (dataset_exists(file, estimate_path(1, 1))) call copy_estimate(writer, file, n)
     end subroutine copy_history
 
     !> Every dataset copy_history copies is in `file` (a file of an older version lacks the
@@ -309,17 +308,15 @@ contains
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
         integer, intent(in) :: n
-        character(len=*), parameter :: GROUPS(3) = [character(len=32) :: '/snapshots/error_estimate', &
-                                                    '/snapshots/error_estimate_time', '/snapshots/error_estimate_space']
         real(dp), allocatable :: values(:, :, :)
         integer :: j, k, part, stat
         character(len=256) :: message
 
-        allocate (values(N_OUTPUT_FIELDS, size(GROUPS), n), stat=stat, errmsg=message)
+        allocate (values(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS), n), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the copied error estimates')
-        do part = 1, size(GROUPS)
+        do part = 1, size(ESTIMATE_PARTS)
             do k = 1, N_OUTPUT_FIELDS
-                values(k, part, :) = leading(file, trim(GROUPS(part))//'/'//trim(FIELDS(OUTPUT_ORDER(k))%name), n)
+                values(k, part, :) = leading(file, estimate_path(part, k), n)
             end do
         end do
         do j = 1, n

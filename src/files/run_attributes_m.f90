@@ -14,9 +14,9 @@ module run_attributes_m
     use events_m, only: event_log_t
     use step_control_m, only: step_controller_t
     use step_driver_m, only: step_driver_t
-    use error_companion_m, only: error_companions_t, N_ESTIMATE_PARTS
+    use error_companion_m, only: error_companions_t
     use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
-    use output_m, only: h5_writer_t
+    use output_m, only: h5_writer_t, ESTIMATE_PARTS
     implicit none
     private
     public :: record_inputs, record_scales, record_results, ERROR_ESTIMATE_NONE
@@ -163,8 +163,6 @@ contains
     subroutine record_error_estimate(writer, companions)
         type(h5_writer_t), intent(inout) :: writer
         type(error_companions_t), intent(in) :: companions
-        character(len=*), parameter :: PART_NAMES(N_ESTIMATE_PARTS) = &
-            [character(len=20) :: 'error_estimate', 'error_estimate_time', 'error_estimate_space']
         integer :: k, part
 
         if (.not. companions%on) then
@@ -174,9 +172,9 @@ contains
         call writer%attr('error_estimate', 'companion solutions at (2 dt, 2 h), (4 dt, 4 h), (8 dt, 4 h); '// &
                              'Richardson with observed orders (docs/scheme.md)')
         if (companions%failure /= '') call writer%attr('error_estimate_failure', trim(companions%failure))
-        do part = 1, N_ESTIMATE_PARTS
+        do part = 1, size(ESTIMATE_PARTS)
             do k = 1, N_OUTPUT_FIELDS
-                call writer%attr(trim(PART_NAMES(part))//'.'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
+                call writer%attr(trim(ESTIMATE_PARTS(part))//'.'//trim(FIELDS(OUTPUT_ORDER(k))%name), &
                                       companions%last(k, part))
             end do
         end do

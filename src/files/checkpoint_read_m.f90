@@ -8,9 +8,8 @@ module checkpoint_read_m
     use iso_fortran_env, only: int64
     use errors_m, only: fatal, check_allocation, EXIT_INPUT
     use checkpoint_m, only: checkpoint_t, entry_t
-    use h5_read_m, only: h5_library_init
-    use h5_swmr_m, only: open_swmr_read
-    use hdf5, only: hid_t, hsize_t, h5fopen_f, h5fclose_f, H5F_ACC_RDONLY_F, h5gopen_f, h5gclose_f, &
+    use h5_read_m, only: open_file
+    use hdf5, only: hid_t, hsize_t, h5fclose_f, h5gopen_f, h5gclose_f, &
                     h5gget_info_f, h5lget_name_by_idx_f, H5_INDEX_NAME_F, H5_ITER_INC_F, h5oopen_f, h5oclose_f, &
                     h5iget_type_f, H5I_GROUP_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, h5tget_class_f, &
                     h5tclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
@@ -31,7 +30,7 @@ contains
         integer :: hdferr
 
         ckpt%source = file
-        file_id = open_file(file)
+        file_id = open_file(file, group)
         call read_below(file, file_id, group, '', ckpt)
         call h5fclose_f(file_id, hdferr)
         call require(hdferr, file, group, 'h5fclose_f')
@@ -43,7 +42,7 @@ contains
         integer(hid_t) :: file_id
         integer :: hdferr
 
-        file_id = open_file(file)
+        file_id = open_file(file, group)
         call h5aexists_by_name_f(file_id, group, name, yes, hdferr)
         call require(hdferr, file, group, 'h5aexists_by_name_f '//name)
         call h5fclose_f(file_id, hdferr)
@@ -164,18 +163,6 @@ contains
         call h5tget_member_name_f(type_id, m, buffer, length, hdferr)
         name = buffer(:min(length, len(buffer)))
     end function member_name
-
-    !> `file` opened for reading; the .h5.part of a killed run as a SWMR reader (h5_swmr_m).
-    function open_file(file) result(file_id)
-        character(len=*), intent(in) :: file
-        integer(hid_t) :: file_id
-        integer :: hdferr
-
-        call h5_library_init()
-        call h5fopen_f(file, H5F_ACC_RDONLY_F, file_id, hdferr)
-        if (hdferr < 0) file_id = open_swmr_read(file)
-        if (file_id < 0) call require(-1, file, '/', 'h5fopen_f')
-    end function open_file
 
     subroutine require(hdferr, file, what, call_name)
         integer, intent(in) :: hdferr

@@ -13,7 +13,7 @@ module h5_read_m
     use errors_m, only: fatal, check_allocation, EXIT_INPUT, EXIT_OUTPUT
     use fsys_m, only: file_exists, from_c_string
     use strings_m, only: from_c_chars, int_str
-    use h5_swmr_m, only: open_swmr_read, h5_free_memory
+    use h5_swmr_m, only: SWMR_READ, h5_free_memory
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5sclose_f, h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, &
                     h5aread_f, h5aexists_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tget_class_f, &
@@ -25,7 +25,7 @@ module h5_read_m
     public :: h5_library_init
     public :: read_real_1d, read_real_2d, read_int_1d
     public :: read_attr_str, read_attr_real, read_attr_int, read_attr_real_1d
-    public :: dataset_exists, attr_exists, is_hdf5_file
+    public :: dataset_exists, attr_exists, is_hdf5_file, open_file
 
     !> The HDF5 library is started once per process; this flag is the only module state.
     logical, save :: library_open = .false.
@@ -284,8 +284,8 @@ contains
         call h5_library_init()
         if (.not. file_exists(file)) call fail(file, what, 'no such file')
         call h5fopen_f(trim(file), H5F_ACC_RDONLY_F, file_id, hdferr)
-        if (hdferr < 0) file_id = open_swmr_read(file)
-        if (file_id < 0) call fail(file, what, 'not an HDF5 file or not readable (h5fopen_f failed)')
+        if (hdferr < 0) call h5fopen_f(trim(file), SWMR_READ, file_id, hdferr)
+        if (hdferr < 0) call fail(file, what, 'not an HDF5 file or not readable (h5fopen_f failed)')
     end function open_file
 
     subroutine close_file(file, what, file_id)

@@ -1,17 +1,18 @@
 !> What HDF5 1.10's Fortran API lacks, bound to its C API: the single-writer/multiple-reader
 !> (SWMR) mode, in which the writer (output_m) runs between its structural changes so that a
-!> killed run leaves its last flush readable (output_file_s), and H5free_memory for the
-!> strings HDF5 allocates. The file of a killed SWMR writer is still marked as open for
-!> writing: only a SWMR reader opens it (h5_read_m, and h5py.File(path, 'r', swmr=True)).
+!> killed run leaves its last flush readable (output_file_s), the flags of a SWMR reader, and
+!> H5free_memory for the strings HDF5 allocates. The file of a killed SWMR writer is still
+!> marked as open for writing: only a SWMR reader opens it (h5_read_m, and h5py.File(path,
+!> 'r', swmr=True)).
 module h5_swmr_m
-    use iso_c_binding, only: c_int, c_int64_t, c_char, c_null_char, c_ptr
-    use hdf5, only: hid_t
+    use iso_c_binding, only: c_int, c_int64_t, c_ptr
     implicit none
     private
-    public :: start_swmr_write, open_swmr_read, h5_free_memory
+    public :: start_swmr_write, h5_free_memory, SWMR_READ
 
-    !> H5F_ACC_RDONLY | H5F_ACC_SWMR_READ (H5Fpublic.h, 0x0000u | 0x0040u)
-    integer(c_int), parameter :: SWMR_READ = 64_c_int
+    !> h5fopen_f's flags (passed on to H5Fopen) for a SWMR reader, which writes nothing to the
+    !> file: H5F_ACC_RDONLY | H5F_ACC_SWMR_READ (H5Fpublic.h, 0x0000u | 0x0040u)
+    integer, parameter :: SWMR_READ = 64
 
     interface   ! hid_t: int64_t in HDF5 1.10
         !> Switch the open file file_id (1.10 format, open for writing, only datasets open)
@@ -22,14 +23,6 @@ module h5_swmr_m
             integer(c_int) :: herr
         end function start_swmr_write
 
-        function c_h5fopen(path, flags, fapl_id) bind(C, name='H5Fopen') result(file_id)
-            import :: c_int64_t, c_int, c_char
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int), value, intent(in) :: flags
-            integer(c_int64_t), value, intent(in) :: fapl_id
-            integer(c_int64_t) :: file_id
-        end function c_h5fopen
-
         !> Free `mem`, memory HDF5 allocated (the string of a variable-length string read; a
         !> null pointer is nothing to free); negative on failure.
         function h5_free_memory(mem) bind(C, name='H5free_memory') result(herr)
@@ -38,17 +31,5 @@ module h5_swmr_m
             integer(c_int) :: herr
         end function h5_free_memory
     end interface
-
-contains
-
-    !> Open `path` read-only as a SWMR reader, writing nothing to it: file_id, negative on
-    !> failure (not an HDF5 file, or one of an older format than 1.10, which a plain
-    !> read-only open reads).
-    function open_swmr_read(path) result(file_id)
-        character(len=*), intent(in) :: path
-        integer(hid_t) :: file_id
-
-        file_id = c_h5fopen(trim(path)//c_null_char, SWMR_READ, 0_c_int64_t)   ! H5P_DEFAULT
-    end function open_swmr_read
 
 end module h5_swmr_m

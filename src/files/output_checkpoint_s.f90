@@ -1,7 +1,7 @@
 !> The checkpoint writer of output_m (the layout: docs/output.md, "Checkpoints"): a
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
-    use hdf5, only: h5lexists_f, h5dopen_f, h5ldelete_f, H5T_STD_I64LE, &
+    use hdf5, only: h5lexists_f, h5dopen_f, H5T_STD_I64LE, &
                     h5kind_to_type, H5_INTEGER_KIND, h5gopen_f, H5P_DEFAULT_F, &
                     h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F
     use checkpoint_m, only: entry_t
@@ -230,32 +230,5 @@ contains
         call h5dwrite_f(w%ckpt_current_id, h5kind_to_type(int64, H5_INTEGER_KIND), buf, hdferr)
         call w%check(hdferr, 'h5dwrite_f /checkpoint/current')
     end subroutine put_current
-
-    !> Close the checkpoint's datasets (leave_swmr: the file is closed and reopened; the next
-    !> checkpoint opens them again).
-    module procedure writer_close_checkpoint
-        integer :: k, slot
-
-        if (w%ckpt_current_id >= 0) call w%close_dataset(w%ckpt_current_id, '/checkpoint/current')
-        if (.not. allocated(w%ckpt_ids)) return
-        do slot = 0, 1
-            do k = 1, size(w%ckpt_ids, 1)
-                if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
-            end do
-        end do
-    end procedure writer_close_checkpoint
-
-    !> Remove the object `name` if it exists (finish(): what SWMR writing made the run create
-    !> in advance and it never used).
-    module procedure writer_drop
-        logical :: exists
-        integer :: hdferr
-
-        call h5lexists_f(w%file_id, name, exists, hdferr)
-        call w%check(hdferr, 'h5lexists_f '//name)
-        if (.not. exists) return
-        call h5ldelete_f(w%file_id, name, hdferr)
-        call w%check(hdferr, 'h5ldelete_f '//name)
-    end procedure writer_drop
 
 end submodule output_checkpoint_s

@@ -14,7 +14,7 @@
 !> and final attributes, which therefore are not crash-safe.
 submodule (output_m) output_file_s
     use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, h5iget_name_f, &
-                    h5dopen_f
+                    h5dopen_f, h5lexists_f, h5ldelete_f
     use h5ds, only: h5dsdetach_scale_f
     use h5_swmr_m, only: start_swmr_write
     implicit none
@@ -97,7 +97,7 @@ contains
             call h5dclose_f(ids(k), hdferr)
             call w%check(hdferr, 'h5dclose_f '//trim(names(k)))
         end do
-        call writer_close_checkpoint(w)
+        call close_checkpoint(w)
         call reserve(w)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f (leaving SWMR writing)')
@@ -269,10 +269,10 @@ contains
     subroutine tidy(w)
         class(h5_writer_t), intent(inout) :: w
 
-        if (w%n_checkpoints == 1) call w%drop('/checkpoint/slot1')
+        if (w%n_checkpoints == 1) call drop(w, '/checkpoint/slot1')
         if (w%native_created .and. w%n_native_snap == 0) then
             call detach_native(w)
-            call w%drop('/snapshots/native')
+            call drop(w, '/snapshots/native')
         end if
     end subroutine tidy
 
@@ -295,5 +295,35 @@ contains
             end associate
         end do
     end subroutine detach_native
+
+    !> Close the checkpoint's datasets (leave_swmr: the file is closed and reopened; the next
+    !> checkpoint opens them again).
+    subroutine close_checkpoint(w)
+        class(h5_writer_t), intent(inout) :: w
+        integer :: k, slot
+
+        if (w%ckpt_current_id >= 0) call w%close_dataset(w%ckpt_current_id, '/checkpoint/current')
+        if (.not. allocated(w%ckpt_ids)) return
+        do slot = 0, 1
+            do k = 1, size(w%ckpt_ids, 1)
+                if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
+            end do
+        end do
+    end subroutine close_checkpoint
+
+    !> Remove the object `name` if it exists (finish(): what SWMR writing made the run create
+    !> in advance and it never used).
+    subroutine drop(w, name)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        logical :: exists
+        integer :: hdferr
+
+        call h5lexists_f(w%file_id, name, exists, hdferr)
+        call w%check(hdferr, 'h5lexists_f '//name)
+        if (.not. exists) return
+        call h5ldelete_f(w%file_id, name, hdferr)
+        call w%check(hdferr, 'h5ldelete_f '//name)
+    end subroutine drop
 
 end submodule output_file_s

@@ -127,7 +127,6 @@ module output_m
         procedure :: abandon => writer_abandon
         procedure, private :: check => writer_check
         procedure, private :: need_open => writer_need_open
-        procedure, private :: drop => writer_drop
         procedure, private :: fail => writer_fail
         procedure, private :: flush_series => writer_flush_series
         procedure, private :: make_group => writer_make_group
@@ -240,15 +239,6 @@ module output_m
             type(checkpoint_t), intent(in) :: ckpt
             character(len=*), intent(in) :: note
         end subroutine writer_write_checkpoint
-
-        module subroutine writer_drop(w, name)
-            class(h5_writer_t), intent(inout) :: w
-            character(len=*), intent(in) :: name
-        end subroutine writer_drop
-
-        module subroutine writer_close_checkpoint(w)
-            class(h5_writer_t), intent(inout) :: w
-        end subroutine writer_close_checkpoint
 
         module subroutine writer_describe_si(w, scale, factor, si_units)
             class(h5_writer_t), intent(inout) :: w

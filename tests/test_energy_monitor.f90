@@ -92,7 +92,7 @@ contains
         call check_close('BDF2: no rise before a G-energy exists', 0.0_dp, max_rise, 0.0_dp)
         call check_close('BDF2: E^1 (not the G-energy)', energy(x1), monitor%current_energy(), TOL * energy(x1))
         ! the law energy is private to the monitor: read it from what it saves in a checkpoint
-        call monitor%save_checkpoint(ckpt)
+        call monitor%checkpoint(ckpt)
         call ckpt%get('energy_monitor/law_energy', law_energy)
         call check_close('BDF2: the law energy is the G-energy', g_energy(x1, x0), law_energy, TOL * g_energy(x1, x0))
         x2 = with_previous(level(1.2_dp, 0.12_dp), x1)

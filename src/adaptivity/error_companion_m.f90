@@ -316,11 +316,11 @@ contains
     end function relative
 
     !> The companions into a checkpoint, each under error_companions/<A|C|D>: its state
-    !> (state_t's save_checkpoint; an adaptive mesh's companion meshes are rebuilt from the
+    !> (state_t's checkpoint; an adaptive mesh's companion meshes are rebuilt from the
     !> run's), its solves and its queue of the run's steps (QUEUE_MAX, n_queued in use); then
     !> whether they failed, the run's steps since the last snapshot.
     subroutine companions_save_checkpoint(self, ckpt)
-        class(error_companions_t), intent(in) :: self
+        class(error_companions_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
         character(len=:), allocatable :: p
         integer :: j
@@ -328,7 +328,7 @@ contains
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 p = 'error_companions/'//NAMES(j:j)
-                call c%state%save_checkpoint(ckpt, p)
+                call c%state%checkpoint(ckpt, p)
                 call ckpt%put(p//'/n_solves', c%stepper%n_solves)
                 call ckpt%put(p//'/n_queued', c%n_queued)
                 call ckpt%put(p//'/queue_dt', c%queue_dt)
@@ -342,7 +342,7 @@ contains
     !> The inverse of save_checkpoint (on companions initialised for this run).
     subroutine companions_restore_checkpoint(self, ckpt)
         class(error_companions_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
+        type(checkpoint_t), intent(inout) :: ckpt
         character(len=:), allocatable :: p
         real(dp), allocatable :: queue(:)
         integer(int64), allocatable :: keys(:)
@@ -356,7 +356,7 @@ contains
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 p = 'error_companions/'//NAMES(j:j)
-                call c%state%restore_checkpoint(ckpt, p)
+                call c%state%checkpoint(ckpt, p)
                 if (c%state%s /= c%stepper%s) call fatal(EXIT_INPUT, 'restart', &
                     'the checkpoint''s error-estimate companion '//NAMES(j:j)//' does not fit its mesh')
                 call ckpt%get(p//'/n_solves', c%stepper%n_solves)

@@ -114,8 +114,8 @@ contains
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt, run%in_place)
             if (ckpt%has('run/wall_seconds')) call ckpt%get('run/wall_seconds', run%wall_before)
-            call run%state%restore_checkpoint(ckpt, 'state')
-            call run%state%mesh%restore_checkpoint(ckpt)
+            call run%state%checkpoint(ckpt, 'state')
+            call run%state%mesh%checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
                 call run%mesh%restore_checkpoint(ckpt)
                 call ckpt%get('run/n_elements_max', run%n_elements_max)
@@ -123,8 +123,8 @@ contains
                 call run%stepper%remesh(run%state)
                 call run%monitor%resize(run%state)
             end if
-            call run%monitor%restore_checkpoint(ckpt)
-            call run%stepper%restore_checkpoint(ckpt)
+            call run%monitor%checkpoint(ckpt)
+            call run%stepper%checkpoint(ckpt)
             call run%driver%restore_checkpoint(ckpt, run%state, run%stepper)
             if (cfg%output%error_estimate) call run%companions%restore_checkpoint(ckpt)
         end if
@@ -332,10 +332,10 @@ contains
         type(config_t), intent(in) :: cfg
         type(checkpoint_t) :: ckpt
 
-        call run%state%save_checkpoint(ckpt, 'state')
-        call run%state%mesh%save_checkpoint(ckpt)
-        call run%stepper%save_checkpoint(ckpt)
-        call run%monitor%save_checkpoint(ckpt)
+        call run%state%checkpoint(ckpt, 'state')
+        call run%state%mesh%checkpoint(ckpt)
+        call run%stepper%checkpoint(ckpt)
+        call run%monitor%checkpoint(ckpt)
         call run%driver%save_checkpoint(ckpt)
         if (cfg%mesh%adaptive) then
             call run%mesh%save_checkpoint(ckpt)

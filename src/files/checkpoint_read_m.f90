@@ -30,6 +30,7 @@ contains
         integer :: hdferr
 
         ckpt%source = file
+        ckpt%reading = .true.
         file_id = open_file(file, group)
         call read_below(file, file_id, group, '', ckpt)
         call h5fclose_f(file_id, hdferr)

@@ -1,7 +1,7 @@
 !> A checkpoint in memory: everything a run needs to continue exactly (&output
 !> checkpoint_every, &time restart_from), as named entries. It is a record, not an owner:
-!> each type puts its own entries 'owner/name' with its save_checkpoint and gets them back
-!> with its restore_checkpoint (docs/output.md, "Checkpoints", lists them). An entry is
+!> each type puts its own entries 'owner/name' and gets them back (docs/output.md,
+!> "Checkpoints", lists them), best in one routine of sync calls. An entry is
 !> reals or integers (int64), a scalar or an array of rank 1 or 2; a logical is the integer
 !> 0 or 1 under a name ending in _flag. The files layer maps the record to the file's
 !> /checkpoint/slotN/<owner>/ and back.
@@ -26,12 +26,13 @@ module checkpoint_m
 
     type :: checkpoint_t
         integer :: n = 0                        !< entries(1:n) are in use
+        logical :: reading = .false.            !< read from a file: sync gets, else puts
         character(len=:), allocatable :: source   !< the file it was read from, for messages
         type(entry_t), allocatable :: entries(:)
     contains
         generic :: put => put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
         generic :: get => get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
-        procedure :: add, has, find
+        procedure :: add, has, find, sync
         procedure, private :: word
         procedure, private :: put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
         procedure, private :: get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
@@ -91,6 +92,32 @@ contains
         end do
         call fatal(EXIT_INPUT, 'time.restart_from', file//' has no '//name)
     end function find
+
+    !> An owner's one checkpoint routine names each scalar entry once: sync puts value into a
+    !> checkpoint being saved and gets it back from one being read (reading), so that saving
+    !> and restoring cannot disagree. value: real(dp), integer, integer(int64) or logical.
+    subroutine sync(self, name, value)
+        class(checkpoint_t), intent(inout) :: self
+        character(len=*), intent(in) :: name
+        class(*), intent(inout) :: value
+
+        select type (value)
+        type is (real(dp))
+            if (self%reading) call self%get(name, value)
+            if (.not. self%reading) call self%put(name, value)
+        type is (integer)
+            if (self%reading) call self%get(name, value)
+            if (.not. self%reading) call self%put(name, value)
+        type is (integer(int64))
+            if (self%reading) call self%get(name, value)
+            if (.not. self%reading) call self%put(name, value)
+        type is (logical)
+            if (self%reading) call self%get(name, value)
+            if (.not. self%reading) call self%put(name, value)
+        class default
+            call fatal(EXIT_INPUT, 'checkpoint', 'internal error: the type of '//name)
+        end select
+    end subroutine sync
 
     !> The one word of scalar entry `name` (find's refusals).
     integer(int64) function word(self, name, is_integer)

@@ -57,8 +57,7 @@ module energy_m
         procedure :: observe => monitor_observe
         procedure :: resize => monitor_resize
         procedure :: remeshed => monitor_remeshed
-        procedure :: save_checkpoint => monitor_save_checkpoint
-        procedure :: restore_checkpoint => monitor_restore_checkpoint
+        procedure :: checkpoint => monitor_checkpoint
         procedure :: current_energy => monitor_current_energy
         procedure :: rises => monitor_rises
         procedure :: parts => monitor_parts
@@ -342,29 +341,18 @@ contains
         end if
     end function monitor_parts
 
-    !> The energies and the largest rises so far into a checkpoint.
-    subroutine monitor_save_checkpoint(self, ckpt)
-        class(energy_monitor_t), intent(in) :: self
+    !> The energies and the largest rises so far in a checkpoint (checkpoint_m's sync; restored
+    !> on a monitor initialised for this run).
+    subroutine monitor_checkpoint(self, ckpt)
+        class(energy_monitor_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call ckpt%put('energy_monitor/energy', self%energy)
-        call ckpt%put('energy_monitor/law_energy', self%law_energy)
-        call ckpt%put('energy_monitor/have_law', self%have_law)
-        call ckpt%put('energy_monitor/max_rise', self%max_rise)
-        call ckpt%put('energy_monitor/max_rise_step_change', self%max_rise_step_change)
-    end subroutine monitor_save_checkpoint
-
-    !> The inverse of save_checkpoint (on a monitor initialised for this run).
-    subroutine monitor_restore_checkpoint(self, ckpt)
-        class(energy_monitor_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-
-        call ckpt%get('energy_monitor/energy', self%energy)
-        call ckpt%get('energy_monitor/law_energy', self%law_energy)
-        call ckpt%get('energy_monitor/have_law', self%have_law)
-        call ckpt%get('energy_monitor/max_rise', self%max_rise)
-        call ckpt%get('energy_monitor/max_rise_step_change', self%max_rise_step_change)
-        self%have_parts = .false.
-    end subroutine monitor_restore_checkpoint
+        call ckpt%sync('energy_monitor/energy', self%energy)
+        call ckpt%sync('energy_monitor/law_energy', self%law_energy)
+        call ckpt%sync('energy_monitor/have_law', self%have_law)
+        call ckpt%sync('energy_monitor/max_rise', self%max_rise)
+        call ckpt%sync('energy_monitor/max_rise_step_change', self%max_rise_step_change)
+        if (ckpt%reading) self%have_parts = .false.
+    end subroutine monitor_checkpoint
 
 end module energy_m

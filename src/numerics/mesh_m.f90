@@ -36,8 +36,7 @@ module mesh_m
         procedure :: apply_mass => mesh_apply_mass
         procedure :: apply_stiffness => mesh_apply_stiffness
         procedure :: record_remesh => mesh_record_remesh
-        procedure :: save_checkpoint => mesh_save_checkpoint
-        procedure :: restore_checkpoint => mesh_restore_checkpoint
+        procedure :: checkpoint => mesh_checkpoint
         procedure :: n_remeshes => mesh_n_remeshes
         procedure :: max_rise_remesh => mesh_max_rise_remesh
     end type mesh_t
@@ -170,23 +169,15 @@ contains
         self%rise_remesh = max(self%rise_remesh, rise)
     end subroutine mesh_record_remesh
 
-    !> The remesh counters into a checkpoint (the nodes are adaptive_mesh_m's keys).
-    subroutine mesh_save_checkpoint(self, ckpt)
-        class(mesh_t), intent(in) :: self
+    !> The remesh counters in a checkpoint (checkpoint_m's sync: saved, or restored; the nodes
+    !> are adaptive_mesh_m's keys, set apart: set_nodes keeps the counters).
+    subroutine mesh_checkpoint(self, ckpt)
+        class(mesh_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call ckpt%put('mesh/n_remeshes', self%remeshes)
-        call ckpt%put('mesh/max_rise_remesh', self%rise_remesh)
-    end subroutine mesh_save_checkpoint
-
-    !> The inverse of save_checkpoint (the nodes are set apart: set_nodes keeps the counters).
-    subroutine mesh_restore_checkpoint(self, ckpt)
-        class(mesh_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-
-        call ckpt%get('mesh/n_remeshes', self%remeshes)
-        call ckpt%get('mesh/max_rise_remesh', self%rise_remesh)
-    end subroutine mesh_restore_checkpoint
+        call ckpt%sync('mesh/n_remeshes', self%remeshes)
+        call ckpt%sync('mesh/max_rise_remesh', self%rise_remesh)
+    end subroutine mesh_checkpoint
 
     !> Remeshes of the run so far.
     pure integer function mesh_n_remeshes(self)

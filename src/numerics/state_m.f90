@@ -29,8 +29,7 @@ module state_m
                                                           !< only; allocated by the stepper)
         type(mesh_t) :: mesh            !< the nodes x_i and element sizes h_e (set_mesh)
     contains
-        procedure :: save_checkpoint => state_save_checkpoint
-        procedure :: restore_checkpoint => state_restore_checkpoint
+        procedure :: checkpoint => state_checkpoint
     end type state_t
 
 contains
@@ -205,57 +204,47 @@ contains
         w = 0.0_dp
     end subroutine sized_level
 
-    !> The level, the level before and the time counters into a checkpoint under owner (e.g.
-    !> 'state'): owner/level and owner/previous (s+1, 1+N_FIELDS: the columns u, then w;
-    !> previous with no rows before a multistep scheme's first step or for a single-step
-    !> scheme, so that every checkpoint of a run has the same entries), owner/step, t, ...
-    subroutine state_save_checkpoint(self, ckpt, owner)
-        class(state_t), intent(in) :: self
-        type(checkpoint_t), intent(inout) :: ckpt
-        character(len=*), intent(in) :: owner
-
-        call ckpt%put(owner//'/level', reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS]))
-        if (allocated(self%u_prev)) then
-            call ckpt%put(owner//'/previous', reshape([self%u_prev, self%w_prev], [self%s + 1, 1 + N_FIELDS]))
-        else
-            call ckpt%put(owner//'/previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
-        end if
-        call ckpt%put(owner//'/step', self%step)
-        call ckpt%put(owner//'/t', self%t)
-        call ckpt%put(owner//'/dt_last', self%dt_last)
-        call ckpt%put(owner//'/t_anchor', self%t_anchor)
-        call ckpt%put(owner//'/step_anchor', self%step_anchor)
-    end subroutine state_save_checkpoint
-
-    !> The inverse of save_checkpoint; the arrays take the checkpoint's number of elements
-    !> (a mesh of that many is set apart: set_mesh). A checkpoint of an earlier version may
-    !> lack previous (a single-step scheme).
-    subroutine state_restore_checkpoint(self, ckpt, owner)
+    !> The level, the level before and the time counters in a checkpoint (checkpoint_m's sync)
+    !> under owner (e.g. 'state'): owner/level and owner/previous (s+1, 1+N_FIELDS: the columns
+    !> u, then w; previous with no rows before a multistep scheme's first step or for a
+    !> single-step scheme, so that every checkpoint of a run has the same entries), owner/step,
+    !> t, ... Restored, the arrays take the checkpoint's number of elements (a mesh of that many
+    !> is set apart: set_mesh); a checkpoint of an earlier version may lack previous.
+    subroutine state_checkpoint(self, ckpt, owner)
         class(state_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
+        type(checkpoint_t), intent(inout) :: ckpt
         character(len=*), intent(in) :: owner
         real(dp), allocatable :: level(:, :)
 
-        call ckpt%get(owner//'/level', level)
-        self%s = size(level, 1) - 1
-        call sized_level(self%u, self%w, self%s, N_FIELDS, 'the state')
-        self%u = level(:, 1)
-        self%w = level(:, 2:)
-        if (ckpt%has(owner//'/previous')) then
-            call ckpt%get(owner//'/previous', level)
-            if (all(size(level, 1) /= [0, self%s + 1])) &
-                call fatal(EXIT_INPUT, 'time.restart_from', 'the checkpoint''s '//owner//' levels differ in size')
-            if (size(level, 1) > 0) then
-                call sized_level(self%u_prev, self%w_prev, self%s, N_FIELDS, 'the previous level')
-                self%u_prev = level(:, 1)
-                self%w_prev = level(:, 2:)
+        if (ckpt%reading) then
+            call ckpt%get(owner//'/level', level)
+            self%s = size(level, 1) - 1
+            call sized_level(self%u, self%w, self%s, N_FIELDS, 'the state')
+            self%u = level(:, 1)
+            self%w = level(:, 2:)
+            if (ckpt%has(owner//'/previous')) then
+                call ckpt%get(owner//'/previous', level)
+                if (all(size(level, 1) /= [0, self%s + 1])) &
+                    call fatal(EXIT_INPUT, 'time.restart_from', 'the checkpoint''s '//owner//' levels differ in size')
+                if (size(level, 1) > 0) then
+                    call sized_level(self%u_prev, self%w_prev, self%s, N_FIELDS, 'the previous level')
+                    self%u_prev = level(:, 1)
+                    self%w_prev = level(:, 2:)
+                end if
+            end if
+        else
+            call ckpt%put(owner//'/level', reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS]))
+            if (allocated(self%u_prev)) then
+                call ckpt%put(owner//'/previous', reshape([self%u_prev, self%w_prev], [self%s + 1, 1 + N_FIELDS]))
+            else
+                call ckpt%put(owner//'/previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
             end if
         end if
-        call ckpt%get(owner//'/step', self%step)
-        call ckpt%get(owner//'/t', self%t)
-        call ckpt%get(owner//'/dt_last', self%dt_last)
-        call ckpt%get(owner//'/t_anchor', self%t_anchor)
-        call ckpt%get(owner//'/step_anchor', self%step_anchor)
-    end subroutine state_restore_checkpoint
+        call ckpt%sync(owner//'/step', self%step)
+        call ckpt%sync(owner//'/t', self%t)
+        call ckpt%sync(owner//'/dt_last', self%dt_last)
+        call ckpt%sync(owner//'/t_anchor', self%t_anchor)
+        call ckpt%sync(owner//'/step_anchor', self%step_anchor)
+    end subroutine state_checkpoint
 
 end module state_m

@@ -73,8 +73,7 @@ module stepper_m
         procedure :: uses_block_solver => stepper_uses_block_solver
         procedure :: remesh => stepper_remesh
         procedure :: take_back => stepper_take_back
-        procedure :: save_checkpoint => stepper_save_checkpoint
-        procedure :: restore_checkpoint => stepper_restore_checkpoint
+        procedure :: checkpoint => stepper_checkpoint
     end type stepper_t
 
 contains
@@ -405,22 +404,13 @@ contains
         if (result%in_contact) self%n_contact_steps = self%n_contact_steps - 1
     end subroutine stepper_take_back
 
-    !> The counters of the output attributes solver.* into a checkpoint.
-    subroutine stepper_save_checkpoint(self, ckpt)
-        class(stepper_t), intent(in) :: self
+    !> The counters of the output attributes solver.* in a checkpoint (checkpoint_m's sync).
+    subroutine stepper_checkpoint(self, ckpt)
+        class(stepper_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call ckpt%put('stepper/n_solves', self%n_solves)
-        call ckpt%put('stepper/n_contact_steps', self%n_contact_steps)
-    end subroutine stepper_save_checkpoint
-
-    !> The inverse of save_checkpoint.
-    subroutine stepper_restore_checkpoint(self, ckpt)
-        class(stepper_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-
-        call ckpt%get('stepper/n_solves', self%n_solves)
-        call ckpt%get('stepper/n_contact_steps', self%n_contact_steps)
-    end subroutine stepper_restore_checkpoint
+        call ckpt%sync('stepper/n_solves', self%n_solves)
+        call ckpt%sync('stepper/n_contact_steps', self%n_contact_steps)
+    end subroutine stepper_checkpoint
 
 end module stepper_m

@@ -14,11 +14,11 @@ module checkpoint_read_m
                     h5iget_type_f, H5I_GROUP_F, h5dopen_f, h5dclose_f, h5dread_f, h5dget_type_f, h5tget_class_f, &
                     h5tclose_f, h5dget_space_f, h5sget_simple_extent_ndims_f, &
                     h5sget_simple_extent_dims_f, h5sclose_f, H5T_NATIVE_DOUBLE, h5kind_to_type, H5_INTEGER_KIND, &
-                    h5aexists_by_name_f, h5tget_nmembers_f, h5tget_member_class_f, h5tget_member_name_f, &
-                    h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F, H5T_INTEGER_F, size_t
+                    h5tget_nmembers_f, h5tget_member_class_f, h5tget_member_name_f, h5tget_native_type_f, &
+                    H5T_DIR_ASCEND_F, H5T_COMPOUND_F, H5T_INTEGER_F
     implicit none
     private
-    public :: read_entries, has_group_attribute
+    public :: read_entries
 
 contains
 
@@ -36,18 +36,6 @@ contains
         call h5fclose_f(file_id, hdferr)
         call require(hdferr, file, group, 'h5fclose_f')
     end subroutine read_entries
-
-    !> Has `group` of `file` the attribute `name` (/checkpoint's layout)?
-    logical function has_group_attribute(file, group, name) result(yes)
-        character(len=*), intent(in) :: file, group, name
-        integer(hid_t) :: file_id
-        integer :: hdferr
-
-        file_id = open_file(file, group)
-        call h5aexists_by_name_f(file_id, group, name, yes, hdferr)
-        call require(hdferr, file, group, 'h5aexists_by_name_f '//name)
-        call h5fclose_f(file_id, hdferr)
-    end function has_group_attribute
 
     !> The datasets of group//'/'//path and of its subgroups, as entries path/...
     recursive subroutine read_below(file, file_id, group, path, ckpt)
@@ -83,75 +71,60 @@ contains
     end subroutine read_below
 
     !> The dataset `where` (in group_id: its last part) as entry prefix//<its name>; a
-    !> compound (an owner's scalars) as the scalar entries prefix//<member>, one a member.
+    !> compound (an owner's scalars: every member 8 bytes, int64 or float64) read whole, as
+    !> output_checkpoint_s writes it, into the scalar entries prefix//<member>, one a member.
     subroutine read_dataset(file, group_id, where, prefix, ckpt)
         character(len=*), intent(in) :: file, where, prefix
         integer(hid_t), intent(in) :: group_id
         type(checkpoint_t), intent(inout) :: ckpt
-        type(entry_t) :: entry
-        integer(hid_t) :: dset_id, type_id, space_id
+        type(entry_t), target :: entry
+        integer(hid_t) :: dset_id, type_id, space_id, mem_type
         integer(hsize_t) :: dims(2), maxdims(2)
-        integer :: hdferr, type_class, m, n
+        integer :: hdferr, type_class, m, n, stat
+        character(len=256) :: message
+        type(c_ptr) :: buf
 
         call h5dopen_f(group_id, where(index(where, '/', back=.true.) + 1:), dset_id, hdferr)
         call require(hdferr, file, where, 'h5dopen_f')
         call h5dget_type_f(dset_id, type_id, hdferr)
         call h5tget_class_f(type_id, type_class, hdferr)
         call require(hdferr, file, where, 'h5tget_class_f')
+        call h5dget_space_f(dset_id, space_id, hdferr)
+        call h5sget_simple_extent_ndims_f(space_id, entry%rank, hdferr)
+        if (entry%rank > 2) call require(-1, file, where, 'a rank above 2')
+        dims = 1
+        if (entry%rank > 0) call h5sget_simple_extent_dims_f(space_id, dims, maxdims, hdferr)
+        call require(hdferr, file, where, 'h5sget_simple_extent_dims_f')
+        call h5sclose_f(space_id, hdferr)
+        n = 1
+        mem_type = merge(h5kind_to_type(int64, H5_INTEGER_KIND), H5T_NATIVE_DOUBLE, type_class == H5T_INTEGER_F)
         if (type_class == H5T_COMPOUND_F) then
             call h5tget_nmembers_f(type_id, n, hdferr)
             call require(hdferr, file, where, 'h5tget_nmembers_f')
+            call h5tget_native_type_f(type_id, H5T_DIR_ASCEND_F, mem_type, hdferr)
+            call require(hdferr, file, where, 'h5tget_native_type_f')
+        end if
+        allocate (entry%values(n * product(dims)), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'a checkpoint entry')
+        buf = c_loc(entry%values)
+        if (size(entry%values) > 0) call h5dread_f(dset_id, mem_type, buf, hdferr)
+        call require(hdferr, file, where, 'h5dread_f')
+        if (type_class == H5T_COMPOUND_F) then
             do m = 0, n - 1
                 call h5tget_member_class_f(type_id, m, type_class, hdferr)
-                entry = entry_t(prefix//member_name(type_id, m), type_class == H5T_INTEGER_F, 0, [1, 1], null())
-                call read_values(file, dset_id, where, entry, member_name(type_id, m))
-                call ckpt%add(entry)
+                call ckpt%add(entry_t(prefix//member_name(type_id, m), type_class == H5T_INTEGER_F, 0, [1, 1], &
+                                      entry%values(m + 1:m + 1)))
             end do
+            call h5tclose_f(mem_type, hdferr)
         else
-            call h5dget_space_f(dset_id, space_id, hdferr)
-            call h5sget_simple_extent_ndims_f(space_id, entry%rank, hdferr)
-            if (entry%rank > 2) call require(-1, file, where, 'a rank above 2')
-            dims = 1
-            if (entry%rank > 0) call h5sget_simple_extent_dims_f(space_id, dims(:entry%rank), maxdims(:entry%rank), hdferr)
-            call require(hdferr, file, where, 'h5sget_simple_extent_dims_f')
-            call h5sclose_f(space_id, hdferr)
             entry%name = prefix//where(index(where, '/', back=.true.) + 1:)
             entry%dims = int(dims)
             entry%is_integer = type_class == H5T_INTEGER_F
-            call read_values(file, dset_id, where, entry)
             call ckpt%add(entry)
         end if
         call h5tclose_f(type_id, hdferr)
         call h5dclose_f(dset_id, hdferr)
     end subroutine read_dataset
-
-    !> entry%values (entry%dims of them) from the dataset dset_id, `where`; with `member`,
-    !> that member of its compound alone (every member 8 bytes: int64 or float64).
-    subroutine read_values(file, dset_id, where, entry, member)
-        character(len=*), intent(in) :: file, where
-        integer(hid_t), intent(in) :: dset_id
-        type(entry_t), intent(inout), target :: entry
-        character(len=*), intent(in), optional :: member
-        integer(hid_t) :: word, mem_type
-        integer :: hdferr, stat
-        character(len=256) :: message
-        type(c_ptr) :: buf
-
-        allocate (entry%values(product(entry%dims)), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'a checkpoint entry')
-        word = merge(h5kind_to_type(int64, H5_INTEGER_KIND), H5T_NATIVE_DOUBLE, entry%is_integer)
-        mem_type = word
-        hdferr = 0
-        if (present(member)) then
-            call h5tcreate_f(H5T_COMPOUND_F, 8_size_t, mem_type, hdferr)
-            call h5tinsert_f(mem_type, member, 0_size_t, word, hdferr)
-            call require(hdferr, file, where//' '//member, 'h5tinsert_f')
-        end if
-        buf = c_loc(entry%values)
-        if (size(entry%values) > 0) call h5dread_f(dset_id, mem_type, buf, hdferr)
-        call require(hdferr, file, where, 'h5dread_f')
-        if (present(member)) call h5tclose_f(mem_type, hdferr)
-    end subroutine read_values
 
     !> Member m (from 0) of compound type type_id.
     function member_name(type_id, m) result(name)

@@ -16,7 +16,7 @@ module h5_read_m
     use h5_swmr_m, only: SWMR_READ, h5_free_memory
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5sclose_f, h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, &
-                    h5aread_f, h5aexists_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tget_class_f, &
+                    h5aread_f, h5aexists_by_name_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tget_class_f, &
                     h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, H5T_NATIVE_DOUBLE, h5lexists_f, &
                     h5oopen_f, h5oclose_f, h5iget_type_f, H5I_DATASET_F
     use h5lt, only: h5ltget_dataset_ndims_f, h5ltget_dataset_info_f, h5ltread_dataset_double_f
@@ -153,17 +153,21 @@ contains
         call close_file(file, dset, file_id)
     end function dataset_exists
 
-    !> True when the root group of `file` has attribute `name`.
-    function attr_exists(file, name) result(yes)
+    !> True when the root group of `file` (or the group `group`) has attribute `name`.
+    function attr_exists(file, name, group) result(yes)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
+        character(len=*), intent(in), optional :: group
         logical :: yes
         integer(hid_t) :: file_id
         integer :: hdferr
+        character(len=:), allocatable :: object
 
+        object = '/'
+        if (present(group)) object = group
         file_id = open_file(file, 'attribute '//name)
-        call h5aexists_f(file_id, name, yes, hdferr)
-        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aexists_f failed')
+        call h5aexists_by_name_f(file_id, object, name, yes, hdferr)
+        if (hdferr < 0) call fail(file, 'attribute '//name, 'h5aexists_by_name_f failed')
         call close_file(file, 'attribute '//name, file_id)
     end function attr_exists
 

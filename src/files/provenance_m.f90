@@ -5,7 +5,6 @@ module provenance_m
     use iso_c_binding, only: c_char, c_int
     use iso_fortran_env, only: compiler_version
     use hdf5, only: h5get_libversion_f
-    use h5_read_m, only: h5_library_init
     use strings_m, only: int_str, from_c_chars
     use output_m, only: h5_writer_t
     implicit none
@@ -71,7 +70,6 @@ contains
         character(len=:), allocatable :: text
         integer :: major, minor, release, hdferr
 
-        call h5_library_init()
         call h5get_libversion_f(major, minor, release, hdferr)
         text = 'unknown'
         if (hdferr >= 0) text = int_str(major)//'.'//int_str(minor)//'.'//int_str(release)

@@ -15,7 +15,7 @@ module restart_m
     use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
     use reals_m, only: equal
     use checkpoint_m, only: checkpoint_t
-    use checkpoint_read_m, only: read_entries, has_group_attribute
+    use checkpoint_read_m, only: read_entries
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file, rename_file, remove_file
     use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, &
@@ -58,7 +58,7 @@ contains
         slot = current_slot(file)
         if (slot < 0) call fatal(EXIT_INPUT, WHERE, "'"//file//"' holds no complete checkpoint; the run must "// &
                                  'have &output checkpoint_every > 0 and reach a checkpoint')
-        if (.not. has_group_attribute(file, '/checkpoint', 'layout')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
+        if (.not. attr_exists(file, 'layout', '/checkpoint')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "': its checkpoint is in the positional layout of earlier versions of rodcontact (/checkpoint/slotN/"// &
             'counters, control, mesh, ...: arrays of reals); this version reads only its own layout ('// &
             CHECKPOINT_LAYOUT//') and cannot continue it: run again from the start, or restart with the '// &
@@ -329,15 +329,13 @@ contains
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
         integer, intent(in) :: n
-        integer, allocatable :: offset(:), count(:)
+        integer :: offset(n), count(n)
         real(dp), allocatable :: x(:), values(:, :)
         integer :: j, k, stat
         character(len=256) :: message
 
-        call read_int_1d(file, '/snapshots/native/offset', offset)
-        call read_int_1d(file, '/snapshots/native/count', count)
-        call require_rows(file, '/snapshots/native/offset', size(offset), n)
-        call require_rows(file, '/snapshots/native/count', size(count), n)
+        offset = nint(leading(file, '/snapshots/native/offset', n))
+        count = nint(leading(file, '/snapshots/native/count', n))
         call read_real_1d(file, '/snapshots/native/x', x)
         allocate (values(size(x), N_SNAPSHOT_FIELDS), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the copied native snapshots')
@@ -345,8 +343,10 @@ contains
             values(:, k) = leading(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), size(x))
         end do
         do j = 1, n
-            call require_rows(file, '/snapshots/native/x', size(x), offset(j) + count(j))
-            call writer%append_native(x(offset(j) + 1:offset(j) + count(j)), values(offset(j) + 1:offset(j) + count(j), :))
+            associate (first => offset(j) + 1, last => offset(j) + count(j))
+                call require_rows(file, '/snapshots/native/x', size(x), last)
+                call writer%append_native(x(first:last), values(first:last, :))
+            end associate
         end do
     end subroutine copy_native
 

@@ -17,9 +17,9 @@ module h5_read_m
     use hdf5, only: hid_t, hsize_t, size_t, h5open_f, h5fis_hdf5_f, h5eset_auto_f, h5fopen_f, h5fclose_f, &
                     H5F_ACC_RDONLY_F, h5sclose_f, h5sget_simple_extent_npoints_f, h5aopen_f, h5aclose_f, &
                     h5aread_f, h5aexists_by_name_f, h5aget_space_f, h5aget_type_f, h5tclose_f, h5tget_class_f, &
-                    h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, H5T_NATIVE_DOUBLE, h5lexists_f, &
+                    h5tget_size_f, h5tis_variable_str_f, H5T_STRING_F, H5T_NATIVE_DOUBLE, &
                     h5oopen_f, h5oclose_f, h5iget_type_f, H5I_DATASET_F
-    use h5lt, only: h5ltget_dataset_ndims_f, h5ltget_dataset_info_f, h5ltread_dataset_double_f
+    use h5lt, only: h5ltget_dataset_ndims_f, h5ltget_dataset_info_f, h5ltread_dataset_double_f, h5ltpath_valid_f
     implicit none
     private
     public :: h5_library_init
@@ -127,20 +127,13 @@ contains
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: dset
         logical :: yes
-        character(len=:), allocatable :: path
         integer(hid_t) :: file_id, obj_id
-        integer :: hdferr, i, obj_type
+        integer :: hdferr, obj_type
 
-        yes = len_trim(dset) > 0
         file_id = open_file(file, dset)
-        ! h5lexists_f fails (rather than saying no) when an intermediate group is missing,
-        ! so test each prefix of the path in turn
-        path = trim(dset)//'/'
-        do i = 2, len(path)
-            if (path(i:i) /= '/' .or. .not. yes) cycle
-            call h5lexists_f(file_id, path(1:i-1), yes, hdferr)
-            if (hdferr < 0) call fail(file, dset, "h5lexists_f failed on '"//path(1:i-1)//"'")
-        end do
+        ! each group on the path, then the object (h5lexists_f fails on a missing group)
+        call h5ltpath_valid_f(file_id, trim(dset), .true., yes, hdferr)
+        if (hdferr < 0) call fail(file, dset, 'h5ltpath_valid_f failed')
         if (yes) then
             call h5oopen_f(file_id, trim(dset), obj_id, hdferr)
             if (hdferr < 0) call fail(file, dset, 'h5oopen_f failed')

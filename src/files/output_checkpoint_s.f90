@@ -2,7 +2,7 @@
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
     use hdf5, only: h5lexists_f, h5dopen_f, H5T_STD_I64LE, &
-                    h5kind_to_type, H5_INTEGER_KIND, h5gopen_f, H5P_DEFAULT_F, &
+                    h5kind_to_type, H5_INTEGER_KIND, H5P_DEFAULT_F, &
                     h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F
     use checkpoint_m, only: entry_t
     use errors_m, only: check_allocation
@@ -57,9 +57,8 @@ contains
         character(len=256) :: message
 
         call w%leave_swmr()
-        call make_groups(w, 'checkpoint/')
-        call h5gopen_f(w%file_id, 'checkpoint', group_id, hdferr)
-        call w%check(hdferr, 'h5gopen_f /checkpoint')
+        call h5gcreate_f(w%file_id, 'checkpoint', group_id, hdferr)
+        call w%check(hdferr, 'h5gcreate_f /checkpoint')
         call w%attr('layout', CHECKPOINT_LAYOUT, on=group_id)
         call h5gclose_f(group_id, hdferr)
         call w%check(hdferr, 'h5gclose_f /checkpoint')

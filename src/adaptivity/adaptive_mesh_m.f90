@@ -54,7 +54,7 @@ module adaptive_mesh_m
         integer(int64) :: n_fine = 0            !< n_coarse 2^max_level
         integer(int64), allocatable :: k(:)     !< k(0:s): node i at x = k(i) / n_fine
         real(dp) :: scale(0:N_FIELDS) = 0.0_dp  !< largest L2 norm of each field so far
-        real(dp) :: norm(0:N_FIELDS) = 0.0_dp   !< L2 norm of each field at the last adapt (not in checkpoints: adapt sets it)
+        real(dp) :: norm(0:N_FIELDS) = 0.0_dp   !< each field's L2 norm at the last adapt (which sets it)
     contains
         procedure :: init => mesh_init
         procedure :: s => mesh_s

@@ -19,14 +19,14 @@ module error_companion_m
     use ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_finite
     use config_m, only: config_t
     use fields_m, only: N_OUTPUT_FIELDS, OUTPUT_ORDER
-    use state_m, only: state_t, initial_state, field_values, land_on, copy_state, set_mesh
+    use state_m, only: state_t, initial_state, field_values, land_on, copy_state
     use stepper_m, only: stepper_t, step_result_t
     use sources_m, only: source_t
     use checkpoint_m, only: checkpoint_t
     use errors_m, only: fatal, EXIT_INPUT
     use adaptive_mesh_m, only: nodes_of_keys
     use companion_mesh_m, only: companion_keys, key_positions, trapezoid_weights
-    use remesh_m, only: move_level
+    use remesh_m, only: move_state
     implicit none
     private
     public :: error_companions_t, N_ESTIMATE_PARTS, PART_TOTAL, PART_TIME, PART_SPACE
@@ -373,10 +373,9 @@ contains
     end subroutine companions_restore_checkpoint
 
     !> The run's adaptive mesh has changed (keys: its new node keys; remesh_m): each companion
-    !> onto its mesh for the new one (companion_mesh_m), its level and the level before (a
-    !> multistep scheme) moved as the run's are (remesh_m's move_level: transfer_m); a
-    !> companion whose mesh stays keeps its levels untouched. (A restart: before the
-    !> checkpoint's levels are read.)
+    !> onto its mesh for the new one (companion_mesh_m), its levels moved as the run's are
+    !> (remesh_m's move_state: transfer_m); a companion whose mesh stays keeps its levels
+    !> untouched. (A restart: before the checkpoint's levels are read.)
     subroutine companions_remesh(self, keys)
         class(error_companions_t), intent(inout) :: self
         integer(int64), intent(in) :: keys(0:)
@@ -390,11 +389,7 @@ contains
                 if (size(k_new) == size(c%k)) then
                     if (all(k_new == c%k)) cycle
                 end if
-                call move_level(c%k, k_new, self%n_fine, c%stepper%model, c%state%u, c%state%w)
-                if (allocated(c%state%u_prev)) &
-                    call move_level(c%k, k_new, self%n_fine, c%stepper%model, c%state%u_prev, c%state%w_prev)
-                call set_mesh(c%state, nodes_of_keys(k_new, self%n_fine))
-                call c%stepper%remesh(c%state)
+                call move_state(c%k, k_new, self%n_fine, c%stepper, c%state)
                 call move_alloc(k_new, c%k)
             end associate
         end do

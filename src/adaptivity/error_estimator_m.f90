@@ -134,10 +134,11 @@ contains
         est = self%scheme%error_factor(d(1:n), self%step(1)) * energy_norm(energy)
     end function estimator_estimate
 
-    !> u_diff, w_diff = X^n - P^n, P^n = sum_j weight(j) X^{n-j} over the levels held (the
-    !> newest first): one pass over the nodes per field, the terms subtracted in the order
-    !> j = 1, 2, ... (the same sums as one array operation per level, without reading and
-    !> writing the difference once per level).
+    !> u_diff, w_diff = X^n - P^n, P^n = sum_j weight(j) X^{n-j} over the p + 1 <= 3 levels
+    !> held (the newest first): one pass over the nodes per field, the terms subtracted in
+    !> the order j = 1, 2, ... (the same sums as one array operation per level, without
+    !> reading and writing the difference once per level; Euler's own two-level loop:
+    !> docs/performance.md).
     subroutine extrapolation_difference(self, u, w, weight)
         type(error_estimator_t), intent(inout) :: self
         real(dp), intent(in) :: u(0:), w(0:, :)
@@ -165,9 +166,7 @@ contains
                     end do
                 end do
             end associate
-            return
-        end if
-        if (size(weight) == 2) then   ! Euler (p = 1): the same sums, one pass
+        else   ! Euler (p = 1): the same sums over two levels
             c1 = weight(1); c2 = weight(2)
             associate (l => self%levels, k1 => slot(1), k2 => slot(2))
                 !GCC$ unroll 8
@@ -181,14 +180,7 @@ contains
                     end do
                 end do
             end associate
-            return
         end if
-        self%u_diff = u
-        self%w_diff = w
-        do i = 1, size(weight)
-            self%u_diff = self%u_diff - weight(i) * self%levels(:, 0, slot(i))
-            self%w_diff = self%w_diff - weight(i) * self%levels(:, 1:, slot(i))
-        end do
     end subroutine extrapolation_difference
 
     !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).
@@ -252,8 +244,8 @@ contains
         call ckpt%put('error_estimator/steps', steps)
     end subroutine estimator_save_checkpoint
 
-    !> The inverse of save_checkpoint (on an estimator initialised for this run, on the
-    !> checkpoint's mesh).
+    !> The inverse of save_checkpoint (on an estimator initialised for this run; its arrays
+    !> take the checkpoint's mesh).
     subroutine estimator_restore_checkpoint(self, ckpt)
         class(error_estimator_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
@@ -263,6 +255,7 @@ contains
         width = 1 + N_FIELDS
         call ckpt%get('error_estimator/levels', levels)
         call ckpt%get('error_estimator/steps', steps)
+        call self%resize(size(levels, 1) - 1)
         call self%reset()
         do j = size(steps), 1, -1
             call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), steps(j))

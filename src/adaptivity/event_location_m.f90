@@ -37,43 +37,32 @@ contains
         end if
     end subroutine contact_state
 
-    !> The time of the contact event in the step from t_before of size dt whose gap went from
-    !> gap_start to gap_end: adaptive steps of a scheme of order 2, with a level before
-    !> t_before since the last event, take the root of the quadratic interpolant of the gap
-    !> (dense_output_m) through the two levels before the step and its end: for an onset
-    !> (onset = .true.) the end's trial gap (no contact force in the step: the free motion,
-    !> which the solution follows up to the onset; the stiff penalty bends u^n(1) away from
-    !> it within the step), for a release u^n(1) - g (gap_end). Otherwise (and if that has no
-    !> root in the step) the straight line's (events_m's crossing_time). Fixed steps keep the
-    !> straight line (and their results).
-    !> With t_lo, t_hi: the interpolant's root in [t_lo, t_hi] instead (found: there is one).
-    real(dp) function gap_event_time(estimator, adaptive, t_before, dt, gap_start, gap_end, trial_gap, onset, g, &
+    !> The time of the contact event in the adaptive step from t_before of size dt whose gap
+    !> went from gap_start to gap_end: with a scheme of order 2 and a level before t_before
+    !> since the last event, the root in [t_lo, t_hi] (found) of the gap's quadratic
+    !> interpolant (dense_output_m) through the two levels before the step and its end: for an
+    !> onset the trial gap (the free motion, which the solution follows up to the onset; the
+    !> stiff penalty bends u^n(1) away from it), for a release u^n(1) - g (gap_end). Otherwise
+    !> (or with no root there) the straight line's (events_m's crossing_time).
+    real(dp) function gap_event_time(estimator, t_before, dt, gap_start, gap_end, trial_gap, onset, g, &
                                      t_lo, t_hi, found) result(t_event)
         type(error_estimator_t), intent(in) :: estimator
-        logical, intent(in) :: adaptive   !< adaptive steps (estimator holds the levels since the event)
-        real(dp), intent(in) :: t_before, dt, gap_start, gap_end, trial_gap, g
+        real(dp), intent(in) :: t_before, dt, gap_start, gap_end, trial_gap, g, t_lo, t_hi
         logical, intent(in) :: onset
-        real(dp), intent(in), optional :: t_lo, t_hi
-        logical, intent(out), optional :: found
-        real(dp) :: times(3), gaps(3), lo, hi
+        logical, intent(out) :: found
+        real(dp) :: times(3), gaps(3)
         integer :: slot
-        logical :: has_root
 
         t_event = crossing_time(t_before, dt, gap_start, gap_end)
-        lo = t_before
-        hi = t_before + dt
-        if (present(t_lo)) lo = t_lo
-        if (present(t_hi)) hi = t_hi
-        if (present(found)) found = .false.
-        if (.not. adaptive .or. estimator%order < 2 .or. estimator%n_levels < 2) return
+        found = .false.
+        if (estimator%order < 2 .or. estimator%n_levels < 2) return
         associate (e => estimator)
             slot = e%slot(2)     ! the level before t_before
             times = [t_before + dt, t_before, t_before - e%step(1)]
             gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, slot) - g]
         end associate
-        call interpolant_root(times, gaps, lo, hi, t_event, has_root)
-        if (.not. has_root) t_event = crossing_time(t_before, dt, gap_start, gap_end)
-        if (present(found)) found = has_root
+        call interpolant_root(times, gaps, t_lo, t_hi, t_event, found)
+        if (.not. found) t_event = crossing_time(t_before, dt, gap_start, gap_end)
     end function gap_event_time
 
     !> The time of a Signorini release (adaptive steps): the contact force lambda = -sigma at the

@@ -6,7 +6,8 @@ module events_m
     use checkpoint_m, only: checkpoint_t
     implicit none
     private
-    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
+    public :: event_log_t, EVENT_ONSET, EVENT_RELEASE, crossing_time, event_landing
+    public :: MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
 
     integer, parameter :: EVENT_ONSET = 1, EVENT_RELEASE = -1
     !> An event this close to a step's start or end (a fraction of the step) is taken as there:

@@ -1,18 +1,19 @@
 !> Remeshing a run (&mesh adaptive = .true.): the first mesh, fitted to the initial data,
-!> and one time level moved onto a new mesh with transfer_m (move_level), for the remesh
-!> between two steps (step_driver_m's remesh) and the error companions'.
+!> and a state moved onto a new mesh with transfer_m (move_state), for the remesh between
+!> two steps (step_driver_m's remesh) and the error companions'.
 module remesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, model_t
     use fields_m, only: N_FIELDS
-    use state_m, only: state_t, initial_state
-    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed
+    use state_m, only: state_t, initial_state, set_mesh
+    use stepper_m, only: stepper_t
+    use adaptive_mesh_m, only: adaptive_mesh_t, FRONT_CFL, front_speed, nodes_of_keys
     use transfer_m, only: transfer_level
     use errors_m, only: check_allocation
     implicit none
     private
-    public :: initial_mesh, front_buffer, move_level
+    public :: initial_mesh, front_buffer, move_state
 
 contains
 
@@ -54,6 +55,20 @@ contains
         end if
         buffer = 1 + ceiling(min(real(cfg%mesh%remesh_every, dp) * cfl, n_fine))
     end function front_buffer
+
+    !> The state on the mesh of keys k_old (its level, and the level before of a multistep
+    !> scheme) moved onto the mesh of keys k_new (move_level), and the stepper onto it.
+    subroutine move_state(k_old, k_new, n_fine, stepper, state)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        type(stepper_t), intent(inout) :: stepper
+        type(state_t), intent(inout) :: state
+
+        call move_level(k_old, k_new, n_fine, stepper%model, state%u, state%w)
+        if (allocated(state%u_prev)) &
+            call move_level(k_old, k_new, n_fine, stepper%model, state%u_prev, state%w_prev)
+        call set_mesh(state, nodes_of_keys(k_new, n_fine))
+        call stepper%remesh(state)
+    end subroutine move_state
 
     !> One level (u, w) on the mesh of keys k_old onto the mesh of keys k_new (u and w
     !> reallocated with its size), by transfer_m (model: the run's, whose velocity mass v is

@@ -7,19 +7,18 @@
 !> located and stepped over (events_m's event_landing): a step that changes the contact
 !> state in its interior is taken back and retried to end at the located event, and the
 !> step after it, which starts there, changes the contact state at its start and is
-!> accepted; the controller's proposal is kept across the event (no shrinking of dt
-!> towards the event). Steps are shortened to land on the snapshot times (&output snapshot_dt)
-!> and on the end of the run. An accepted step adds its contact event to the event log,
-!> (adaptive steps) its level to the error estimator and its estimate to the controller's
-!> error sum, and its energy to the energy monitor. Fixed steps compute no estimate.
-!> Choosing, trying, judging and accepting one step (take_step): the submodule
-!> step_driver_trial_s.
+!> accepted; the controller's proposal is kept across the event. Steps are shortened to
+!> land on the snapshot times (&output snapshot_dt) and on the end of the run. An accepted
+!> step adds its contact event to the event log, (adaptive steps) its level to the error
+!> estimator and its estimate to the controller's error sum, and its energy to the energy
+!> monitor. Fixed steps compute no estimate. Choosing, trying, judging and accepting one
+!> step (take_step): the submodule step_driver_trial_s.
 module step_driver_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, model_t, with_contact_mass
     use material_m, only: nondim_t, nondim_groups
-    use state_m, only: state_t, copy_state, keep_copy, set_mesh
+    use state_m, only: state_t, copy_state, keep_copy
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t
@@ -28,7 +27,7 @@ module step_driver_m
     use step_control_m, only: step_controller_t
     use dense_output_m, only: lagrange_weights
     use adaptive_mesh_m, only: adaptive_mesh_t, front_speed
-    use remesh_m, only: move_level
+    use remesh_m, only: move_state
     use transfer_m, only: transfer_level
     use errors_m, only: check_allocation
     implicit none
@@ -38,12 +37,11 @@ module step_driver_m
     type :: step_driver_t
         private
         logical :: adaptive = .false.          !< &time adaptive
-        logical :: mesh_adaptive = .false.     !< &mesh adaptive
         !> dense output (&output series_dt, snapshot_land = .false.): fixed steps keep their
         !> levels in the estimator too (dense_weights, dense_level, past_level)
         logical :: dense = .false.
         real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
-        real(dp) :: v_front = 0.0_dp           !< adaptive_mesh_m's front_speed
+        real(dp) :: v_front = 0.0_dp           !< &mesh adaptive: adaptive_mesh_m's front_speed
         type(model_t) :: model                 !< for the error estimate's energy norm
         type(error_estimator_t) :: estimator
         type(step_controller_t) :: control
@@ -76,7 +74,7 @@ module step_driver_m
         procedure :: step_label => driver_step_label
     end type step_driver_t
 
-    interface   ! choosing, trying, judging and accepting one step (src/adaptivity/step_driver_trial_s.f90)
+    interface   ! in the submodule step_driver_trial_s
         !> Take one accepted step from state towards t_stop (landing on it, or on t_snapshot
         !> when that comes first; at_snapshot: the step ended there): choose a step, try it,
         !> judge it (locate a contact event it crossed, reject it on its estimate) until one
@@ -110,13 +108,12 @@ contains
         type(nondim_t) :: groups
 
         self%adaptive = cfg%time%adaptive
-        self%mesh_adaptive = cfg%mesh%adaptive
         self%dense = cfg%output%series_dt > 0.0_dp .or. (cfg%output%snapshot_dt > 0.0_dp .and. &
                                                          .not. cfg%output%snapshot_land)
         self%dt = cfg%time%dt
         self%dt_min = cfg%time%dt_min
         self%dt_max = cfg%time%dt_max
-        self%v_front = front_speed(cfg%model)
+        if (cfg%mesh%adaptive) self%v_front = front_speed(cfg%model)
         self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         call self%estimator%init(stepper%scheme, state%s)
         call self%control%init(cfg%time, stepper%scheme, scale=energy_norm(monitor%current_energy()))
@@ -129,19 +126,12 @@ contains
         end if
     end subroutine driver_init
 
-    !> Continue from a checkpoint: state (restored, on its mesh) is the level the run
-    !> continues from; the step control and the events are the checkpoint's.
-    subroutine driver_restore_checkpoint(self, ckpt, state, stepper)
+    !> Continue from a checkpoint (on a driver initialised for this run): the step control,
+    !> the estimator's levels, the contact state and the events are the checkpoint's.
+    subroutine driver_restore_checkpoint(self, ckpt)
         class(step_driver_t), intent(inout) :: self
         type(checkpoint_t), intent(in) :: ckpt
-        type(state_t), intent(in) :: state
-        type(stepper_t), intent(in) :: stepper
 
-        if (self%mesh_adaptive) call self%estimator%resize(state%s)
-        call self%estimator%reset()
-        call self%estimator%push(state%u, state%w, state%dt_last)
-        self%level_kept = .false.
-        self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
         call self%control%restore_checkpoint(ckpt)
         call self%estimator%restore_checkpoint(ckpt)
         call ckpt%get('step_driver/in_contact', self%in_contact)
@@ -267,10 +257,7 @@ contains
         call mesh%adapt(state%mesh, state%u, state%w, changed)
         if (.not. changed) return
         self%level_kept = .false.
-        call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u, state%w)
-        if (allocated(state%u_prev)) &
-            call move_level(k_old, mesh%k, mesh%n_fine, stepper%model, state%u_prev, state%w_prev)
-        call set_mesh(state, mesh%nodes())
+        call move_state(k_old, mesh%k, mesh%n_fine, stepper, state)
         allocate (levels_old, source=self%estimator%levels, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the remesh')
         call self%estimator%resize(mesh%s())
@@ -278,7 +265,6 @@ contains
             call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), self%estimator%levels(:, :, j), &
                                 stepper%model)
         end do
-        call stepper%remesh(state)
         call monitor%remeshed(state, rise)
         call state%mesh%record_remesh(rise)
     end subroutine driver_remesh

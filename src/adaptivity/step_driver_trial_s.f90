@@ -7,7 +7,8 @@ submodule (step_driver_m) step_driver_trial_s
     use iso_fortran_env, only: error_unit
     use ieee_arithmetic, only: ieee_is_finite
     use state_m, only: advance_time, land_on
-    use events_m, only: EVENT_ONSET, EVENT_RELEASE, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN
+    use events_m, only: EVENT_ONSET, EVENT_RELEASE, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN, &
+                        crossing_time
     use event_location_m, only: contact_state, gap_event_time, release_time
     use contact_law_m, only: contact_law_t
     use adaptive_mesh_m, only: FRONT_CFL
@@ -30,6 +31,7 @@ submodule (step_driver_m) step_driver_trial_s
         real(dp) :: err = -1.0_dp           !< est / (tol S); negative: no estimate
         integer :: landings = 0             !< retries cut to end at a located event
         real(dp) :: dt_land = 0.0_dp        !< the next such retry's size
+        real(dp) :: t_event = 0.0_dp        !< its contact event's time
         !> the end of the last step that changed the contact state (landing)
         real(dp) :: t_bound = 0.0_dp
     end type trial_t
@@ -53,7 +55,7 @@ contains
             call judge(self, state, stepper, result, trial, retry)
             if (.not. retry) exit
         end do
-        call accept(self, state, stepper%law, monitor, result, trial, failure)
+        call accept(self, state, monitor, trial, failure)
     end procedure driver_take_step
 
     !> The next step (trial%dt): &time dt or the controller's proposal (at most the scheme's
@@ -73,7 +75,7 @@ contains
         if (self%adaptive) then
             dt = self%control%proposal(state%dt_last)
             dt = min(max(dt, self%dt_min), self%dt_max)
-            if (self%mesh_adaptive .and. self%v_front > 0.0_dp) &
+            if (self%v_front > 0.0_dp) &
                 dt = max(min(dt, FRONT_CFL * minval(state%mesh%h) / self%v_front), self%dt_min)
         else
             dt = self%dt
@@ -104,7 +106,8 @@ contains
     end subroutine choose_step
 
     !> Try the step of trial%dt from state (adaptive steps: the state saved before it):
-    !> where it started, and the contact state it reached; failure: the solve failed.
+    !> where it started, the contact state it reached and (flipped) the time of its event;
+    !> failure: the solve failed.
     subroutine try_step(self, state, stepper, result, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
@@ -127,14 +130,16 @@ contains
         end if
         call contact_state(stepper%law, state, result, trial%contact, trial%gap_end)
         trial%flipped = trial%contact .neqv. self%in_contact
+        if (trial%flipped) &   ! the straight line's (adaptive steps: landing)
+            trial%t_event = crossing_time(trial%t_before, trial%dt, trial%gap_start, trial%gap_end)
         trial%est = 0.0_dp
         trial%err = -1.0_dp
     end subroutine try_step
 
     !> Judge a tried adaptive step: its estimate (none across a contact event); a contact
-    !> event it crossed located (landing), the step taken back to end there (retry); a step
-    !> whose estimate exceeds the tolerance taken back to be retried smaller (retry), unless
-    !> it is at dt_min (then accepted and counted as forced).
+    !> event it crossed located (landing), the step taken back to end there (retry, at most
+    !> MAX_LANDINGS times); a step whose estimate exceeds the tolerance taken back to be
+    !> retried smaller (retry), unless at dt_min (then accepted, counted as forced).
     subroutine judge(self, state, stepper, result, trial, retry)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
@@ -149,9 +154,9 @@ contains
             trial%est = self%estimator%estimate(self%model, state%u, state%w, trial%dt, state%mesh)
             trial%err = self%control%ratio(trial%est)
         end if
-        if ((trial%flipped .or. trial%landings > 0) .and. trial%landings < MAX_LANDINGS) then
+        if (trial%flipped .or. (trial%landings > 0 .and. trial%landings < MAX_LANDINGS)) then
             call landing(self, state, result, stepper%law, trial, cut)
-            if (cut) then
+            if (cut .and. trial%landings < MAX_LANDINGS) then
                 call undo_step(self, stepper, result, state)
                 trial%landings = trial%landings + 1
                 return
@@ -171,14 +176,11 @@ contains
         end if
     end subroutine judge
 
-    !> A tried adaptive step from t_before of size dt that changed the contact state (flipped),
-    !> or a step cut to end at an event that did not (the event is later): locate the event
-    !> (a Signorini release: release_time; otherwise event_time's interpolated gap) and say
-    !> whether the step is retried to end there (cut, of size dt_land; events_m's event_landing;
-    !> an event located by the straight line only is not cut closer than LINEAR_CUT_MIN of the
-    !> step to its start).
-    !> t_bound: the end of the last step that changed the contact state (set on a flipped
-    !> step), beyond which the event is not sought.
+    !> A tried adaptive step that changed the contact state (flipped), or a step cut to end at
+    !> an event that did not (the event is later): locate the event (t_event; a Signorini
+    !> release: release_time, else gap_event_time) and say whether the step is retried to end
+    !> there (cut, of size dt_land; events_m's event_landing). t_bound: the end of the last
+    !> flipped step, beyond which the event is not sought.
     subroutine landing(self, state, result, law, trial, cut)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
@@ -186,11 +188,11 @@ contains
         class(contact_law_t), intent(in) :: law
         type(trial_t), intent(inout) :: trial
         logical, intent(out) :: cut
-        real(dp) :: t_lo, t_event
+        real(dp) :: t_lo
         logical :: found
 
         associate (t_before => trial%t_before, dt => trial%dt, flipped => trial%flipped, &
-                   t_bound => trial%t_bound, dt_land => trial%dt_land)
+                   t_bound => trial%t_bound, dt_land => trial%dt_land, t_event => trial%t_event)
             if (flipped) then
                 t_bound = t_before + dt
                 t_lo = t_before
@@ -201,18 +203,17 @@ contains
                 call release_time(self%estimator, self%model%alpha, state, t_before, dt, .not. flipped, t_lo, &
                                   t_bound, t_event, found)
             else
-                t_event = gap_event_time(self%estimator, self%adaptive, t_before, dt, trial%gap_start, &
-                                         trial%gap_end, result%trial_gap, .not. self%in_contact, law%g, t_lo, &
-                                         t_bound, found)
+                t_event = gap_event_time(self%estimator, t_before, dt, trial%gap_start, trial%gap_end, &
+                                         result%trial_gap, .not. self%in_contact, law%g, t_lo, t_bound, found)
             end if
             if (flipped) then
                 call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)
-                ! located by the straight line only (no interpolant: Euler, or right after an event): no
-                ! cut of less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
+                ! located by the straight line only (Euler, or right after an event): no cut of
+                ! less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
                 ! repeat step after step
                 if (.not. found) cut = cut .and. dt_land >= LINEAR_CUT_MIN * dt
             else
-                ! the cut step ended short of the event: cut again at the event located with its end
+                ! the cut step ended short of the event: cut again at the event its end locates
                 call event_landing(t_before, t_bound - t_before, t_event, self%dt_min, cut, dt_land)
                 cut = cut .and. found .and. t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
             end if
@@ -221,28 +222,16 @@ contains
 
     !> The tried step is accepted: its contact event into the log, its level into the
     !> estimator and its estimate to the controller (keep_level), its energy to the monitor.
-    subroutine accept(self, state, law, monitor, result, trial, failure)
+    subroutine accept(self, state, monitor, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
-        class(contact_law_t), intent(in) :: law
         type(energy_monitor_t), intent(inout) :: monitor
-        type(step_result_t), intent(in) :: result
         type(trial_t), intent(in) :: trial
         character(len=*), intent(inout) :: failure
-        real(dp) :: t_event
-        logical :: found
 
         if (trial%lands .and. self%adaptive) call land_on(state, trial%target)
         if (trial%flipped) then
-            associate (t0 => trial%t_before, dt => trial%dt, e => self%estimator)
-                if (self%adaptive .and. self%in_contact .and. law%is_constraint()) then
-                    call release_time(e, self%model%alpha, state, t0, dt, .false., t0, t0 + dt, t_event, found)
-                else
-                    t_event = gap_event_time(e, self%adaptive, t0, dt, trial%gap_start, trial%gap_end, &
-                                             result%trial_gap, trial%contact, law%g)
-                end if
-            end associate
-            call self%events%add(t_event, merge(EVENT_ONSET, EVENT_RELEASE, trial%contact))
+            call self%events%add(trial%t_event, merge(EVENT_ONSET, EVENT_RELEASE, trial%contact))
             if (self%adaptive) call self%estimator%reset()
         end if
         self%in_contact = trial%contact
@@ -278,7 +267,7 @@ contains
             self%saved_without_level = .false.
         end if
         if (trial%err >= 0.0_dp) call self%control%add_estimate(trial%est)
-        ! a step cut to end at an event, and the event's step, keep the proposal made before it
+        ! a step cut to end at an event, and the event's step, keep the proposal from before
         call self%control%accept(trial%dt, trial%err, shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
     end subroutine keep_level
 
@@ -291,7 +280,7 @@ contains
 
         call stepper%take_back(result)
         call copy_state(self%saved, state, level=.not. self%saved_without_level)
-        if (self%saved_without_level) then   ! the level the step started from: the estimator's newest
+        if (self%saved_without_level) then   ! the level it started from: the estimator's newest
             associate (e => self%estimator, newest => self%estimator%slot(1))
                 state%u = e%levels(:, 0, newest)
                 state%w = e%levels(:, 1:, newest)

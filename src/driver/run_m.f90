@@ -125,7 +125,7 @@ contains
             end if
             call run%monitor%checkpoint(ckpt)
             call run%stepper%checkpoint(ckpt)
-            call run%driver%restore_checkpoint(ckpt, run%state, run%stepper)
+            call run%driver%restore_checkpoint(ckpt)
             if (cfg%output%error_estimate) call run%companions%restore_checkpoint(ckpt)
         end if
         if (cfg%output%snapshot_dt > 0.0_dp) &

@@ -11,6 +11,8 @@ submodule (output_m) output_create_s
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
+    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+
 contains
 
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and

@@ -9,6 +9,7 @@ submodule (output_m) output_estimate_s
 
     character(len=*), parameter :: WHAT(3) = [character(len=40) :: '(time and space)', &
                                               '(time part)', '(space part)']
+    integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
 
 contains
 
@@ -60,7 +61,7 @@ contains
         do part = 1, size(ESTIMATE_PARTS)
             call w%make_group('/snapshots/'//trim(ESTIMATE_PARTS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                call w%create_extendible(estimate_path(part, k), H5T_IEEE_F64LE, EMPTY, CHUNK, &
+                call w%create_extendible(estimate_path(part, k), H5T_IEEE_F64LE, [0_hsize_t], CHUNK, &
                                          w%estimate_ids(k, part), 'estimated relative L2 error of '// &
                                          trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
                                          ' at each snapshot '//trim(WHAT(part)), '1')

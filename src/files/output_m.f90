@@ -48,8 +48,6 @@ module output_m
     !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
     !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
     integer, parameter :: SERIES_CHUNK = 256
-    !> The initial extent and the chunk of a 1D extendible dataset (series, snapshot times)
-    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
     !> Attribute layout of /checkpoint: slotN/<owner>/<array>, slotN/<owner>/scalars (a compound)
     character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name, slotN/owner/scalars'
     !> The file of a run resumed in place, beside the <prefix>.h5.part it continues

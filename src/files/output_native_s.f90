@@ -10,6 +10,7 @@ submodule (output_m) output_native_s
 
     character(len=*), parameter :: GROUP = '/snapshots/native'
     integer(hsize_t), parameter :: VALUES_CHUNK(1) = [4096_hsize_t]   !< float64 entries (32 KiB)
+    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
 
 contains
 

@@ -104,7 +104,7 @@ contains
             between = max(between, abs(e_mid))
             if (n > p) own = max(own, abs(e_mid - sum(lagrange_weights(t_level(1:p + 1), t_mid) * e_level(1:p + 1))))
             n_rows = 0
-            call dense_series(driver, stepper, state, monitor, result, t_mid, rows, n_rows, values)
+            call dense_series(driver, stepper, state, monitor, t_mid, rows, n_rows, values)
             series_gap = max(series_gap, abs(values(S_U_END) - u(S)), &
                              abs(sum(values(S_ENERGY_PARTS)) - values(S_ENERGY)) / max(abs(values(S_ENERGY)), 1.0_dp))
         end do

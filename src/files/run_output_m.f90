@@ -100,8 +100,9 @@ contains
     end subroutine step_series
 
     !> Dense output (&output series_dt) of the step just taken from t_before (state: its
-    !> end): the entries at the times n_next series_dt in (t_before, t_n] (dense_series).
-    !> at_end: an entry so written is at t_n (to round-off).
+    !> end): the entries at the times n_next series_dt in (t_before, t_n]: dense_series, then
+    !> step_series (the penalty law's lambda at the interpolated u(1); Signorini: the step's
+    !> multiplier). at_end: an entry so written is at t_n (to round-off).
     subroutine write_dense_series(writer, driver, stepper, state, monitor, result, t_before, series_dt, n_next, &
                                   at_end)
         type(h5_writer_t), intent(inout) :: writer
@@ -121,24 +122,22 @@ contains
         do
             t = real(n_next, dp) * series_dt
             if (t > state%t + slack .or. t <= t_before) exit
-            call dense_series(driver, stepper, state, monitor, result, t, rows, n_rows, values)
+            call dense_series(driver, stepper, state, monitor, t, rows, n_rows, values)
+            call step_series(stepper%law, state, result, t, .not. stepper%law%is_constraint(), values)
             call writer%append_series(values)
             n_next = n_next + 1
             at_end = at_end .or. t >= state%t - slack
         end do
     end subroutine write_dense_series
 
-    !> The series entry at t in the last accepted step (state: its end): the scheme's
-    !> interpolant (step_driver_t%dense_weights) of level_series of the step's levels, then
-    !> step_series (the penalty law's lambda at the interpolated u(1); Signorini: the
-    !> step's multiplier). rows(:, 1:n_rows): those levels' level_series, computed when
-    !> n_rows = 0 (once per step).
-    subroutine dense_series(driver, stepper, state, monitor, result, t, rows, n_rows, values)
+    !> The level_series values at t in the last accepted step (state: its end): the scheme's
+    !> interpolant (step_driver_t%dense_weights) of those of the step's levels, rows(:,
+    !> 1:n_rows), computed when n_rows = 0 (once per step).
+    subroutine dense_series(driver, stepper, state, monitor, t, rows, n_rows, values)
         type(step_driver_t), intent(in) :: driver
         type(stepper_t), intent(in) :: stepper
         type(state_t), intent(in) :: state
         type(energy_monitor_t), intent(in) :: monitor   !< has observed the level in state
-        type(step_result_t), intent(in) :: result
         real(dp), intent(in) :: t
         real(dp), intent(inout) :: rows(N_SERIES, MAX_LEVELS)
         integer, intent(inout) :: n_rows
@@ -153,7 +152,6 @@ contains
         do j = 2, n_rows
             values = values + weight(j) * rows(:, j)
         end do
-        call step_series(stepper%law, state, result, t, .not. stepper%law%is_constraint(), values)
     end subroutine dense_series
 
     !> rows(:, j) = level_series of the j-th most recent of the n levels of the last step's

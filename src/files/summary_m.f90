@@ -127,7 +127,6 @@ contains
         type(summary_t) :: s
         real(dp), allocatable :: t(:), energy(:), u_end(:), penetration(:), contact_stress(:)
         integer :: k
-        character(len=:), allocatable :: status
 
         call read_real_1d(file, '/series/t', t)
         call read_real_1d(file, '/series/energy', energy)
@@ -137,10 +136,7 @@ contains
         s = summarise_series(t, energy, u_end, penetration, contact_stress, attr_or_nan(file, 'contact.g'))
         s%file = file
         s%status = ''
-        if (attr_exists(file, 'status')) then
-            call read_attr_str(file, 'status', status)
-            s%status = status
-        end if
+        if (attr_exists(file, 'status')) call read_attr_str(file, 'status', s%status)
         if (attr_exists(file, 'steps')) call read_attr_int(file, 'steps', s%steps)
         s%wall_seconds = attr_or_nan(file, 'wall_seconds')
         s%time_error = attr_or_nan(file, 'step_control_error_sum_relative')

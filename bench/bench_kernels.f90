@@ -33,7 +33,7 @@ program bench_kernels
     use block_tridiagonal_m, only: block_tridiagonal_t
     use scheme_m, only: assemble_matrix
     use slots_m, only: MONOLITHIC_SLOTS
-    use mesh_m, only: uniform_mesh
+    use meshes_m, only: uniform_mesh
     use fields_m, only: N_FIELDS
     use state_m, only: state_t, initial_state
     use stepper_m, only: stepper_t, step_result_t

@@ -18,7 +18,7 @@ program test_conditioning
     use band_reference_m, only: factor_band_blocks
     use scheme_m, only: assemble_matrix
     use slots_m, only: MONOLITHIC_SLOTS
-    use mesh_m, only: uniform_mesh
+    use meshes_m, only: uniform_mesh
     use fields_m, only: N_FIELDS, F_V
     use testing_m, only: check_true, test_summary
     use iso_fortran_env, only: output_unit

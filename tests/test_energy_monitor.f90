@@ -25,7 +25,7 @@ program test_energy_monitor
     use time_scheme_m, only: time_scheme
     use state_m, only: state_t
     use energy_m, only: energy_monitor_t, discrete_energy
-    use mesh_m, only: graded_mesh
+    use meshes_m, only: graded_mesh
     use checkpoint_m, only: checkpoint_t
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, N_ENERGY_PARTS
     use testing_m, only: check_close, check_true, test_summary

@@ -20,7 +20,7 @@ program test_graded_mesh
     use energy_m, only: discrete_energy
     use transfer_m, only: transfer_level, merge_keys
     use adaptive_mesh_m, only: adaptive_mesh_t, nodes_of_keys
-    use mesh_m, only: graded_mesh
+    use meshes_m, only: graded_mesh
     use mms_m, only: mms_t, mms_linear_in_t, N_EXACT, U_FIELD
     use convergence_m, only: mms_errors, observed_orders, ERROR_NAMES
     use testing_m, only: check_true, test_summary

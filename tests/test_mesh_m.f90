@@ -6,7 +6,8 @@
 program test_mesh_m
     use kinds_m, only: dp
     use fe_m, only: mesh_nodes, element_mass, element_stiffness
-    use mesh_m, only: mesh_t, uniform_mesh, graded_mesh, copy_mesh
+    use mesh_m, only: mesh_t, copy_mesh
+    use meshes_m, only: uniform_mesh, graded_mesh
     use checkpoint_m, only: checkpoint_t
     use testing_m, only: check_close, check_true, test_summary
     implicit none

@@ -17,7 +17,8 @@ program test_scheme_m
     use scheme_m, only: assemble_matrix, assemble_blocks, band_width
     use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, slots_of
     use state_m, only: state_t
-    use mesh_m, only: mesh_t, uniform_mesh, graded_mesh
+    use mesh_m, only: mesh_t
+    use meshes_m, only: uniform_mesh, graded_mesh
     use stepper_m, only: stepper_t, step_result_t
     use quadrature_m, only: integrate_product
     use testing_m, only: check_close, check_true, test_summary

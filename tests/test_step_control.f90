@@ -28,7 +28,8 @@ program test_step_control
     use time_scheme_m, only: time_scheme_t, time_scheme, scheme_rules
     use validate_m, only: scheme_rule_t
     use checkpoint_m, only: checkpoint_t
-    use mesh_m, only: mesh_t, uniform_mesh
+    use mesh_m, only: mesh_t
+    use meshes_m, only: uniform_mesh
     use fields_m, only: N_FIELDS
     use energy_m, only: discrete_energy
     use mms_m, only: mms_t, mms_no_contact
@@ -213,7 +214,7 @@ contains
         do k = 1, size(rules)
             name = trim(rules(k)%name)
             scheme = time_scheme(name)
-            p = scheme%order()
+            p = scheme%row%order
             call e%init(scheme, SE)
             do j = 1, 3
                 call e%push(T_LEVELS(j)**(p + 1) * zu, T_LEVELS(j)**(p + 1) * zw, T_LEVELS(j) - T_LEVELS(max(j - 1, 1)))
@@ -267,7 +268,7 @@ contains
         coarse%t_anchor = t(3)
         coarse%step_anchor = coarse%step
         coarse%dt_last = t(3) - t(2)
-        if (stepper%scheme%keeps_previous_level()) then
+        if (stepper%scheme%row%keeps_previous_level) then
             coarse%u_prev = levels(2)%u
             coarse%w_prev = levels(2)%w
         end if

@@ -137,7 +137,7 @@ contains
                                                             ': '//trim(c%result%message))
             end associate
         end do
-        self%p = self%pair(COMP_A)%stepper%scheme%order()
+        self%p = self%pair(COMP_A)%stepper%scheme%row%order
     end subroutine companions_init
 
     !> The run has accepted a step (state: its new level): into each companion's queue; a

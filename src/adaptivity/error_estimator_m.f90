@@ -58,7 +58,7 @@ contains
         integer, intent(in) :: s
 
         self%scheme = scheme
-        self%order = scheme%order()
+        self%order = scheme%row%order
         call self%resize(s)
     end subroutine estimator_init
 

@@ -69,8 +69,8 @@ contains
         self%tol = time%error_tol
         self%dt_min = time%dt_min
         self%dt_max = time%dt_max
-        self%order = scheme%order()
-        self%growth_max = scheme%max_step_ratio()
+        self%order = scheme%row%order
+        self%growth_max = scheme%row%max_step_ratio
         self%dt_next = time%dt
         self%ladder_base = time%dt
         if (present(scale)) self%scale = scale

@@ -122,7 +122,7 @@ contains
         call writer%attr('wall_seconds', wall_seconds)
         call monitor%rises(max_rise, max_rise_step_change)
         call writer%attr('energy_max_relative_rise', max_rise)
-        scheme_law = stepper%scheme%energy_law()
+        scheme_law = stepper%scheme%row%law
         if (scheme_law%constant_steps .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
             call writer%attr('energy_max_relative_rise_step_change', max_rise_step_change)
         call writer%attr('energy_law', trim(scheme_law%text))

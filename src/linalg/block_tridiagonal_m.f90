@@ -126,7 +126,8 @@ contains
         integer, intent(in) :: i, last
         real(dp), intent(in) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
         logical, intent(in) :: inline
-        real(dp), intent(inout) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        real(dp), intent(inout) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), &
+                                   h(NB_MAX, NB_MAX, 0:last - 1)
         logical, intent(inout) :: before_in_pattern
         integer, intent(out) :: info
         real(dp) :: le(NB_MAX, NB_MAX)
@@ -225,7 +226,8 @@ contains
     !> back: x_last = c_last, x_i = c_i - H_i x_{i+1}, H_i = G_i E_i. b(:, i) is node i.
     subroutine solve_full(g, l, h, last, b)
         integer, intent(in) :: last
-        real(dp), intent(in) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), h(NB_MAX, NB_MAX, 0:last - 1)
+        real(dp), intent(in) :: g(NB_MAX, NB_MAX, 0:last), l(NB_MAX, NB_MAX, last), &
+                                h(NB_MAX, NB_MAX, 0:last - 1)
         real(dp), intent(inout) :: b(NB_MAX, 0:last)
         real(dp) :: y(NB_MAX), x(NB_MAX)
         integer :: i

@@ -48,7 +48,8 @@ contains
         integer :: stat
         character(len=256) :: message
 
-        if (self%has(entry%name)) call fatal(EXIT_INPUT, 'checkpoint', 'internal error: '//entry%name//' put twice')
+        if (self%has(entry%name)) &
+            call fatal(EXIT_INPUT, 'checkpoint', 'internal error: '//entry%name//' put twice')
         if (.not. allocated(self%entries)) allocate (self%entries(0))
         if (self%n == size(self%entries)) then
             allocate (grown(max(64, 2 * self%n)), stat=stat, errmsg=message)
@@ -143,7 +144,8 @@ contains
         character(len=*), intent(in) :: name
         real(dp), intent(in) :: values(:)
 
-        call self%add(entry_t(name, .false., 1, [size(values), 1], transfer(values, 0_int64, size(values))))
+        call self%add(entry_t(name, .false., 1, [size(values), 1], &
+                              transfer(values, 0_int64, size(values))))
     end subroutine put_reals
 
     subroutine put_real2(self, name, values)

@@ -219,7 +219,7 @@ contains
         type(time_scheme_t), intent(in) :: scheme
         type(state_t), intent(in) :: state
 
-        self%scheme_law = scheme%energy_law()
+        self%scheme_law = scheme%row%law
         self%model = model
         self%law_model = model
         if (self%scheme_law%step_model) self%law_model = step_model
@@ -270,7 +270,8 @@ contains
         if (.not. self%have_law) return
         if (size(self%u_work) /= size(state%u)) call self%resize(state)
         call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
-                         self%u_work, self%w_work, self%law_energy, lin_now=sum(self%last_parts(:PART_MASS_FLUX)))
+                         self%u_work, self%w_work, self%law_energy, &
+                         lin_now=sum(self%last_parts(:PART_MASS_FLUX)))
     end subroutine measure
 
     !> The energies of the level (observe's new level, or the level moved to a new mesh by

@@ -132,7 +132,8 @@ contains
         if (end_moved .and. last) then
             m = reshape([h, 0.0_dp, 0.0_dp, 0.0_dp], [2, 2])
         else
-            m = (1.0_dp - lumped) * element_mass(h) + lumped * reshape([h, 0.0_dp, 0.0_dp, h], [2, 2]) / 2.0_dp
+            m = (1.0_dp - lumped) * element_mass(h) &
+                + lumped * reshape([h, 0.0_dp, 0.0_dp, h], [2, 2]) / 2.0_dp
         end if
     end function inertia_element
 

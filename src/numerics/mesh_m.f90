@@ -18,7 +18,7 @@ module mesh_m
                     apply_stiffness_graded
     implicit none
     private
-    public :: mesh_t, uniform_mesh, graded_mesh, copy_mesh
+    public :: mesh_t, copy_mesh
 
     type :: mesh_t
         real(dp), allocatable :: x(:)   !< the nodes x_i, i = 0..s (written by mesh_m only)
@@ -42,22 +42,6 @@ module mesh_m
     end type mesh_t
 
 contains
-
-    !> The uniform mesh of s elements.
-    function uniform_mesh(s) result(mesh)
-        integer, intent(in) :: s
-        type(mesh_t) :: mesh
-
-        call mesh%set_uniform(s)
-    end function uniform_mesh
-
-    !> The graded mesh with nodes x(0:s).
-    function graded_mesh(x) result(mesh)
-        real(dp), intent(in) :: x(0:)
-        type(mesh_t) :: mesh
-
-        call mesh%set_nodes(x)
-    end function graded_mesh
 
     !> Number of elements s.
     pure integer function mesh_elements(self)

@@ -160,7 +160,8 @@ contains
             has_data(F_Q) = .not. all(is_zero(init%q0_poly)) .or. allocated(init%q0_table)
             has_data(F_THETA) = .not. (all(is_zero(init%theta0_poly)) .and. is_zero(init%theta0_step(1))) &
                                 .or. allocated(init%theta0_table)
-            has_data(F_P) = .not. (all(is_zero(init%p0_poly)) .and. is_zero(init%p0_step(1))) .or. allocated(init%p0_table)
+            has_data(F_P) = .not. (all(is_zero(init%p0_poly)) .and. is_zero(init%p0_step(1))) &
+                            .or. allocated(init%p0_table)
             has_data(F_ETA) = .not. all(is_zero(init%eta0_poly)) .or. allocated(init%eta0_table)
         end associate
     end function initial_data_present
@@ -213,7 +214,8 @@ contains
         type(model_t), intent(in) :: model
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(in) :: dt
-        real(dp), intent(out), contiguous :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)   !< (N_FIELDS, N_FIELDS, 0:)
+        !> (N_FIELDS, N_FIELDS, 0:)
+        real(dp), intent(out), contiguous :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)
         real(dp), parameter :: ZERO(N_FIELDS, N_FIELDS) = 0.0_dp
         real(dp) :: h_e, m(2, 2), m11(N_FIELDS, N_FIELDS), m12(N_FIELDS, N_FIELDS), m21(N_FIELDS, N_FIELDS), &
                     m22(N_FIELDS, N_FIELDS)
@@ -246,9 +248,9 @@ contains
         call dirichlet_blocks(s, d, e, f)
     end subroutine assemble_blocks
 
-    !> assemble_blocks' Dirichlet unknowns as assemble_matrix's set_identity_row: the row and
-    !> column of (node 0, field) in D_0, E_0, F_0 and of (node s, field) in D_s, F_{s-1}, E_{s-1}
-    !> zero, the diagonal entry 1.
+    !> assemble_blocks' Dirichlet unknowns as identity rows (assemble_matrix's too): the row
+    !> and column of (node 0, field) in D_0, E_0, F_0 and of (node s, field) in D_s, F_{s-1},
+    !> E_{s-1} zero, the diagonal entry 1.
     pure subroutine dirichlet_blocks(s, d, e, f)
         integer, intent(in) :: s
         real(dp), intent(inout) :: d(:, :, 0:), e(:, :, 0:), f(:, :, 0:)
@@ -293,7 +295,8 @@ contains
         ! (6.1)_1: rho Me v^{n-1} - dt alpha Ke u^{n-1}
         call mesh%apply_mass(w_old(:, F_V), y(:, F_V))
         if (model%mass_end_moved .or. model%mass_lumped > 0.0_dp) &
-            call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w_old(:, F_V), y(:, F_V))
+            call add_inertia_difference(mesh%h, model%mass_lumped, model%mass_end_moved, w_old(:, F_V), &
+                                        y(:, F_V))
         call mesh%apply_stiffness(u_old, work)
         y(:, F_V) = model%rho * y(:, F_V) - dt * model%alpha * work
         if (slots(F_THETA) > 0) then   ! (6.1)_2: Me (c theta^{n-1} + d P^{n-1})

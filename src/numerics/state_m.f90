@@ -225,7 +225,8 @@ contains
             if (ckpt%has(owner//'/previous')) then
                 call ckpt%get(owner//'/previous', level)
                 if (all(size(level, 1) /= [0, self%s + 1])) &
-                    call fatal(EXIT_INPUT, 'time.restart_from', 'the checkpoint''s '//owner//' levels differ in size')
+                    call fatal(EXIT_INPUT, 'time.restart_from', &
+                               'the checkpoint''s '//owner//' levels differ in size')
                 if (size(level, 1) > 0) then
                     call sized_level(self%u_prev, self%w_prev, self%s, N_FIELDS, 'the previous level')
                     self%u_prev = level(:, 1)
@@ -235,7 +236,8 @@ contains
         else
             call ckpt%put(owner//'/level', reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS]))
             if (allocated(self%u_prev)) then
-                call ckpt%put(owner//'/previous', reshape([self%u_prev, self%w_prev], [self%s + 1, 1 + N_FIELDS]))
+                call ckpt%put(owner//'/previous', &
+                              reshape([self%u_prev, self%w_prev], [self%s + 1, 1 + N_FIELDS]))
             else
                 call ckpt%put(owner//'/previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
             end if

@@ -22,7 +22,8 @@ module stepper_m
     use paper_method_m, only: paper_method_t
     use system_cache_m, only: monolithic_system_t, system_cache_t
     use fields_m, only: N_FIELDS, F_V
-    use scheme_m, only: active_fields, assemble_matrix, assemble_blocks, old_state_rhs, initial_data_present
+    use scheme_m, only: active_fields, assemble_matrix, assemble_blocks, old_state_rhs, &
+                        initial_data_present
     use slots_m, only: MONOLITHIC_SLOTS, slots_of, gather_fields
     use block_tridiagonal_m, only: NB_MAX
     use contact_laws_m, only: contact_law_t, contact_law
@@ -290,8 +291,10 @@ contains
         real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%x, self%b, self%work, self%mesh)
-        if (allocated(self%source)) call add_source_terms(self%source, model, t_source, dt_eff, self%x, self%mesh)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%x, self%b, self%work, &
+                           self%mesh)
+        if (allocated(self%source)) &
+            call add_source_terms(self%source, model, t_source, dt_eff, self%x, self%mesh)
     end subroutine start_rhs
 
     !> One monolithic step from the state itself (from_star = .false.) or from the level
@@ -321,7 +324,7 @@ contains
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
         ! multistep schemes: X^{n-1} is kept before the step overwrites it
-        if (self%scheme%keeps_previous_level()) &
+        if (self%scheme%row%keeps_previous_level) &
             call keep_copy(state%u, state%w, state%u_prev, state%w_prev, 'the previous level')
         call gather_fields(self%slots, self%x, state%w)
         if (from_star) then
@@ -329,7 +332,8 @@ contains
         else
             state%u = state%u + sys%dt_eff * state%w(:, F_V)
         end if
-        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u)
+        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, &
+                        state%u)
     end subroutine advance_monolithic
 
     !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the

@@ -90,17 +90,13 @@ contains
         self%systems(k)%last_used = self%uses
     end subroutine cache_stored
 
-    !> The mesh changed (or anything else in the matrix): no entry is used again.
+    !> The mesh changed (or anything else in the matrix): no entry is used again (lookup and
+    !> all_use_blocks take only entries of the current mesh key; the old ones, used before any
+    !> of the new mesh, are the first replaced).
     subroutine cache_invalidate(self)
         class(system_cache_t), intent(inout) :: self
-        integer :: k
 
         self%mesh_key = self%mesh_key + 1
-        do k = 1, CACHE_SIZE
-            self%systems(k)%dt_eff = 0.0_dp
-            self%systems(k)%mesh_key = 0
-            self%systems(k)%last_used = 0
-        end do
     end subroutine cache_invalidate
 
     !> x = A^{-1} x, by the block LU if use_blocks, else by dgbtrf's factors.

@@ -108,13 +108,11 @@ module time_scheme_m
 
     type :: time_scheme_t
         integer :: kind = SCHEME_EULER   !< the row of SCHEMES
+        !> what the rest of the code asks of the scheme: row%order, row%law, ... (SCHEMES(kind))
+        type(scheme_row_t) :: row = SCHEMES(SCHEME_EULER)
     contains
         procedure :: plan => scheme_plan
-        procedure :: keeps_previous_level => scheme_keeps_previous_level
-        procedure :: order => scheme_order
         procedure :: error_factor => scheme_error_factor
-        procedure :: max_step_ratio => scheme_max_step_ratio
-        procedure :: energy_law => scheme_energy_law
         procedure :: stiff_limit => scheme_stiff_limit
     end type time_scheme_t
 
@@ -126,6 +124,7 @@ contains
         type(time_scheme_t) :: scheme
 
         scheme%kind = max(findloc(SCHEMES%name, name, dim=1), SCHEME_EULER)
+        scheme%row = SCHEMES(scheme%kind)
     end function time_scheme
 
     !> What validate_m checks of &time scheme: the names, and which scheme solver.method =
@@ -166,20 +165,6 @@ contains
         plan%d = 1.0_dp + 2.0_dp * w
     end function scheme_plan
 
-    !> Does the scheme need X^{n-1} kept when X^n is computed?
-    pure logical function scheme_keeps_previous_level(self)
-        class(time_scheme_t), intent(in) :: self
-
-        scheme_keeps_previous_level = SCHEMES(self%kind)%keeps_previous_level
-    end function scheme_keeps_previous_level
-
-    !> p: the local error of a step of size h is C X^(p+1) h^(p+1).
-    pure integer function scheme_order(self)
-        class(time_scheme_t), intent(in) :: self
-
-        scheme_order = SCHEMES(self%kind)%order
-    end function scheme_order
-
     !> Local error of the step / (X^n - P^n), P^n the polynomial of degree p through the
     !> last p+1 levels extrapolated to t_n (step_control_m), from the leading terms;
     !> d(j) = t_n - t_{n-j}, h = h_n = d(1), h_prev = h_{n-1}, w = h / h_prev:
@@ -205,21 +190,6 @@ contains
         end select
     end function scheme_error_factor
 
-    !> The largest ratio dt_n / dt_{n-1} adaptive steps may take (step_control_m).
-    pure real(dp) function scheme_max_step_ratio(self)
-        class(time_scheme_t), intent(in) :: self
-
-        scheme_max_step_ratio = SCHEMES(self%kind)%max_step_ratio
-    end function scheme_max_step_ratio
-
-    !> The energy law the scheme guarantees (energy_m checks it; root attribute energy_law).
-    pure function scheme_energy_law(self) result(law)
-        class(time_scheme_t), intent(in) :: self
-        type(energy_law_t) :: law
-
-        law = SCHEMES(self%kind)%law
-    end function scheme_energy_law
-
     !> The model a step of size dt on s elements uses: the paper's, except that the
     !> midpoint rule takes a negligible time-derivative coefficient as zero, so that the
     !> field becomes algebraic (X^n = Y) instead of an undamped stiff mode. Negligible: rho h^2
@@ -236,7 +206,7 @@ contains
 
         step_model = model
         algebraic = .false.
-        if (.not. SCHEMES(self%kind)%stiff_limit) return
+        if (.not. self%row%stiff_limit) return
         algebraic(F_V) = model%rho / real(s, dp)**2 <= STIFF_RATIO * dt * (model%varpi + dt * model%alpha)
         algebraic(F_Q) = model%tau0 <= STIFF_RATIO * dt
         algebraic(F_ETA) = model%tau <= STIFF_RATIO * dt

@@ -63,8 +63,7 @@ module adaptive_mesh_m
         procedure :: observe_scales => mesh_observe_scales
         procedure :: adapt => mesh_adapt
         procedure :: set_keys => mesh_set_keys
-        procedure :: save_checkpoint => mesh_save_checkpoint
-        procedure :: restore_checkpoint => mesh_restore_checkpoint
+        procedure :: checkpoint => mesh_checkpoint
     end type adaptive_mesh_t
 
 contains
@@ -97,27 +96,24 @@ contains
         self%k = k
     end subroutine mesh_set_keys
 
-    !> The node keys and the field scales into a checkpoint.
-    subroutine mesh_save_checkpoint(self, ckpt)
-        class(adaptive_mesh_t), intent(in) :: self
-        type(checkpoint_t), intent(inout) :: ckpt
-
-        call ckpt%put('adaptive_mesh/scale', self%scale)
-        call ckpt%put('adaptive_mesh/keys', self%k)
-    end subroutine mesh_save_checkpoint
-
-    !> The mesh of a checkpoint (save_checkpoint), on a mesh initialised for this run.
-    subroutine mesh_restore_checkpoint(self, ckpt)
+    !> The node keys and the field scales into a checkpoint, or back from one (checkpoint_m's
+    !> reading; on a mesh initialised for this run).
+    subroutine mesh_checkpoint(self, ckpt)
         class(adaptive_mesh_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
+        type(checkpoint_t), intent(inout) :: ckpt
         real(dp), allocatable :: scale(:)
         integer(int64), allocatable :: keys(:)
 
-        call ckpt%get('adaptive_mesh/scale', scale)
-        call ckpt%get('adaptive_mesh/keys', keys)
-        self%scale = scale
-        call self%set_keys(keys)
-    end subroutine mesh_restore_checkpoint
+        if (ckpt%reading) then
+            call ckpt%get('adaptive_mesh/scale', scale)
+            call ckpt%get('adaptive_mesh/keys', keys)
+            self%scale = scale
+            call self%set_keys(keys)
+        else
+            call ckpt%put('adaptive_mesh/scale', self%scale)
+            call ckpt%put('adaptive_mesh/keys', self%k)
+        end if
+    end subroutine mesh_checkpoint
 
     !> Number of elements.
     pure integer function mesh_s(self)

@@ -84,8 +84,7 @@ module error_companion_m
         procedure :: remesh => companions_remesh
         procedure :: follow => companions_follow
         procedure :: estimate => companions_estimate
-        procedure :: save_checkpoint => companions_save_checkpoint
-        procedure :: restore_checkpoint => companions_restore_checkpoint
+        procedure :: checkpoint => companions_checkpoint
     end type error_companions_t
 
 contains
@@ -315,32 +314,12 @@ contains
         if (norm > 0.0_dp) relative = error / norm
     end function relative
 
-    !> The companions into a checkpoint, each under error_companions/<A|C|D>: its state
-    !> (state_t's checkpoint; an adaptive mesh's companion meshes are rebuilt from the
+    !> The companions into a checkpoint, or back from one (checkpoint_m's reading; on
+    !> companions initialised for this run), each under error_companions/<A|C|D>: its state
+    !> (state_t's checkpoint; an adaptive mesh's companion meshes are first rebuilt from the
     !> run's), its solves and its queue of the run's steps (QUEUE_MAX, n_queued in use); then
     !> whether they failed, the run's steps since the last snapshot.
-    subroutine companions_save_checkpoint(self, ckpt)
-        class(error_companions_t), intent(inout) :: self
-        type(checkpoint_t), intent(inout) :: ckpt
-        character(len=:), allocatable :: p
-        integer :: j
-
-        do j = 1, N_COMPANIONS
-            associate (c => self%pair(j))
-                p = 'error_companions/'//NAMES(j:j)
-                call c%state%checkpoint(ckpt, p)
-                call ckpt%put(p//'/n_solves', c%stepper%n_solves)
-                call ckpt%put(p//'/n_queued', c%n_queued)
-                call ckpt%put(p//'/queue_dt', c%queue_dt)
-                call ckpt%put(p//'/queue_t', c%queue_t)
-            end associate
-        end do
-        call ckpt%put('error_companions/failed', self%failed)
-        call ckpt%put('error_companions/n_since', self%n_since)
-    end subroutine companions_save_checkpoint
-
-    !> The inverse of save_checkpoint (on companions initialised for this run).
-    subroutine companions_restore_checkpoint(self, ckpt)
+    subroutine companions_checkpoint(self, ckpt)
         class(error_companions_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
         character(len=:), allocatable :: p
@@ -349,7 +328,7 @@ contains
         integer :: j
         logical :: failed
 
-        if (self%adaptive) then   ! the companions' meshes for the checkpoint's run mesh
+        if (self%adaptive .and. ckpt%reading) then   ! the companions' meshes for the run's
             call ckpt%get('adaptive_mesh/keys', keys)
             call companions_remesh(self, keys)
         end if
@@ -359,18 +338,24 @@ contains
                 call c%state%checkpoint(ckpt, p)
                 if (c%state%s /= c%stepper%s) call fatal(EXIT_INPUT, 'restart', &
                     'the checkpoint''s error-estimate companion '//NAMES(j:j)//' does not fit its mesh')
-                call ckpt%get(p//'/n_solves', c%stepper%n_solves)
-                call ckpt%get(p//'/n_queued', c%n_queued)
-                call ckpt%get(p//'/queue_dt', queue)
-                c%queue_dt = queue
-                call ckpt%get(p//'/queue_t', queue)
-                c%queue_t = queue
+                call ckpt%sync(p//'/n_solves', c%stepper%n_solves)
+                call ckpt%sync(p//'/n_queued', c%n_queued)
+                if (ckpt%reading) then
+                    call ckpt%get(p//'/queue_dt', queue)
+                    c%queue_dt = queue
+                    call ckpt%get(p//'/queue_t', queue)
+                    c%queue_t = queue
+                else
+                    call ckpt%put(p//'/queue_dt', c%queue_dt)
+                    call ckpt%put(p//'/queue_t', c%queue_t)
+                end if
             end associate
         end do
-        call ckpt%get('error_companions/n_since', self%n_since)
-        call ckpt%get('error_companions/failed', failed)
+        failed = self%failed
+        call ckpt%sync('error_companions/failed', failed)
+        call ckpt%sync('error_companions/n_since', self%n_since)
         if (failed) call stop_companions(self, 'failed before the checkpoint')
-    end subroutine companions_restore_checkpoint
+    end subroutine companions_checkpoint
 
     !> The run's adaptive mesh has changed (keys: its new node keys; remesh_m): each companion
     !> onto its mesh for the new one (companion_mesh_m), its levels moved as the run's are

@@ -45,8 +45,7 @@ module error_estimator_m
         procedure :: slot => estimator_slot
         procedure :: step => estimator_step
         procedure :: times => estimator_times
-        procedure :: save_checkpoint => estimator_save_checkpoint
-        procedure :: restore_checkpoint => estimator_restore_checkpoint
+        procedure :: checkpoint => estimator_checkpoint
     end type error_estimator_t
 
 contains
@@ -224,17 +223,28 @@ contains
     ! ------------------------------------------------------------------ checkpoint
 
     !> The estimator's levels into a checkpoint, most recent first: error_estimator/levels
-    !> (s+1, (1+N_FIELDS) MAX_LEVELS; unused ones zero) and steps (the step that reached each).
-    subroutine estimator_save_checkpoint(self, ckpt)
-        class(error_estimator_t), intent(in) :: self
+    !> (s+1, (1+N_FIELDS) MAX_LEVELS; unused ones zero) and steps (the step that reached each);
+    !> or back from one (checkpoint_m's reading; the arrays take the checkpoint's mesh).
+    subroutine estimator_checkpoint(self, ckpt)
+        class(error_estimator_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
-        real(dp), allocatable :: levels(:, :)
-        real(dp) :: steps(self%n_levels)
+        real(dp), allocatable :: levels(:, :), steps(:)
         integer :: j, width, stat
         character(len=256) :: message
 
         width = 1 + N_FIELDS
-        allocate (levels(size(self%levels, 1), width * MAX_LEVELS), source=0.0_dp, stat=stat, errmsg=message)
+        if (ckpt%reading) then
+            call ckpt%get('error_estimator/levels', levels)
+            call ckpt%get('error_estimator/steps', steps)
+            call self%resize(size(levels, 1) - 1)
+            call self%reset()
+            do j = size(steps), 1, -1
+                call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), steps(j))
+            end do
+            return
+        end if
+        allocate (levels(size(self%levels, 1), width * MAX_LEVELS), steps(self%n_levels), source=0.0_dp, &
+                  stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the checkpoint of the error estimator')
         do j = 1, self%n_levels
             steps(j) = self%step(j)
@@ -242,24 +252,6 @@ contains
         end do
         call ckpt%put('error_estimator/levels', levels)
         call ckpt%put('error_estimator/steps', steps)
-    end subroutine estimator_save_checkpoint
-
-    !> The inverse of save_checkpoint (on an estimator initialised for this run; its arrays
-    !> take the checkpoint's mesh).
-    subroutine estimator_restore_checkpoint(self, ckpt)
-        class(error_estimator_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-        real(dp), allocatable :: levels(:, :), steps(:)
-        integer :: j, width
-
-        width = 1 + N_FIELDS
-        call ckpt%get('error_estimator/levels', levels)
-        call ckpt%get('error_estimator/steps', steps)
-        call self%resize(size(levels, 1) - 1)
-        call self%reset()
-        do j = size(steps), 1, -1
-            call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), steps(j))
-        end do
-    end subroutine estimator_restore_checkpoint
+    end subroutine estimator_checkpoint
 
 end module error_estimator_m

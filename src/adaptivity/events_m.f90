@@ -30,8 +30,7 @@ module events_m
         procedure :: add => log_add
         procedure :: times => log_times
         procedure :: kinds => log_kinds
-        procedure :: save_checkpoint => log_save_checkpoint
-        procedure :: restore_checkpoint => log_restore_checkpoint
+        procedure :: checkpoint => log_checkpoint
     end type event_log_t
 
 contains
@@ -64,25 +63,22 @@ contains
         if (allocated(self%kind)) kind = self%kind
     end function log_kinds
 
-    !> The log into a checkpoint: events/t and events/kind (as the file's /events).
-    subroutine log_save_checkpoint(self, ckpt)
-        class(event_log_t), intent(in) :: self
-        type(checkpoint_t), intent(inout) :: ckpt
-
-        call ckpt%put('events/t', self%times())
-        call ckpt%put('events/kind', int(self%kinds(), int64))
-    end subroutine log_save_checkpoint
-
-    !> The inverse of save_checkpoint.
-    subroutine log_restore_checkpoint(self, ckpt)
+    !> The log into a checkpoint, or back from one (checkpoint_m's reading): events/t and
+    !> events/kind (as the file's /events).
+    subroutine log_checkpoint(self, ckpt)
         class(event_log_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
+        type(checkpoint_t), intent(inout) :: ckpt
         integer(int64), allocatable :: kind(:)
 
-        call ckpt%get('events/t', self%t)
-        call ckpt%get('events/kind', kind)
-        self%kind = int(kind)
-    end subroutine log_restore_checkpoint
+        if (ckpt%reading) then
+            call ckpt%get('events/t', self%t)
+            call ckpt%get('events/kind', kind)
+            self%kind = int(kind)
+        else
+            call ckpt%put('events/t', self%times())
+            call ckpt%put('events/kind', int(self%kinds(), int64))
+        end if
+    end subroutine log_checkpoint
 
     !> The time in [t_start, t_start + dt] at which the contact state of a step changes: the
     !> trial gap u(1) - g (the gap the step would have without contact force) goes from

@@ -50,8 +50,7 @@ module step_control_m
         procedure :: count_forced => controller_count_forced
         procedure :: observe_size => controller_observe_size
         procedure :: counts => controller_counts
-        procedure :: save_checkpoint => controller_save_checkpoint
-        procedure :: restore_checkpoint => controller_restore_checkpoint
+        procedure :: checkpoint => controller_checkpoint
     end type step_controller_t
 
 contains
@@ -185,32 +184,19 @@ contains
 
     ! ------------------------------------------------------------------ checkpoint
 
-    !> The controller's scalars into a checkpoint (step_controller/...).
-    subroutine controller_save_checkpoint(self, ckpt)
-        class(step_controller_t), intent(in) :: self
+    !> The controller's scalars into a checkpoint (step_controller/...), or back from one
+    !> (checkpoint_m's sync; on a controller initialised for this run).
+    subroutine controller_checkpoint(self, ckpt)
+        class(step_controller_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call ckpt%put('step_controller/dt_next', self%dt_next)
-        call ckpt%put('step_controller/no_growth', self%no_growth)
-        call ckpt%put('step_controller/scale', self%scale)
-        call ckpt%put('step_controller/error_sum', self%error_sum)
-        call ckpt%put('step_controller/n_estimated', self%n_estimated)
-        call ckpt%put('step_controller/n_rejected', self%n_rejected)
-        call ckpt%put('step_controller/n_forced', self%n_forced)
-    end subroutine controller_save_checkpoint
-
-    !> The inverse of save_checkpoint (on a controller initialised for this run).
-    subroutine controller_restore_checkpoint(self, ckpt)
-        class(step_controller_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-
-        call ckpt%get('step_controller/dt_next', self%dt_next)
-        call ckpt%get('step_controller/no_growth', self%no_growth)
-        call ckpt%get('step_controller/scale', self%scale)
-        call ckpt%get('step_controller/error_sum', self%error_sum)
-        call ckpt%get('step_controller/n_estimated', self%n_estimated)
-        call ckpt%get('step_controller/n_rejected', self%n_rejected)
-        call ckpt%get('step_controller/n_forced', self%n_forced)
-    end subroutine controller_restore_checkpoint
+        call ckpt%sync('step_controller/dt_next', self%dt_next)
+        call ckpt%sync('step_controller/no_growth', self%no_growth)
+        call ckpt%sync('step_controller/scale', self%scale)
+        call ckpt%sync('step_controller/error_sum', self%error_sum)
+        call ckpt%sync('step_controller/n_estimated', self%n_estimated)
+        call ckpt%sync('step_controller/n_rejected', self%n_rejected)
+        call ckpt%sync('step_controller/n_forced', self%n_forced)
+    end subroutine controller_checkpoint
 
 end module step_control_m

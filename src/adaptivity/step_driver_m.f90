@@ -66,8 +66,7 @@ module step_driver_m
         procedure :: remesh => driver_remesh
         procedure :: events_log => driver_events_log
         procedure :: controller => driver_controller
-        procedure :: save_checkpoint => driver_save_checkpoint
-        procedure :: restore_checkpoint => driver_restore_checkpoint
+        procedure :: checkpoint => driver_checkpoint
         procedure :: dense_level => driver_dense_level
         procedure :: dense_weights => driver_dense_weights
         procedure :: past_level => driver_past_level
@@ -126,28 +125,18 @@ contains
         end if
     end subroutine driver_init
 
-    !> Continue from a checkpoint (on a driver initialised for this run): the step control,
-    !> the estimator's levels, the contact state and the events are the checkpoint's.
-    subroutine driver_restore_checkpoint(self, ckpt)
+    !> The step control, the estimator's levels, the contact state and the events into a
+    !> checkpoint, or back from one (checkpoint_m's reading; on a driver initialised for this
+    !> run, to continue from it).
+    subroutine driver_checkpoint(self, ckpt)
         class(step_driver_t), intent(inout) :: self
-        type(checkpoint_t), intent(in) :: ckpt
-
-        call self%control%restore_checkpoint(ckpt)
-        call self%estimator%restore_checkpoint(ckpt)
-        call ckpt%get('step_driver/in_contact', self%in_contact)
-        call self%events%restore_checkpoint(ckpt)
-    end subroutine driver_restore_checkpoint
-
-    !> The step control, the contact state and the events into a checkpoint.
-    subroutine driver_save_checkpoint(self, ckpt)
-        class(step_driver_t), intent(in) :: self
         type(checkpoint_t), intent(inout) :: ckpt
 
-        call self%control%save_checkpoint(ckpt)
-        call self%estimator%save_checkpoint(ckpt)
-        call ckpt%put('step_driver/in_contact', self%in_contact)
-        call self%events%save_checkpoint(ckpt)
-    end subroutine driver_save_checkpoint
+        call self%control%checkpoint(ckpt)
+        call self%estimator%checkpoint(ckpt)
+        call ckpt%sync('step_driver/in_contact', self%in_contact)
+        call self%events%checkpoint(ckpt)
+    end subroutine driver_checkpoint
 
     !> The contact events so far.
     function driver_events_log(self) result(events)

@@ -117,7 +117,7 @@ contains
             call run%state%checkpoint(ckpt, 'state')
             call run%state%mesh%checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
-                call run%mesh%restore_checkpoint(ckpt)
+                call run%mesh%checkpoint(ckpt)
                 call ckpt%get('run/n_elements_max', run%n_elements_max)
                 call set_mesh(run%state, run%mesh%nodes())
                 call run%stepper%remesh(run%state)
@@ -125,8 +125,8 @@ contains
             end if
             call run%monitor%checkpoint(ckpt)
             call run%stepper%checkpoint(ckpt)
-            call run%driver%restore_checkpoint(ckpt)
-            if (cfg%output%error_estimate) call run%companions%restore_checkpoint(ckpt)
+            call run%driver%checkpoint(ckpt)
+            if (cfg%output%error_estimate) call run%companions%checkpoint(ckpt)
         end if
         if (cfg%output%snapshot_dt > 0.0_dp) &
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
@@ -336,12 +336,12 @@ contains
         call run%state%mesh%checkpoint(ckpt)
         call run%stepper%checkpoint(ckpt)
         call run%monitor%checkpoint(ckpt)
-        call run%driver%save_checkpoint(ckpt)
+        call run%driver%checkpoint(ckpt)
         if (cfg%mesh%adaptive) then
-            call run%mesh%save_checkpoint(ckpt)
+            call run%mesh%checkpoint(ckpt)
             call ckpt%put('run/n_elements_max', run%n_elements_max)
         end if
-        if (cfg%output%error_estimate) call run%companions%save_checkpoint(ckpt)
+        if (cfg%output%error_estimate) call run%companions%checkpoint(ckpt)
         call ckpt%put('run/wall_seconds', wall_seconds(run))
         call run%writer%write_checkpoint(ckpt, run%driver%step_label(run%state%step, run%state%t, ''))
     end subroutine checkpoint

@@ -9,8 +9,8 @@ program rodcontact
     use material_m, only: nondimensionalise
     use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
-    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, write_event_rows, &
-                         file_in_si
+    use summary_m, only: summary_header, summary_row, summarise_file, summary_problem, events_header, &
+                         write_event_rows, file_in_si
     use errors_m, only: fatal, EXIT_INPUT
     use version_m, only: PROGRAM_VERSION, VERSION_LINE
     implicit none
@@ -25,7 +25,7 @@ program rodcontact
         call write_table(table, summary_args, nondimensional)
         stop
     end if
-    max_len = max_argument_length()
+    max_len = maxval([1, (len(argument(k)), k = 1, command_argument_count())])
     block
         ! the --set values: argument set_arg(k) without its first set_skip(k) characters
         character(len=max_len) :: overrides(size(set_arg))
@@ -212,16 +212,6 @@ contains
         end do
         word = word // "'"
     end function shell_word
-
-    integer function max_argument_length() result(n)
-        integer :: i, length
-
-        n = 1
-        do i = 1, command_argument_count()
-            call get_command_argument(i, length=length)
-            n = max(n, length)
-        end do
-    end function max_argument_length
 
     subroutine print_help()
         write (output_unit, '(a)') &

@@ -17,7 +17,7 @@ module step_driver_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use config_m, only: config_t, model_t, with_contact_mass
-    use material_m, only: nondim_t, nondim_groups
+    use material_m, only: time_scale
     use state_m, only: state_t, copy_state, keep_copy
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
@@ -104,7 +104,6 @@ contains
         type(state_t), intent(in) :: state
         type(stepper_t), intent(in) :: stepper
         type(energy_monitor_t), intent(in) :: monitor
-        type(nondim_t) :: groups
 
         self%adaptive = cfg%time%adaptive
         self%dense = cfg%output%series_dt > 0.0_dp .or. (cfg%output%snapshot_dt > 0.0_dp .and. &
@@ -118,11 +117,8 @@ contains
         call self%control%init(cfg%time, stepper%scheme, scale=energy_norm(monitor%current_energy()))
         call self%estimator%push(state%u, state%w, 0.0_dp)
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
-        if (cfg%material%present) then
-            groups = nondim_groups(cfg%material)
-            self%t_scale = groups%omega
-            self%t_unit = ' s'
-        end if
+        self%t_scale = time_scale(cfg%material)
+        if (cfg%material%present) self%t_unit = ' s'
     end subroutine driver_init
 
     !> The step control, the estimator's levels, the contact state and the events into a

@@ -40,24 +40,18 @@ int rc_reserve_file_size(const char *path, long long bytes)
     return rc;
 }
 
-/* mkdir(path, 0755): 0, or the errno of its failure. */
-int rc_mkdir(const char *path)
+/* fsys_m's operation op (its OP_*) on path a: 1 mkdir(a, 0755), 2 rename(a, b), 3 create (or
+ * truncate) a as an empty file (fopen, not open(2), whose variadic prototype bind(C) cannot
+ * describe). 0, or the errno of the failure. */
+int rc_path_op(int op, const char *a, const char *b)
 {
-    return mkdir(path, 0755) == 0 ? 0 : errno;
-}
+    FILE *stream;
 
-/* rename(from, to): 0, or the errno of its failure. */
-int rc_rename(const char *from, const char *to)
-{
-    return rename(from, to) == 0 ? 0 : errno;
-}
-
-/* Create (or truncate) path as an empty file: 0, or the errno of the failure. fopen, not
- * open(2), whose variadic prototype bind(C) cannot describe. */
-int rc_create_empty(const char *path)
-{
-    FILE *stream = fopen(path, "w");
-
+    if (op == 1)
+        return mkdir(a, 0755) == 0 ? 0 : errno;
+    if (op == 2)
+        return rename(a, b) == 0 ? 0 : errno;
+    stream = fopen(a, "w");
     if (stream == NULL)
         return errno;
     return fclose(stream) == 0 ? 0 : errno;

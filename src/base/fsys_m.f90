@@ -12,25 +12,17 @@ module fsys_m
               parent_dir, create_empty_file, same_file, write_failure_reason, reserve_file_size, &
               from_c_string
 
+    !> The operations of rc_path_op: mkdir (mode 0755), rename, create (or truncate) an empty file.
+    integer(c_int), parameter :: OP_MKDIR = 1, OP_RENAME = 2, OP_CREATE_EMPTY = 3
+
     ! each rc_* of src/base/fsys_c.c returns 0 or the errno of its failure
     interface
-        function c_mkdir(path) bind(C, name='rc_mkdir') result(err)
+        function c_path_op(op, a, b) bind(C, name='rc_path_op') result(err)
             import :: c_char, c_int
-            character(kind=c_char), intent(in) :: path(*)
+            integer(c_int), value, intent(in) :: op
+            character(kind=c_char), intent(in) :: a(*), b(*)   !< b: rename's target, else ''
             integer(c_int) :: err
-        end function c_mkdir
-
-        function c_rename(from, to) bind(C, name='rc_rename') result(err)
-            import :: c_char, c_int
-            character(kind=c_char), intent(in) :: from(*), to(*)
-            integer(c_int) :: err
-        end function c_rename
-
-        function c_create_empty(path) bind(C, name='rc_create_empty') result(err)
-            import :: c_char, c_int
-            character(kind=c_char), intent(in) :: path(*)
-            integer(c_int) :: err
-        end function c_create_empty
+        end function c_path_op
 
         function c_unlink(path) bind(C, name='unlink') result(rc)
             import :: c_char, c_int
@@ -96,7 +88,7 @@ contains
             if (i == 1) cycle                 ! the root '/'
             if (p(i-1:i-1) == '/') cycle      ! 'a//b': the prefix 'a/' is 'a', already done
             if (dir_exists(p(1:i-1))) cycle
-            err = c_mkdir(p(1:i-1)//c_null_char)
+            err = c_path_op(OP_MKDIR, p(1:i-1)//c_null_char, c_null_char)
             if (err /= 0) then
                 ! another process may have created it between the test and mkdir
                 if (dir_exists(p(1:i-1))) cycle
@@ -122,7 +114,7 @@ contains
 
         integer :: err
 
-        err = c_rename(trim(from)//c_null_char, trim(to)//c_null_char)
+        err = c_path_op(OP_RENAME, trim(from)//c_null_char, trim(to)//c_null_char)
         ok = err == 0
         message = ''
         if (.not. ok) message = "cannot rename '"//trim(from)//"' to '"//trim(to)//"': "//strerror(err)
@@ -204,7 +196,7 @@ contains
 
         integer :: err
 
-        err = c_create_empty(trim(path)//c_null_char)
+        err = c_path_op(OP_CREATE_EMPTY, trim(path)//c_null_char, c_null_char)
         ok = err == 0
         message = ''
         if (.not. ok) message = strerror(err)

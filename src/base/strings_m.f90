@@ -7,7 +7,7 @@ module strings_m
     use reals_m, only: is_zero
     implicit none
     private
-    public :: lower, keyword, squeeze, excerpt, quoted, quoted_string, doubled_quotes
+    public :: lower, keyword, squeeze, excerpt, quoted, doubled_quotes
     public :: identifier_at, is_name_char
     public :: int_str, format_real, short_real, from_c_chars
 
@@ -157,14 +157,6 @@ contains
             q = "'" // text // "'"
         end if
     end function quoted
-
-    !> text as a namelist string in single quotes (an inner ' doubled).
-    pure function quoted_string(text) result(q)
-        character(len=*), intent(in) :: text
-        character(len=:), allocatable :: q
-
-        q = doubled_quotes(text, "'")
-    end function quoted_string
 
     !> text between two `quote` characters, each `quote` inside it doubled (the quoting of
     !> Fortran strings with "'" and of CSV fields with '"').

@@ -21,7 +21,6 @@ module progress_m
     private
     public :: progress_t
     public :: format_progress_line, format_duration, next_milestone, progress_wanted
-    public :: N_MILESTONES, MIN_RUN_SECONDS, SETTLE_SECONDS
 
     integer, parameter :: N_MILESTONES = 10          !< plain report: a line every 1/10 of the run
     real(dp), parameter :: MIN_RUN_SECONDS = 2.0_dp  !< no report for runs predicted shorter than this
@@ -53,10 +52,9 @@ module progress_m
 
     interface
         !> POSIX isatty(3): 1 when the descriptor is a terminal.
-        function c_isatty(fd) bind(c, name='isatty') result(is_tty)
+        integer(c_int) function c_isatty(fd) bind(c, name='isatty')
             import :: c_int
             integer(c_int), value, intent(in) :: fd
-            integer(c_int) :: is_tty
         end function c_isatty
     end interface
 

@@ -15,7 +15,7 @@ module run_m
     use step_driver_m, only: step_driver_t
     use events_m, only: event_log_t, EVENT_ONSET, EVENT_RELEASE
     use strings_m, only: int_str, format_real, short_real
-    use material_m, only: nondim_t, nondim_groups
+    use material_m, only: time_scale
     use output_m, only: h5_writer_t
     use restart_m, only: read_checkpoint, copy_history
     use run_output_m, only: output_grid, write_series, write_dense_series, write_snapshot, write_dense_snapshots, &
@@ -102,7 +102,8 @@ contains
         end if
         call run%stepper%init(cfg, run%result)
         if (cfg%mesh%adaptive) call run%stepper%remesh(run%state)
-        call run%monitor%init(run%stepper%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, run%state)
+        call run%monitor%init(run%stepper%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, &
+                              run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
         if (cfg%output%error_estimate) then
             if (cfg%mesh%adaptive) then
@@ -172,9 +173,10 @@ contains
         type(progress_t) :: progress
         logical :: at_snapshot, last, remeshed, dense_at_end
         real(dp) :: t_before, scale
+        real(dp), allocatable :: t_land   !< the snapshot time the steps land on (none: not allocated)
 
         interrupted = stop_signal_name()
-        scale = time_scale(cfg)
+        scale = time_scale(cfg%material)
         call progress%start(merge(PROGRESS_UNITS, run%n_steps, cfg%time%adaptive), cfg%output%quiet, &
                             merge(' s', '  ', cfg%material%present))
         do
@@ -182,13 +184,10 @@ contains
             if (finished(run, cfg)) exit
             associate (state => run%state)
                 t_before = state%t
-                if (cfg%output%snapshot_dt > 0.0_dp .and. cfg%output%snapshot_land) then
-                    call run%driver%take_step(state, run%stepper, run%monitor, run%result, t_stop(run, cfg), &
-                                              at_snapshot, failure, real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt)
-                else
-                    call run%driver%take_step(state, run%stepper, run%monitor, run%result, t_stop(run, cfg), &
-                                              at_snapshot, failure)
-                end if
+                if (cfg%output%snapshot_dt > 0.0_dp .and. cfg%output%snapshot_land) &
+                    t_land = real(run%n_snapshot_next, dp) * cfg%output%snapshot_dt
+                call run%driver%take_step(state, run%stepper, run%monitor, run%result, t_stop(run, cfg), &
+                                          at_snapshot, failure, t_land)
                 if (failure /= '') exit
                 if (cfg%output%error_estimate) call run%companions%follow(state)
                 if (at_snapshot) run%n_snapshot_next = run%n_snapshot_next + 1
@@ -279,7 +278,7 @@ contains
         character(len=:), allocatable :: unit, system
 
         if (cfg%output%quiet) return
-        scale = time_scale(cfg)
+        scale = time_scale(cfg%material)
         unit = ''
         system = '; times nondimensional'
         if (cfg%material%present) then
@@ -294,18 +293,6 @@ contains
             ', wall '//short_real(wall)//' s'//system
         flush (error_unit)
     end subroutine report_end
-
-    !> The factor from the run's times to those it reports: with &material (SI) the time
-    !> scale omega of (2.10), in s; else 1.
-    real(dp) function time_scale(cfg) result(scale)
-        type(config_t), intent(in) :: cfg
-        type(nondim_t) :: groups
-
-        scale = 1.0_dp
-        if (.not. cfg%material%present) return
-        groups = nondim_groups(cfg%material)
-        scale = groups%omega
-    end function time_scale
 
     !> '<n> <name>s (first t = <t><unit>)' of the events of kind `kind` ('no <name>s' when none).
     pure function event_summary(times, kinds, kind, name, unit) result(text)
@@ -391,7 +378,8 @@ contains
         if (.not. cfg%time%adaptive .and. cfg%output%snapshot_dt <= 0.0_dp) then
             finished = run%state%step >= run%n_steps
         else
-            finished = run%state%t >= t_stop(run, cfg) - 1.0e-9_dp * merge(cfg%time%dt_min, cfg%time%dt, cfg%time%adaptive)
+            finished = run%state%t >= t_stop(run, cfg) - &
+                       1.0e-9_dp * merge(cfg%time%dt_min, cfg%time%dt, cfg%time%adaptive)
         end if
     end function finished
 

@@ -27,8 +27,7 @@ contains
     !> `overrides` ('group.variable=value', as after --set on the command line) is applied
     !> in turn, as if it were the only assignment of a group '&group ... /' read after the
     !> text (so a group the text does not have is fine, and an override of one array
-    !> element keeps the others). Only what the reader alone can know is checked here
-    !> (text, syntax, names, types, &material); value ranges are checked by validate_m.
+    !> element keeps the others).
     subroutine read_config(source, cfg, overrides)
         character(len=*), intent(in) :: source
         type(config_t), intent(out) :: cfg
@@ -159,13 +158,14 @@ contains
             ios = verify(text, '0123456789+-.eEdD ') + index(rest, ' ')   ! two numbers, nothing else
             if (ios == 0) read (text, *, iostat=ios) table(n, :)
             if (ios == 0 .and. .not. all(ieee_is_finite(table(n, :)))) ios = 1
-            if (ios /= 0) call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // int_str(k) // ': got ' // &
-                quoted(excerpt(text)) // '; each line must be two finite numbers, position and value, apart by ' // &
-                "blanks or a comma ('#' starts a comment)")
+            if (ios /= 0) call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // int_str(k) // &
+                ': got ' // quoted(excerpt(text)) // '; each line must be two finite numbers, position and ' // &
+                "value, apart by blanks or a comma ('#' starts a comment)")
             if (n > 1) then
-                if (table(n, 1) <= table(n - 1, 1)) call fatal(EXIT_INPUT, where, quoted(trim(file)) // ' line ' // &
-                    int_str(k) // ': position ' // excerpt(first) // ' after ' // format_real(table(n - 1, 1)) // &
-                    ' (line ' // int_str(last) // '); the positions must increase from row to row')
+                if (table(n, 1) <= table(n - 1, 1)) call fatal(EXIT_INPUT, where, quoted(trim(file)) // &
+                    ' line ' // int_str(k) // ': position ' // excerpt(first) // ' after ' // &
+                    format_real(table(n - 1, 1)) // ' (line ' // int_str(last) // &
+                    '); the positions must increase from row to row')
             end if
             last = k
         end do
@@ -189,7 +189,8 @@ contains
         value = assignment_value(grp, k)
         if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
         call fatal(EXIT_INPUT, grp%origin // trim(grp%name) // '.' // lower(name), &
-                   'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(var_kind(grp%name, name)) // &
+                   'got ' // quoted(excerpt(value)) // '; must be ' // &
+                   kind_description(var_kind(grp%name, name)) // &
                    ' (namelist read: ' // trim(msg) // ')')
     end subroutine check_read
 

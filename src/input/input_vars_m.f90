@@ -1,16 +1,11 @@
 !> The input variables as one table, INPUT_VARS (group, name, kind, unit), and the two
-!> routines that know which component of config_t holds each (get_value, read_namelist). The table
-!> drives the reader's checks and messages (known names, kinds, 'allowed: ...'), the
-!> namelist read of each assignment, the echo of &material, and the record of the inputs in
-!> the output file (input_items).
-!>
-!> Both are generated at build time from config_m's types (src/input/generate_input_vars.py
-!> writes input_vars_table.inc and input_vars_access.inc, included below): Fortran's
-!> namelist groups are static lists of declared variables, so read_namelist declares each
-!> input variable as a local of its name, lists it in its group's namelist statement and
-!> copies it from and back to its component of config_t; the generator writes those
-!> mentions and the table row from the one declaration in config_m. A new input variable is therefore one line in
-!> config_m (and its line in docs/input.md); everything here follows.
+!> routines that know which component of config_t holds each (get_value, read_namelist).
+!> The table drives the reader's checks and messages, the namelist read of each assignment,
+!> the echo of &material and the record of the inputs in the output file (input_items).
+!> Both are generated from config_m's types (its header says how) into the two files
+!> included below: a namelist group is a static list of declared variables, so
+!> read_namelist declares each input variable as a local of its name and copies it from and
+!> back to its component of config_t.
 module input_vars_m
     use kinds_m, only: dp
     use config_m, only: config_t, initial_t, MAX_POLY_DEGREE, LEN_NAME, LEN_PATH   ! read_namelist's locals
@@ -74,7 +69,8 @@ contains
             ! series_dt: the times of the /series entries; snapshot_land: whether steps land
             ! error_estimate: the checkpoint holds the companions or not
             changes_history = var%name == 'snapshot_dt' .or. var%name == 'n_points' .or. &
-                              var%name == 'series_dt' .or. var%name == 'snapshot_land' .or. var%name == 'error_estimate'
+                              var%name == 'series_dt' .or. var%name == 'snapshot_land' .or. &
+                              var%name == 'error_estimate'
         case default
             changes_history = .false.
         end select
@@ -88,7 +84,8 @@ contains
 
         kind = ' '
         do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group == group .and. lower(INPUT_VARS(k)%name) == lower(name)) kind = INPUT_VARS(k)%kind
+            if (INPUT_VARS(k)%group == group .and. lower(INPUT_VARS(k)%name) == lower(name)) &
+                kind = INPUT_VARS(k)%kind
         end do
     end function var_kind
 
@@ -204,7 +201,8 @@ contains
         case (KIND_LOGICAL)
             text = '.true. or .false.'
         case (KIND_COEFFS)
-            text = 'at most ' // int_str(MAX_POLY_DEGREE + 1) // ' real coefficients c0, c1, ... (of x**0, x**1, ...)'
+            text = 'at most ' // int_str(MAX_POLY_DEGREE + 1) // &
+                   ' real coefficients c0, c1, ... (of x**0, x**1, ...)'
         case (KIND_PAIR)
             text = 'two real numbers: amplitude, x_end'
         case default

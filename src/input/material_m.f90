@@ -12,7 +12,7 @@ module material_m
     implicit none
     private
     public :: nondim_t, nondim_groups, model_from_material, check_material, nondimensionalise
-    public :: si_scale_t, si_scales
+    public :: si_scale_t, si_scales, time_scale
 
     !> Nondimensional groups of (2.10) computed from &material.
     type :: nondim_t
@@ -65,11 +65,23 @@ contains
         scales(5) = si_scale_t('temperature', stiffness * nd%delta / nd%beta1, 'K')   ! of T - T0
         scales(6) = si_scale_t('chemical_potential', nd%beta2 * nd%delta, 'J/kg')
         scales(7) = si_scale_t('stress', stiffness * nd%delta / nd%a_check, 'Pa')
-        scales(8) = si_scale_t('heat_flux', mat%rho0 * mat%cE * nd%delta * mat%ell * stiffness / (nd%omega * nd%beta1), &
-                               'W/m^2')
+        scales(8) = si_scale_t('heat_flux', &
+                               mat%rho0 * mat%cE * nd%delta * mat%ell * stiffness / (nd%omega * nd%beta1), 'W/m^2')
         scales(9) = si_scale_t('diffusion_flux', mat%D * nd%beta2 * nd%delta / mat%ell, 'kg/(m^2 s)')
         scales(10) = si_scale_t('energy', mat%ell * stiffness * nd%delta**2 / nd%a_check, 'J/m^2')
     end function si_scales
+
+    !> The factor from a run's times to those of its input: with &material the time scale
+    !> omega of (2.10), in s; else 1.
+    pure real(dp) function time_scale(mat)
+        type(material_t), intent(in) :: mat
+        type(nondim_t) :: nd
+
+        time_scale = 1.0_dp
+        if (.not. mat%present) return
+        nd = nondim_groups(mat)
+        time_scale = nd%omega
+    end function time_scale
 
     !> The nondimensional groups of (2.10) for the physical quantities `mat`.
     pure function nondim_groups(mat) result(nd)
@@ -126,8 +138,9 @@ contains
         ! with &material the other inputs are SI too: an input written for the nondimensional
         ! system (g, dt, t_end, &initial) must not be read so unnoticed
         if (mat%units /= 'si') call fatal(EXIT_INPUT, 'material.units', 'got ' // quoted(trim(mat%units)) // &
-            "; must be 'SI': with &material every input that has a unit is in SI units (g and positions in m, " // &
-            "times in s, &initial in K, m, m/s, ...: docs/input.md); say so with units = 'SI' after converting " // &
+            "; must be 'SI': with &material every input that has a unit is in SI units " // &
+            "(g and positions in m, times in s, &initial in K, m, m/s, ...: docs/input.md); " // &
+            "say so with units = 'SI' after converting " // &
             'any nondimensional values, or leave &material out (then every input is nondimensional)')
         values = [mat%T0, mat%rho0, mat%cE, mat%kappa, mat%mu, mat%alpha_t, mat%alpha_c, mat%D, mat%varrho, &
                   mat%ell, mat%nu, mat%tau0, mat%tau, mat%lambda_v, mat%mu_v, mat%lambda]
@@ -169,24 +182,18 @@ contains
             call scale_down('time.dt_max', t%dt_max, s(1))
             call scale_down('output.snapshot_dt', o%snapshot_dt, s(1))
             call scale_down('output.series_dt', o%series_dt, s(1))
-            call scale_profile('initial.u0_poly', i%u0_poly, s(3))
-            call scale_profile('initial.u1_poly', i%u1_poly, s(4))
-            call scale_profile('initial.theta0_poly', i%theta0_poly, s(5))
-            call scale_profile('initial.p0_poly', i%p0_poly, s(6))
-            call scale_profile('initial.q0_poly', i%q0_poly, s(8))
-            call scale_profile('initial.eta0_poly', i%eta0_poly, s(9))
+            ! each profile: its coefficients, and its table's rows (position in m, value)
+            call scale_field('u0', i%u0_poly, i%u0_table, s(3), s(2))
+            call scale_field('u1', i%u1_poly, i%u1_table, s(4), s(2))
+            call scale_field('theta0', i%theta0_poly, i%theta0_table, s(5), s(2))
+            call scale_field('p0', i%p0_poly, i%p0_table, s(6), s(2))
+            call scale_field('q0', i%q0_poly, i%q0_table, s(8), s(2))
+            call scale_field('eta0', i%eta0_poly, i%eta0_table, s(9), s(2))
             ! the steps (amplitude, x_end): x_end in m
             call scale_down('initial.theta0_step(1)', i%theta0_step(1), s(5))
             call scale_down('initial.theta0_step(2)', i%theta0_step(2), s(2))
             call scale_down('initial.p0_step(1)', i%p0_step(1), s(6))
             call scale_down('initial.p0_step(2)', i%p0_step(2), s(2))
-            ! the tables' rows (position in m, value)
-            call scale_table(i%u0_table, s(2), s(3))
-            call scale_table(i%u1_table, s(2), s(4))
-            call scale_table(i%theta0_table, s(2), s(5))
-            call scale_table(i%p0_table, s(2), s(6))
-            call scale_table(i%q0_table, s(2), s(8))
-            call scale_table(i%eta0_table, s(2), s(9))
         end associate
         call echo_effects(cfg%material)
         flush (output_unit)
@@ -204,15 +211,19 @@ contains
         x = values(1)
     end subroutine scale_down
 
-    !> A table's rows (if any): positions over position%factor, values over value%factor.
-    subroutine scale_table(table, position, value)
+    !> The profile `name` of &initial: its coefficients over value%factor (echoed, scale_profile)
+    !> and its table's rows (if any), positions over position%factor, values over value%factor.
+    subroutine scale_field(name, poly, table, value, position)
+        character(len=*), intent(in) :: name
+        real(dp), intent(inout) :: poly(:)
         real(dp), allocatable, intent(inout) :: table(:, :)
-        type(si_scale_t), intent(in) :: position, value
+        type(si_scale_t), intent(in) :: value, position
 
+        call scale_profile('initial.' // name // '_poly', poly, value)
         if (.not. allocated(table)) return
         table(:, 1) = table(:, 1) / position%factor
         table(:, 2) = table(:, 2) / value%factor
-    end subroutine scale_table
+    end subroutine scale_field
 
     !> Coefficients (SI, in scale's units) divided by factor; echoed unless all are zero.
     subroutine scale_profile(name, values, scale)
@@ -225,8 +236,8 @@ contains
         values = values / scale%factor
         n = findloc(abs(values) > 0.0_dp, .true., dim=1, back=.true.)
         if (n == 0 .and. size(values) > 1) return
-        write (row, '(4x, a, t28, a, t40, "/ ", es12.5, " =", *(1x, es13.6))') name, '[' // trim(scale%units) // ']', &
-            scale%factor, values(:max(n, 1))
+        write (row, '(4x, a, t28, a, t40, "/ ", es12.5, " =", *(1x, es13.6))') &
+            name, '[' // trim(scale%units) // ']', scale%factor, values(:max(n, 1))
         write (output_unit, '(a)') trim(row)
     end subroutine scale_profile
 
@@ -238,13 +249,16 @@ contains
         type(model_t) :: paper
 
         nd = nondim_groups(mat)
-        if (.not. mat%lambda_v + 2.0_dp * mat%mu_v > 0.0_dp) write (output_unit, '(2x, a)') 'off: viscosity ' // &
-            '(lambda_v + 2 mu_v = 0; varpi = ' // format_real(paper%varpi) // ' of (7.1) is lambda_v + 2 mu_v = ' // &
+        if (.not. mat%lambda_v + 2.0_dp * mat%mu_v > 0.0_dp) write (output_unit, '(2x, a)') &
+            'off: viscosity (lambda_v + 2 mu_v = 0; varpi = ' // format_real(paper%varpi) // &
+            ' of (7.1) is lambda_v + 2 mu_v = ' // &
             format_real(paper%varpi * nd%omega * (mat%lambda + 2.0_dp * mat%mu) / nd%a_check) // ' Pa s)'
-        if (.not. mat%tau0 > 0.0_dp) write (output_unit, '(2x, a)') 'off: second sound (tau0 = 0: Fourier''s law; ' // &
-            'tau0* = ' // format_real(paper%tau0) // ' of (7.1) is tau0 = ' // format_real(paper%tau0 * nd%omega) // ' s)'
-        if (.not. mat%tau > 0.0_dp) write (output_unit, '(2x, a)') 'off: diffusion relaxation (tau = 0: Fick''s law; ' // &
-            'tau* = ' // format_real(paper%tau) // ' of (7.1) is tau = ' // format_real(paper%tau * nd%omega) // ' s)'
+        if (.not. mat%tau0 > 0.0_dp) write (output_unit, '(2x, a)') &
+            'off: second sound (tau0 = 0: Fourier''s law; tau0* = ' // format_real(paper%tau0) // &
+            ' of (7.1) is tau0 = ' // format_real(paper%tau0 * nd%omega) // ' s)'
+        if (.not. mat%tau > 0.0_dp) write (output_unit, '(2x, a)') &
+            'off: diffusion relaxation (tau = 0: Fick''s law; tau* = ' // format_real(paper%tau) // &
+            ' of (7.1) is tau = ' // format_real(paper%tau * nd%omega) // ' s)'
     end subroutine echo_effects
 
     !> Echo the physical values of cfg%material, the nondimensional groups nd computed from

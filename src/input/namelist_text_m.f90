@@ -11,7 +11,7 @@ module namelist_text_m
     use, intrinsic :: iso_fortran_env, only: input_unit, iostat_end, iostat_eor
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use config_m, only: LEN_NAME, LEN_PATH
-    use strings_m, only: lower, squeeze, excerpt, quoted, quoted_string, identifier_at, is_name_char, int_str
+    use strings_m, only: lower, squeeze, excerpt, quoted, doubled_quotes, identifier_at, is_name_char, int_str
     use input_vars_m, only: GROUP_NAMES, KIND_COEFFS, KIND_PAIR, KIND_STRING, group_list, var_list, var_kind, &
                             kind_description
     implicit none
@@ -58,7 +58,8 @@ contains
         else
             ! gfortran opens a directory without complaint and then reads nothing from it
             inquire (file=trim(source) // '/.', exist=is_directory)
-            if (is_directory) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': it is a directory")
+            if (is_directory) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // &
+                                         "': it is a directory")
             msg = ''
             open (newunit=unit, file=trim(source), status='old', action='read', iostat=ios, iomsg=msg)
             if (ios /= 0) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': " // trim(msg))
@@ -95,7 +96,8 @@ contains
             if (ios == iostat_end .and. len(line) == 0) exit
             if (n == size(lines)) then
                 allocate (grown(2 * n), stat=ios, errmsg=msg)
-                call check_allocation(ios, msg, 'the lines of ' // what // ' (' // int_str(n) // ' lines so far)')
+                call check_allocation(ios, msg, 'the lines of ' // what // ' (' // int_str(n) // &
+                                      ' lines so far)')
                 grown(:n) = lines
                 call move_alloc(grown, lines)
             end if
@@ -158,7 +160,8 @@ contains
                         else if (ch /= ' ') then
                             call fatal(EXIT_INPUT, 'input', 'text outside a namelist group at line ' // &
                                        int_str(i) // ": '" // excerpt(lines(i)%s(j:)) // "'; every group " // &
-                                       "starts with '&name' (name one of " // group_list() // ") and ends with '/'")
+                                       "starts with '&name' (name one of " // group_list() // &
+                                       ") and ends with '/'")
                         end if
                     else if (quote /= ' ') then
                         if (ch == quote) quote = ' '
@@ -183,8 +186,8 @@ contains
             end do
         end do
         if (current%line > 0) call fatal(EXIT_INPUT, trim(current%name), 'group &' // trim(current%name) // &
-                                         ' (line ' // int_str(current%line) // ") is not closed: missing '/' " // &
-                               'at its end (or a quoted string without its closing quote)')
+            ' (line ' // int_str(current%line) // ") is not closed: missing '/' at its end " // &
+            '(or a quoted string without its closing quote)')
     end subroutine find_groups
 
     !> A group name must be one of GROUP_NAMES and not seen before.
@@ -197,10 +200,10 @@ contains
         do k = size(groups), 1, -1   ! a loop: findloc on groups%name copies the strided names (Debug warns)
             if (groups(k)%name == name) exit
         end do
-        if (len(name) == 0) call fatal(EXIT_INPUT, 'input', "'&' without a group name at line " // int_str(line) // &
-                                       '; allowed groups: ' // group_list())
-        if (.not. any(GROUP_NAMES == name)) call fatal(EXIT_INPUT, 'input', "unknown namelist group '&" // name // &
-                                                       "' at line " // int_str(line) // '; allowed groups: ' // group_list())
+        if (len(name) == 0) call fatal(EXIT_INPUT, 'input', "'&' without a group name at line " // &
+                                       int_str(line) // '; allowed groups: ' // group_list())
+        if (.not. any(GROUP_NAMES == name)) call fatal(EXIT_INPUT, 'input', "unknown namelist group '&" // &
+            name // "' at line " // int_str(line) // '; allowed groups: ' // group_list())
         if (k > 0) call fatal(EXIT_INPUT, name, 'group &' // name // ' given twice (lines ' // &
             int_str(groups(k)%line) // ' and ' // int_str(line) // '); each group may appear at most once')
     end subroutine check_group_name
@@ -356,10 +359,9 @@ contains
             if (code /= KIND_COEFFS .and. code /= KIND_PAIR) call fatal(EXIT_INPUT, where, "'" // name // &
                 "' is not an array; give " // trim(set%name) // '.' // lower(name) // '=value (must be ' // &
                 kind_description(code) // ')')
-            if (len(subscript) < 3 .or. subscript(1:1) /= '(' .or. subscript(len(subscript):) /= ')') &
-                call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
-                           excerpt(lhs) // "'")
-            if (verify(subscript(2:len(subscript) - 1), '0123456789') /= 0) &
+            ! '(', digits, ')' (subscript(2:len - 1) is '' when len < 3)
+            if (len(subscript) < 3 .or. subscript(1:1) /= '(' .or. subscript(len(subscript):) /= ')' .or. &
+                verify(subscript(2:len(subscript) - 1), '0123456789') /= 0) &
                 call fatal(EXIT_INPUT, where, "expected a subscript like '" // name // "(1)', got '" // &
                            excerpt(lhs) // "'")
         end if
@@ -368,11 +370,12 @@ contains
             if (len(value) == 0) then
                 value = "''"
             else if (scan(value(1:1), '''"') == 0) then
-                value = quoted_string(value)
+                value = doubled_quotes(value, "'")   ! a namelist string: an inner ' doubled
             end if
         else if (scan(value, '/&$=!''"') > 0) then
             ! any of these would end the assignment or the group early in the namelist text
-            call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // kind_description(code))
+            call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // &
+                       kind_description(code))
         end if
         ! the body of '&group lhs = value /'
         set%body = ' ' // lhs // ' = ' // value // ' '

@@ -104,8 +104,8 @@ contains
         if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
                                                       '; must be a finite real number')
         if (.not. (step(2) >= 0.0_dp .and. step(2) <= length)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
-            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: need 0 <= x_end <= ' // &
-            format_real(length) // ' (the rod''s length: 1, or material.ell in m)')
+            format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: ' // &
+            'need 0 <= x_end <= ' // format_real(length) // ' (the rod''s length: 1, or material.ell in m)')
     end subroutine require_step
 
     !> An initial datum x, given as `what`, finite and at most MAX_MAGNITUDE in magnitude;
@@ -172,8 +172,9 @@ contains
             if (abs(profile(poly=poly, x=x, step=step) - profile(poly=poly, x=x)) > 0.0_dp) &
                 where = 'initial.' // name // '_step'
         end if
-        call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // format_real(value) // what // &
-                   '; must be 0 at x = ' // format_real(x) // ' (boundary condition ' // why // ')')
+        call fatal(EXIT_INPUT, where, 'got ' // name // '(' // format_real(x) // ') = ' // &
+                   format_real(value) // what // '; must be 0 at x = ' // format_real(x) // &
+                   ' (boundary condition ' // why // ')')
     end subroutine require_boundary_zero
 
 end module validate_initial_m

@@ -77,8 +77,9 @@ contains
             'use every other and every fourth node; on an adaptive mesh, coarse meshes of n_elements / 2 ' // &
             'and n_elements / 4 elements)')
         if (cfg%output%snapshot_dt > 0.0_dp .and. .not. cfg%output%snapshot_land) call fatal(EXIT_INPUT, &
-            'output.error_estimate', 'got .true. with output.snapshot_land = .false.; the built-in estimate is ' // &
-            'that of the levels the steps reach: let the steps land on the snapshot times (snapshot_land = .true.)')
+            'output.error_estimate', 'got .true. with output.snapshot_land = .false.; the built-in ' // &
+            'estimate is that of the levels the steps reach: let the steps land on the snapshot times ' // &
+            '(snapshot_land = .true.)')
     end subroutine validate_error_estimate
 
     ! ---------------------------------------------------------------- one check per group
@@ -101,8 +102,8 @@ contains
         call require_real(m%hbar, 'model.hbar', DIVISOR, note)
         call require_real(m%tau0, 'model.tau0', NONNEGATIVE, note)
         call require_real(m%tau, 'model.tau', NONNEGATIVE, note)
-        if (.not. m%c * m%r - m%d**2 > 0.0_dp) call fatal(EXIT_INPUT, 'model.d', 'got d = ' // format_real(m%d) // &
-            ' with c = ' // format_real(m%c) // ', r = ' // format_real(m%r) // ': c*r - d**2 = ' // &
+        if (.not. m%c * m%r - m%d**2 > 0.0_dp) call fatal(EXIT_INPUT, 'model.d', 'got d = ' // &
+            format_real(m%d) // ' with c = ' // format_real(m%c) // ', r = ' // format_real(m%r) // ': c*r - d**2 = ' // &
             format_real(m%c * m%r - m%d**2) // '; condition (2.16) needs c*r - d**2 > 0' // note)
     end subroutine validate_model
 
@@ -127,14 +128,15 @@ contains
             int_str(MAX_MESH_LEVEL) // ' (bisections of a coarse element)')
         call require_at_least(mesh%remesh_every, 1, 'mesh.remesh_every')
         if (mesh%adaptive .and. real(mesh%n_elements, dp) * 2.0_dp**mesh%max_level > MAX_FINE_ELEMENTS) &
-            call fatal(EXIT_INPUT, 'mesh.max_level', 'got ' // int_str(mesh%max_level) // ' with n_elements = ' // &
-            int_str(mesh%n_elements) // ': the finest elements would be 1/' // &
+            call fatal(EXIT_INPUT, 'mesh.max_level', 'got ' // int_str(mesh%max_level) // &
+            ' with n_elements = ' // int_str(mesh%n_elements) // ': the finest elements would be 1/' // &
             int_str(int(min(real(mesh%n_elements, dp) * 2.0_dp**mesh%max_level, 2.0e9_dp))) // &
             ' long; n_elements * 2**max_level must be at most ' // int_str(int(MAX_FINE_ELEMENTS)))
         bytes = 8.0_dp * REALS_PER_NODE * (real(mesh%n_elements, dp) + 1.0_dp)
         if (bytes > MEMORY_LIMIT) call fatal(EXIT_INPUT, 'mesh.n_elements', 'got ' // int_str(mesh%n_elements) // &
-            '; the arrays would need about ' // gib_str(bytes) // ' GiB, more than the ' // gib_str(MEMORY_LIMIT) // &
-            ' GiB allowed; must be at most ' // int_str(int(MEMORY_LIMIT / (8.0_dp * REALS_PER_NODE)) - 1))
+            '; the arrays would need about ' // gib_str(bytes) // ' GiB, more than the ' // &
+            gib_str(MEMORY_LIMIT) // ' GiB allowed; must be at most ' // &
+            int_str(int(MEMORY_LIMIT / (8.0_dp * REALS_PER_NODE)) - 1))
     end subroutine validate_mesh
 
     !> n_steps: the number of time steps, about t_end/dt (for the output size estimate).
@@ -168,11 +170,11 @@ contains
             'relative to the largest energy norm of the solution so far (e.g. 1e-5)')
         call require_real(time%dt_min, 'time.dt_min', DIVISOR)
         call require_real(time%dt_max, 'time.dt_max', DIVISOR)
-        if (time%dt_min > time%dt_max) call fatal(EXIT_INPUT, 'time.dt_min', 'got ' // format_real(time%dt_min) // &
-            ' > dt_max = ' // format_real(time%dt_max) // '; must be <= dt_max')
+        if (time%dt_min > time%dt_max) call fatal(EXIT_INPUT, 'time.dt_min', 'got ' // &
+            format_real(time%dt_min) // ' > dt_max = ' // format_real(time%dt_max) // '; must be <= dt_max')
         if (time%dt < time%dt_min .or. time%dt > time%dt_max) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
-            format_real(time%dt) // ' with adaptive = .true.; the first step must lie in [dt_min, dt_max] = [' // &
-            format_real(time%dt_min) // ', ' // format_real(time%dt_max) // ']')
+            format_real(time%dt) // ' with adaptive = .true.; the first step must lie in ' // &
+            '[dt_min, dt_max] = [' // format_real(time%dt_min) // ', ' // format_real(time%dt_max) // ']')
     end subroutine validate_step_control
 
     !> The paper's Section 7 iteration is implicit Euler with a lagged contact force: it has
@@ -233,7 +235,8 @@ contains
         nodes = real(n_elements, dp) + 1.0_dp
         if (output%n_points > 0) nodes = real(output%n_points, dp)
         if (output%snapshot_dt > 0.0_dp) then
-            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
+            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * &
+                             (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
         else
             snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
         end if
@@ -246,8 +249,9 @@ contains
         if (series_bytes > snapshot_bytes) where = 'output.series_every'
         if (series_bytes > snapshot_bytes .and. output%series_dt > 0.0_dp) where = 'output.series_dt'
         if (total > OUTPUT_LIMIT) call fatal(EXIT_INPUT, where, 'the output file would be about ' // &
-            gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots, ' // gib_str(series_bytes) // &
-            ' GiB of series), more than the ' // gib_str(OUTPUT_LIMIT) // ' GiB allowed; raise ' // where)
+            gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots, ' // &
+            gib_str(series_bytes) // ' GiB of series), more than the ' // gib_str(OUTPUT_LIMIT) // &
+            ' GiB allowed; raise ' // where)
         if (total > OUTPUT_WARN) then
             write (error_unit, '(a)') 'rodcontact: warning: ' // trim(output%prefix) // '.h5 will be about ' // &
                 gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots); raise ' // where // &
@@ -319,7 +323,8 @@ contains
         integer, intent(in) :: n, n_min
         character(len=*), intent(in) :: where
 
-        if (n < n_min) call fatal(EXIT_INPUT, where, 'got ' // int_str(n) // '; must be an integer >= ' // int_str(n_min))
+        if (n < n_min) call fatal(EXIT_INPUT, where, 'got ' // int_str(n) // '; must be an integer >= ' // &
+                                  int_str(n_min))
     end subroutine require_at_least
 
     subroutine require_one_of(value, allowed, where)

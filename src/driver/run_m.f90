@@ -114,12 +114,12 @@ contains
         end if
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt, run%in_place)
-            if (ckpt%has('run/wall_seconds')) call ckpt%get('run/wall_seconds', run%wall_before)
+            if (ckpt%has('run/wall_seconds')) call ckpt%sync('run/wall_seconds', run%wall_before)
             call run%state%checkpoint(ckpt, 'state')
             call run%state%mesh%checkpoint(ckpt)
             if (cfg%mesh%adaptive) then
                 call run%mesh%checkpoint(ckpt)
-                call ckpt%get('run/n_elements_max', run%n_elements_max)
+                call ckpt%sync('run/n_elements_max', run%n_elements_max)
                 call set_mesh(run%state, run%mesh%nodes())
                 call run%stepper%remesh(run%state)
                 call run%monitor%resize(run%state)
@@ -318,6 +318,7 @@ contains
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
         type(checkpoint_t) :: ckpt
+        real(dp) :: wall
 
         call run%state%checkpoint(ckpt, 'state')
         call run%state%mesh%checkpoint(ckpt)
@@ -326,10 +327,11 @@ contains
         call run%driver%checkpoint(ckpt)
         if (cfg%mesh%adaptive) then
             call run%mesh%checkpoint(ckpt)
-            call ckpt%put('run/n_elements_max', run%n_elements_max)
+            call ckpt%sync('run/n_elements_max', run%n_elements_max)
         end if
         if (cfg%output%error_estimate) call run%companions%checkpoint(ckpt)
-        call ckpt%put('run/wall_seconds', wall_seconds(run))
+        wall = wall_seconds(run)
+        call ckpt%sync('run/wall_seconds', wall)
         call run%writer%write_checkpoint(ckpt, run%driver%step_label(run%state%step, run%state%t, ''))
     end subroutine checkpoint
 

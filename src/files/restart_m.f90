@@ -67,8 +67,8 @@ contains
         call require_history_datasets(file)
         call read_entries(file, '/checkpoint/slot'//int_str(slot), ckpt)
         call require_fit(file, cfg, ckpt)
-        call ckpt%get('state/t', t)
-        call ckpt%get('state/step', step)
+        call ckpt%sync('state/t', t)
+        call ckpt%sync('state/step', step)
         if (ends_before(cfg, t, step)) &
             call fatal(EXIT_INPUT, 'time.t_end', 'got '//format_real(cfg%time%t_end)//"; the checkpoint in '"//file// &
                        "' is at t = "//format_real(t)//' (step '//int_str(step)//'): a restart continues a run '// &

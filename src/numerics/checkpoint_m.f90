@@ -30,12 +30,10 @@ module checkpoint_m
         character(len=:), allocatable :: source   !< the file it was read from, for messages
         type(entry_t), allocatable :: entries(:)
     contains
-        generic :: put => put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
-        generic :: get => get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
+        generic :: put => put_reals, put_real2, put_ints
+        generic :: get => get_reals, get_real2, get_ints
         procedure :: add, has, find, sync
-        procedure, private :: word
-        procedure, private :: put_real, put_reals, put_real2, put_int, put_int64, put_ints, put_flag
-        procedure, private :: get_real, get_reals, get_real2, get_int, get_int64, get_ints, get_flag
+        procedure, private :: put_reals, put_real2, put_ints, get_reals, get_real2, get_ints
     end type checkpoint_t
 
 contains
@@ -96,48 +94,43 @@ contains
 
     !> An owner's one checkpoint routine names each scalar entry once: sync puts value into a
     !> checkpoint being saved and gets it back from one being read (reading), so that saving
-    !> and restoring cannot disagree. value: real(dp), integer, integer(int64) or logical.
+    !> and restoring cannot disagree. value: real(dp), integer, integer(int64) or logical (the
+    !> integer 0 or 1 under name//'_flag'); an entry is one 64-bit word (entry_t).
     subroutine sync(self, name, value)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
         class(*), intent(inout) :: value
-
-        select type (value)
-        type is (real(dp))
-            if (self%reading) call self%get(name, value)
-            if (.not. self%reading) call self%put(name, value)
-        type is (integer)
-            if (self%reading) call self%get(name, value)
-            if (.not. self%reading) call self%put(name, value)
-        type is (integer(int64))
-            if (self%reading) call self%get(name, value)
-            if (.not. self%reading) call self%put(name, value)
-        type is (logical)
-            if (self%reading) call self%get(name, value)
-            if (.not. self%reading) call self%put(name, value)
-        class default
-            call fatal(EXIT_INPUT, 'checkpoint', 'internal error: the type of '//name)
-        end select
-    end subroutine sync
-
-    !> The one word of scalar entry `name` (find's refusals).
-    integer(int64) function word(self, name, is_integer)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        logical, intent(in) :: is_integer
         type(entry_t) :: entry
 
-        entry = self%find(name, is_integer, 0)
-        word = entry%values(1)
-    end function word
-
-    subroutine put_real(self, name, value)
-        class(checkpoint_t), intent(inout) :: self
-        character(len=*), intent(in) :: name
-        real(dp), intent(in) :: value
-
-        call self%add(entry_t(name, .false., 0, [1, 1], [transfer(value, 0_int64)]))
-    end subroutine put_real
+        entry = entry_t(name, .true., 0, [1, 1], [0_int64])
+        select type (value)
+        type is (real(dp))
+            entry%is_integer = .false.
+            entry%values = transfer(value, 0_int64)
+        type is (integer)
+            entry%values = int(value, int64)
+        type is (integer(int64))
+            entry%values = value
+        type is (logical)
+            entry%name = name//'_flag'
+            entry%values = merge(1_int64, 0_int64, value)
+        end select
+        if (.not. self%reading) then
+            call self%add(entry)
+            return
+        end if
+        entry = self%find(entry%name, entry%is_integer, 0)
+        select type (value)
+        type is (real(dp))
+            value = transfer(entry%values(1), value)
+        type is (integer)
+            value = int(entry%values(1))
+        type is (integer(int64))
+            value = entry%values(1)
+        type is (logical)
+            value = entry%values(1) /= 0
+        end select
+    end subroutine sync
 
     subroutine put_reals(self, name, values)
         class(checkpoint_t), intent(inout) :: self
@@ -156,22 +149,6 @@ contains
         call self%add(entry_t(name, .false., 2, shape(values), transfer(values, 0_int64, size(values))))
     end subroutine put_real2
 
-    subroutine put_int(self, name, value)
-        class(checkpoint_t), intent(inout) :: self
-        character(len=*), intent(in) :: name
-        integer, intent(in) :: value
-
-        call self%add(entry_t(name, .true., 0, [1, 1], [int(value, int64)]))
-    end subroutine put_int
-
-    subroutine put_int64(self, name, value)
-        class(checkpoint_t), intent(inout) :: self
-        character(len=*), intent(in) :: name
-        integer(int64), intent(in) :: value
-
-        call self%add(entry_t(name, .true., 0, [1, 1], [value]))
-    end subroutine put_int64
-
     subroutine put_ints(self, name, values)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
@@ -179,23 +156,6 @@ contains
 
         call self%add(entry_t(name, .true., 1, [size(values), 1], values))
     end subroutine put_ints
-
-    !> A logical, as the integer 1 (true) or 0 under a name ending in _flag.
-    subroutine put_flag(self, name, flag)
-        class(checkpoint_t), intent(inout) :: self
-        character(len=*), intent(in) :: name
-        logical, intent(in) :: flag
-
-        call self%add(entry_t(name//'_flag', .true., 0, [1, 1], [merge(1_int64, 0_int64, flag)]))
-    end subroutine put_flag
-
-    subroutine get_real(self, name, value)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        real(dp), intent(out) :: value
-
-        value = transfer(self%word(name, .false.), value)
-    end subroutine get_real
 
     subroutine get_reals(self, name, values)
         class(checkpoint_t), intent(in) :: self
@@ -217,22 +177,6 @@ contains
         values = reshape(transfer(entry%values, 0.0_dp, size(entry%values)), entry%dims)
     end subroutine get_real2
 
-    subroutine get_int(self, name, value)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        integer, intent(out) :: value
-
-        value = int(self%word(name, .true.))
-    end subroutine get_int
-
-    subroutine get_int64(self, name, value)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        integer(int64), intent(out) :: value
-
-        value = self%word(name, .true.)
-    end subroutine get_int64
-
     subroutine get_ints(self, name, values)
         class(checkpoint_t), intent(in) :: self
         character(len=*), intent(in) :: name
@@ -242,14 +186,5 @@ contains
         entry = self%find(name, .true., 1)
         values = entry%values
     end subroutine get_ints
-
-    !> The logical put_flag wrote under name//'_flag'.
-    subroutine get_flag(self, name, flag)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        logical, intent(out) :: flag
-
-        flag = self%word(name//'_flag', .true.) /= 0
-    end subroutine get_flag
 
 end module checkpoint_m

@@ -84,17 +84,17 @@ contains
         call check('a rejected step is retried smaller (0.45 dt for err = 8, order 2, down to the ladder: ' // &
                    '2^(-4/3) dt)', abs(c%proposal() - 0.01_dp * 2.0_dp**(-4.0_dp / 3.0_dp)) < 1.0e-15_dp .and. &
                    n_rejected == 1)
-        call c%accept(c%proposal(), 1.0e-6_dp)
+        call c%accept(c%proposal(), 0.0_dp, 1.0e-6_dp)
         call check('no growth on the step right after a rejection', &
                    abs(c%proposal() - 0.01_dp * 2.0_dp**(-4.0_dp / 3.0_dp)) < 1.0e-15_dp)
-        call c%accept(0.0045_dp, 1.0e-6_dp)
+        call c%accept(0.0045_dp, 0.0_dp, 1.0e-6_dp)
         call check('a quiet step grows dt by the largest factor, 2 (0.009, down to the ladder: 2^(-1/3) 0.01)', &
                    abs(c%proposal() - 0.01_dp * 2.0_dp**(-1.0_dp / 3.0_dp)) < 1.0e-15_dp)
-        call c%accept(0.01_dp, 1.0e-6_dp)
+        call c%accept(0.01_dp, 0.0_dp, 1.0e-6_dp)
         call check('a step on the ladder that doubles stays on it (0.02)', abs(c%proposal() - 0.02_dp) < 1.0e-15_dp)
-        call c%accept(0.009_dp, 0.5_dp)
+        call c%accept(0.009_dp, 0.0_dp, 0.5_dp)
         call check('err = 0.5 (growth 1.13 < 1.25): dt is kept', abs(c%proposal() - 0.009_dp) < 1.0e-15_dp)
-        call c%accept(0.09_dp, 0.0_dp)
+        call c%accept(0.09_dp, 0.0_dp, 0.0_dp)
         call check('growth stops at dt_max', abs(c%proposal() - 0.1_dp) < 1.0e-15_dp)
         call c%reject(2.0e-6_dp, 1.0e6_dp)
         call check('shrinking stops at dt_min', abs(c%proposal() - 1.0e-6_dp) < 1.0e-18_dp)
@@ -118,9 +118,9 @@ contains
                     scale=1.0_dp)
         call c%reject(0.01_dp, 8.0_dp)
         dt_retry = c%proposal()
-        call c%accept(dt_retry, 1.0e-6_dp)
+        call c%accept(dt_retry, 0.0_dp, 1.0e-6_dp)
         do k = 1, 3
-            call c%accept(c%proposal(), 1.0e-6_dp)
+            call c%accept(c%proposal(), 0.0_dp, 1.0e-6_dp)
         end do
         expected = 8.0_dp * dt_retry
         write (detail, '(a,es24.16,a,es24.16)') 'got ', c%proposal(), ', expected ', expected
@@ -143,14 +143,12 @@ contains
         ! counters and sums none of which is the default or equal to another
         call c%init(time_t(dt=0.01_dp, error_tol=1.0e-4_dp, dt_min=1.0e-8_dp, dt_max=0.5_dp), time_scheme('bdf2'))
         call c%observe_size(3.75_dp)
-        do j = 1, 17
-            call c%add_estimate(0.001_dp * real(j, dp))
+        do j = 1, 17   ! the first two forced (err > 1, accepted at dt_min)
+            call c%accept(0.01_dp, 0.001_dp * real(j, dp), merge(1.5_dp, 0.5_dp, j <= 2))
         end do
         do j = 1, 5
             call c%reject(0.01_dp, 1.5_dp)
         end do
-        call c%count_forced()
-        call c%count_forced()
         ! the last reject leaves a proposal below 0.01 and no growth on the next step
         dt_held = c%proposal()
         call e%init(time_scheme('bdf2'), SC)
@@ -180,8 +178,8 @@ contains
         call check('checkpoint: the estimator''s levels and steps restored (saved again: the same arrays)', &
                    same_entries(ckpt2, ckpt) .and. e2%n_levels == e%n_levels)
         ! no_growth: a quiet step right after the restart keeps dt, as it would have without one
-        call c%accept(dt_held, 1.0e-6_dp)
-        call c2%accept(dt_held, 1.0e-6_dp)
+        call c%accept(dt_held, 0.0_dp, 1.0e-6_dp)
+        call c2%accept(dt_held, 0.0_dp, 1.0e-6_dp)
         call check('checkpoint: no growth after a rejection restored', &
                    abs(c2%proposal() - c%proposal()) <= 0.0_dp .and. abs(c2%proposal() - dt_held) <= 0.0_dp)
     end subroutine checkpoint_checks

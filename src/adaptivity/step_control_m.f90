@@ -46,8 +46,6 @@ module step_control_m
         procedure :: accept => controller_accept
         procedure :: reject => controller_reject
         procedure :: proposal => controller_proposal
-        procedure :: add_estimate => controller_add_estimate
-        procedure :: count_forced => controller_count_forced
         procedure :: observe_size => controller_observe_size
         procedure :: counts => controller_counts
         procedure :: checkpoint => controller_checkpoint
@@ -88,22 +86,6 @@ contains
         end if
     end function controller_proposal
 
-    !> An accepted step had the estimate est: into the run's time error (error_sum).
-    subroutine controller_add_estimate(self, est)
-        class(step_controller_t), intent(inout) :: self
-        real(dp), intent(in) :: est
-
-        self%error_sum = self%error_sum + est
-        self%n_estimated = self%n_estimated + 1
-    end subroutine controller_add_estimate
-
-    !> A step was accepted at dt_min although its estimate exceeded the tolerance.
-    subroutine controller_count_forced(self)
-        class(step_controller_t), intent(inout) :: self
-
-        self%n_forced = self%n_forced + 1
-    end subroutine controller_count_forced
-
     !> The accepted level has the energy norm |X^n|_E: S = max(S, |X^n|_E).
     subroutine controller_observe_size(self, norm)
         class(step_controller_t), intent(inout) :: self
@@ -134,15 +116,22 @@ contains
         ratio = est / max(self%tol * self%scale, tiny(1.0_dp))
     end function controller_ratio
 
-    !> A step of size dt was accepted with error ratio err (negative: no estimate, the step
-    !> size is kept): the next proposal. shortened: the step was shortened to land on an
-    !> output time, which says nothing against the proposal it was shortened from.
-    subroutine controller_accept(self, dt, err, shortened)
+    !> A step of size dt was accepted with estimate est and error ratio err (negative: no
+    !> estimate, the step size is kept): est into the run's time error (error_sum), counted
+    !> as forced if err > 1 (accepted at dt_min), and the next proposal. shortened: the step
+    !> was shortened to land on an output time, which says nothing against the proposal it
+    !> was shortened from.
+    subroutine controller_accept(self, dt, est, err, shortened)
         class(step_controller_t), intent(inout) :: self
-        real(dp), intent(in) :: dt, err
+        real(dp), intent(in) :: dt, est, err
         logical, intent(in), optional :: shortened
         real(dp) :: factor, proposal
 
+        if (err >= 0.0_dp) then
+            self%error_sum = self%error_sum + est
+            self%n_estimated = self%n_estimated + 1
+        end if
+        if (err > 1.0_dp) self%n_forced = self%n_forced + 1
         proposal = self%dt_next
         self%dt_next = dt
         if (err >= 0.0_dp .and. .not. self%no_growth) then

@@ -169,9 +169,8 @@ contains
             return
         end if
         retry = .false.
-        if (trial%err > 1.0_dp) then
-            call self%control%count_forced()
-            if (.not. self%warned_forced) call warn_forced(state%t, self%dt_min)
+        if (trial%err > 1.0_dp .and. .not. self%warned_forced) then
+            call warn_forced(state%t, self%dt_min)
             self%warned_forced = .true.
         end if
     end subroutine judge
@@ -266,9 +265,9 @@ contains
             end associate
             self%saved_without_level = .false.
         end if
-        if (trial%err >= 0.0_dp) call self%control%add_estimate(trial%est)
         ! a step cut to end at an event, and the event's step, keep the proposal from before
-        call self%control%accept(trial%dt, trial%err, shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
+        call self%control%accept(trial%dt, trial%est, trial%err, &
+                                 shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
     end subroutine keep_level
 
     !> A rejected step: the state as before it, and the step's contact count taken back.

@@ -21,9 +21,12 @@ module events_m
     !> penalty release) is then met short step after step, each linear location falling short
     real(dp), parameter :: LINEAR_CUT_MIN = 1.0e-2_dp
 
-    !> The events of a run, in order (a run has few: each is appended).
+    !> The events of a run, in order: the first n of t and kind, which grow by doubling (a
+    !> contact that chatters under adaptive steps can log an event every other step, and
+    !> appending them one at a time made such a run quadratic in its events)
     type :: event_log_t
         private
+        integer :: n = 0
         real(dp), allocatable :: t(:)
         integer, allocatable :: kind(:)
     contains
@@ -41,8 +44,14 @@ contains
         real(dp), intent(in) :: t
         integer, intent(in) :: kind
 
-        self%t = [self%times(), t]
-        self%kind = [self%kinds(), kind]
+        if (.not. allocated(self%t)) allocate (self%t(8), self%kind(8))
+        if (self%n == size(self%t)) then
+            self%t = [self%t, self%t]
+            self%kind = [self%kind, self%kind]
+        end if
+        self%n = self%n + 1
+        self%t(self%n) = t
+        self%kind(self%n) = kind
     end subroutine log_add
 
     !> The event times.
@@ -51,7 +60,7 @@ contains
         real(dp), allocatable :: t(:)
 
         t = [real(dp) ::]
-        if (allocated(self%t)) t = self%t
+        if (allocated(self%t)) t = self%t(:self%n)
     end function log_times
 
     !> The event kinds (EVENT_ONSET, EVENT_RELEASE).
@@ -60,7 +69,7 @@ contains
         integer, allocatable :: kind(:)
 
         kind = [integer ::]
-        if (allocated(self%kind)) kind = self%kind
+        if (allocated(self%kind)) kind = self%kind(:self%n)
     end function log_kinds
 
     !> The log into a checkpoint, or back from one (checkpoint_m's reading): events/t and
@@ -74,6 +83,7 @@ contains
             call ckpt%get('events/t', self%t)
             call ckpt%get('events/kind', kind)
             self%kind = int(kind)
+            self%n = size(self%t)
         else
             call ckpt%put('events/t', self%times())
             call ckpt%put('events/kind', int(self%kinds(), int64))

@@ -5,6 +5,7 @@ program rodcontact
     use iso_fortran_env, only: output_unit
     use config_m, only: config_t
     use config_reader_m, only: read_config
+    use namelist_text_m, only: string_t
     use validate_m, only: validate_config
     use material_m, only: nondimensionalise
     use time_scheme_m, only: scheme_rules
@@ -16,29 +17,18 @@ program rodcontact
     implicit none
     type(config_t) :: cfg
     character(len=:), allocatable :: source, table
-    integer, allocatable :: set_arg(:), set_skip(:), summary_args(:)
-    integer :: k, max_len
-    logical :: check_only, nondimensional
+    type(string_t), allocatable :: overrides(:)
+    integer, allocatable :: summary_args(:)
+    logical :: check_only, resume, nondimensional
 
-    call parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
+    call parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
     if (table /= '') then
         call write_table(table, summary_args, nondimensional)
         stop
     end if
-    max_len = maxval([1, (len(argument(k)), k = 1, command_argument_count())])
-    block
-        ! the --set values: argument set_arg(k) without its first set_skip(k) characters
-        character(len=max_len) :: overrides(size(set_arg))
-
-        do k = 1, size(set_arg)
-            overrides(k) = argument(set_arg(k))
-            overrides(k) = overrides(k)(set_skip(k) + 1:)
-        end do
-        call read_config(source, cfg, overrides)
-    end block
+    call read_config(source, cfg, overrides)
     ! --resume: restart from the run's own .part, which the run then replaces (restart_m)
-    if (any([(argument(k) == '--resume', k = 1, command_argument_count())])) &
-        cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
+    if (resume) cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
     call validate_config(cfg, scheme_rules())
     call nondimensionalise(cfg)   ! with &material (SI inputs); echoes what it derived
     ! --check: the input checks of a run and nothing else (no file written), for scripts/scan.sh
@@ -80,16 +70,15 @@ contains
         end do
     end subroutine write_table
 
-    !> The input source ('-' = standard input), where the --set values are (argument
-    !> set_arg(k), after its first set_skip(k) characters: 0 for '--set X', 6 for '--set=X'),
-    !> the arguments that are files of --summary, --events or --summary-header (table: which;
-    !> every argument after it but --nondimensional; none without it), and whether --check
-    !> was given (--resume is read by the program itself). --help and --version print and stop.
-    subroutine parse_command_line(source, set_arg, set_skip, summary_args, check_only, table, nondimensional)
+    !> The input source ('-' = standard input), the --set values (overrides), the arguments
+    !> that are files of --summary, --events or --summary-header (table: which; every argument
+    !> after it but --nondimensional; none without it), and whether --check and --resume were
+    !> given. --help and --version print and stop.
+    subroutine parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
         character(len=:), allocatable, intent(out) :: source
-        integer, allocatable, intent(out) :: set_arg(:), set_skip(:)
+        type(string_t), allocatable, intent(out) :: overrides(:)
         integer, allocatable, intent(out) :: summary_args(:)
-        logical, intent(out) :: check_only
+        logical, intent(out) :: check_only, resume
         character(len=:), allocatable, intent(out) :: table
         logical, intent(out) :: nondimensional
         character(len=:), allocatable :: arg
@@ -100,9 +89,10 @@ contains
         source = '-'
         source_given = .false.
         check_only = .false.
+        resume = .false.
         table = ''
         nondimensional = .false.
-        allocate (set_arg(0), set_skip(0), summary_args(0))
+        allocate (overrides(0), summary_args(0))
         i = 1
         do while (i <= n_args)
             arg = argument(i)
@@ -114,7 +104,7 @@ contains
                 write (output_unit, '(a)') VERSION_LINE
                 stop
             case ('--summary', '--events', '--summary-header')
-                if (source_given .or. size(set_arg) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
+                if (source_given .or. size(overrides) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
                     arg // ' takes only HDF5 files, no input file, --set or --check')
                 table = arg
                 do k = i + 1, n_args
@@ -126,16 +116,12 @@ contains
                 exit
             case ('--nondimensional')
                 nondimensional = .true.
-            case ('--check', '--resume')
-                check_only = check_only .or. arg == '--check'
-            case ('--set')
-                if (i == n_args) call fatal(EXIT_INPUT, 'command line', '--set needs an argument ' // &
-                                            'group.variable=value, e.g. --set model.varpi=0.3')
-                i = i + 1
-                set_arg = [set_arg, i]
-                set_skip = [set_skip, 0]
+            case ('--check')
+                check_only = .true.
+            case ('--resume')
+                resume = .true.
             case default
-                call take_operand(arg, i, source, source_given, set_arg, set_skip)
+                call take_input(arg, i, source, source_given, overrides)
             end select
             i = i + 1
         end do
@@ -143,28 +129,37 @@ contains
             '--nondimensional is for --summary, --events and --summary-header')
     end subroutine parse_command_line
 
-    !> Argument i, `arg`, names no option: '--set=X' (appended to set_arg, set_skip), or the
-    !> input file (source; source_given: whether one was given before).
-    subroutine take_operand(arg, i, source, source_given, set_arg, set_skip)
+    !> The input that argument i, `arg` (no other option), gives: a --set value (--set X,
+    !> whose X is the next argument, i then its index, or --set=X; appended to overrides),
+    !> or the input file (source; source_given: whether one was given before).
+    subroutine take_input(arg, i, source, source_given, overrides)
         character(len=*), intent(in) :: arg
-        integer, intent(in) :: i
+        integer, intent(inout) :: i
         character(len=:), allocatable, intent(inout) :: source
         logical, intent(inout) :: source_given
-        integer, allocatable, intent(inout) :: set_arg(:), set_skip(:)
+        type(string_t), allocatable, intent(inout) :: overrides(:)
+        character(len=:), allocatable :: value
 
-        if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
-            set_arg = [set_arg, i]
-            set_skip = [set_skip, 6]
+        if (arg == '--set') then
+            if (i == command_argument_count()) call fatal(EXIT_INPUT, 'command line', '--set needs an ' // &
+                'argument group.variable=value, e.g. --set model.varpi=0.3')
+            i = i + 1
+            value = argument(i)
+        else if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
+            value = arg(7:)
+        else
+            if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', &
+                "unknown option '" // arg // "'; allowed: --set group.variable=value, --summary file.h5, " // &
+                '--summary-header, --events file.h5, --nondimensional, --check, --resume, --help, --version, ' // &
+                'and one input file')
+            if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
+                "' after '" // source // "'; give one input file (or none: standard input)")
+            source = arg
+            source_given = .true.
             return
         end if
-        if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', "unknown option '" // &
-            arg // "'; allowed: --set group.variable=value, --summary file.h5, --summary-header, --events " // &
-            'file.h5, --nondimensional, --check, --resume, --help, --version, and one input file')
-        if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
-            "' after '" // source // "'; give one input file (or none: standard input)")
-        source = arg
-        source_given = .true.
-    end subroutine take_operand
+        overrides = [overrides, string_t(value)]
+    end subroutine take_input
 
     function argument(i) result(arg)
         integer, intent(in) :: i

@@ -40,6 +40,7 @@ cat > knob.f90 << 'EOF'
 program knob
     use config_m, only: config_t
     use config_reader_m, only: read_config
+    use namelist_text_m, only: string_t
     use input_vars_m, only: input_item_t, input_items
     implicit none
     type(config_t) :: cfg
@@ -52,7 +53,7 @@ program knob
     if (set == '') then
         call read_config(trim(source), cfg)
     else
-        call read_config(trim(source), cfg, [set])
+        call read_config(trim(source), cfg, [string_t(set)])
     end if
     write (*, '(a, es10.3)') 'knob ', cfg%time%knob
     items = input_items(cfg)

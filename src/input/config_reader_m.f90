@@ -31,7 +31,7 @@ contains
     subroutine read_config(source, cfg, overrides)
         character(len=*), intent(in) :: source
         type(config_t), intent(out) :: cfg
-        character(len=*), intent(in), optional :: overrides(:)
+        type(string_t), intent(in), optional :: overrides(:)
         type(string_t), allocatable :: lines(:)
         type(group_t), allocatable :: groups(:), sets(:)
         integer :: k
@@ -46,7 +46,7 @@ contains
         sets = [group_t ::]
         if (present(overrides)) then
             do k = 1, size(overrides)
-                sets = [sets, parse_override(overrides(k))]
+                sets = [sets, parse_override(overrides(k)%s)]
             end do
             cfg%overrides = override_summary(overrides)
         end if

@@ -383,14 +383,14 @@ contains
 
     !> '--set a=1 --set b=2', the record of the overrides in cfg%overrides.
     pure function override_summary(overrides) result(text)
-        character(len=*), intent(in) :: overrides(:)
+        type(string_t), intent(in) :: overrides(:)
         character(len=LEN_PATH) :: text
         character(len=:), allocatable :: all
         integer :: k
 
         all = ''
         do k = 1, size(overrides)
-            all = all // ' --set ' // trim(adjustl(overrides(k)))
+            all = all // ' --set ' // trim(adjustl(overrides(k)%s))
         end do
         all = trim(adjustl(all))
         if (len(all) > LEN_PATH) all = all(:LEN_PATH - 3) // '...'

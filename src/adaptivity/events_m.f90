@@ -84,6 +84,7 @@ contains
             call ckpt%get('events/kind', kind)
             self%kind = int(kind)
             self%n = size(self%t)
+            if (self%n == 0) deallocate (self%t, self%kind)   ! (log_add's doubling starts at 8)
         else
             call ckpt%put('events/t', self%times())
             call ckpt%put('events/kind', int(self%kinds(), int64))

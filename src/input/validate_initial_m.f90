@@ -27,73 +27,61 @@ module validate_initial_m
 
 contains
 
-    !> Coefficients finite, steps and tables inside the rod [0, length] (1, or ell in m with
-    !> &material), and the boundary values of the spaces: u0, u1, q0, eta0 in S_h vanish at
-    !> x = 0, theta0, P0 in V_h at x = 1 (of x/length, on_rod); u0(1) <= g.
+    !> Each profile of init (validate_profile) in turn, and u0(1) <= g: u0, u1, q0, eta0 in S_h
+    !> vanish at x = 0, theta0, P0 in V_h at x = 1 (the rod's end, of length 1, or ell in m
+    !> with &material).
     subroutine validate_initial(init, g, length)
         type(initial_t), intent(in) :: init
         real(dp), intent(in) :: g, length
-        type(initial_t) :: rod
-        real(dp) :: u0_end
 
-        call require_finite_array(init%u0_poly, 'initial.u0_poly')
-        call require_finite_array(init%u1_poly, 'initial.u1_poly')
-        call require_finite_array(init%theta0_poly, 'initial.theta0_poly')
-        call require_finite_array(init%p0_poly, 'initial.p0_poly')
-        call require_finite_array(init%q0_poly, 'initial.q0_poly')
-        call require_finite_array(init%eta0_poly, 'initial.eta0_poly')
-        call require_step(init%theta0_step, 'initial.theta0_step', length)
-        call require_step(init%p0_step, 'initial.p0_step', length)
-        call require_table(init%u0_table, 'initial.u0_file', init%u0_file, length)
-        call require_table(init%u1_table, 'initial.u1_file', init%u1_file, length)
-        call require_table(init%theta0_table, 'initial.theta0_file', init%theta0_file, length)
-        call require_table(init%p0_table, 'initial.p0_file', init%p0_file, length)
-        call require_table(init%q0_table, 'initial.q0_file', init%q0_file, length)
-        call require_table(init%eta0_table, 'initial.eta0_file', init%eta0_file, length)
-        rod = on_rod(init, length)
-        call require_boundary_zero('u0', rod%u0_poly, 0.0_dp, 'u(0,t) = 0, (2.13)', table=rod%u0_table)
-        call require_boundary_zero('u1', rod%u1_poly, 0.0_dp, 'v = u_t vanishes where u(0,t) = 0, (2.13)', &
-                                   table=rod%u1_table)
-        call require_boundary_zero('theta0', rod%theta0_poly, 1.0_dp, 'theta(1,t) = 0, (2.15)', rod%theta0_step, &
-                                   rod%theta0_table)
-        call require_boundary_zero('p0', rod%p0_poly, 1.0_dp, 'P(1,t) = 0, (2.15)', rod%p0_step, rod%p0_table)
-        call require_boundary_zero('q0', rod%q0_poly, 0.0_dp, 'q(0,t) = 0, (2.15)', table=rod%q0_table)
-        call require_boundary_zero('eta0', rod%eta0_poly, 0.0_dp, 'eta(0,t) = 0, (2.15)', table=rod%eta0_table)
-        u0_end = profile(poly=rod%u0_poly, x=1.0_dp, table=rod%u0_table)
-        if (u0_end > g + BOUNDARY_TOL * (1.0_dp + sum(abs(init%u0_poly)))) call fatal(EXIT_INPUT, &
-            trim(merge('initial.u0_file', 'initial.u0_poly', allocated(init%u0_table))), 'got u0(1) = ' // &
-            format_real(u0_end) // ' > g = ' // format_real(g) // &
-            '; the initial displacement must satisfy the contact constraint u0(1) <= g')
+        call validate_profile('u0', init%u0_poly, init%u0_file, length, 0.0_dp, 'u(0,t) = 0, (2.13)', &
+                              table=init%u0_table, g=g)
+        call validate_profile('u1', init%u1_poly, init%u1_file, length, 0.0_dp, &
+                              'v = u_t vanishes where u(0,t) = 0, (2.13)', table=init%u1_table)
+        call validate_profile('theta0', init%theta0_poly, init%theta0_file, length, 1.0_dp, &
+                              'theta(1,t) = 0, (2.15)', init%theta0_step, init%theta0_table)
+        call validate_profile('p0', init%p0_poly, init%p0_file, length, 1.0_dp, 'P(1,t) = 0, (2.15)', &
+                              init%p0_step, init%p0_table)
+        call validate_profile('q0', init%q0_poly, init%q0_file, length, 0.0_dp, 'q(0,t) = 0, (2.15)', &
+                              table=init%q0_table)
+        call validate_profile('eta0', init%eta0_poly, init%eta0_file, length, 0.0_dp, 'eta(0,t) = 0, (2.15)', &
+                              table=init%eta0_table)
     end subroutine validate_initial
 
-    subroutine require_finite_array(coefficients, where)
-        real(dp), intent(in) :: coefficients(0:)
-        character(len=*), intent(in) :: where
+    !> The initial profile `name`: coefficients finite, its step and its table (of `file`)
+    !> inside the rod [0, length], and its value at the boundary point x of its space 0 (the
+    !> condition `why`); with g (u0), its value at the contact end at most g. The step's end
+    !> and the table's positions are taken over length, as fractions of the rod, as the
+    !> profiles take them (material_m's nondimensionalise divides them so for a run).
+    subroutine validate_profile(name, poly, file, length, x, why, step, table, g)
+        character(len=*), intent(in) :: name, file, why
+        real(dp), intent(in) :: poly(0:), length, x
+        real(dp), intent(in), optional :: step(2), table(:, :), g
+        real(dp), allocatable :: rod_step(:), rod_table(:, :)
+        real(dp) :: end_value
         integer :: k
 
-        do k = 0, ubound(coefficients, 1)
-            call require_datum(coefficients(k), where, &
-                format_real(coefficients(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
+        do k = 0, ubound(poly, 1)
+            call require_datum(poly(k), 'initial.' // name // '_poly', &
+                format_real(poly(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
         end do
-    end subroutine require_finite_array
-
-    !> The positions of init (step ends, table rows) over length: as fractions of the rod, as
-    !> the profiles take them (material_m's nondimensionalise divides them so for a run).
-    function on_rod(init, length) result(rod)
-        type(initial_t), intent(in) :: init
-        real(dp), intent(in) :: length
-        type(initial_t) :: rod
-
-        rod = init
-        rod%theta0_step(2) = init%theta0_step(2) / length
-        rod%p0_step(2) = init%p0_step(2) / length
-        if (allocated(rod%u0_table)) rod%u0_table(:, 1) = init%u0_table(:, 1) / length
-        if (allocated(rod%u1_table)) rod%u1_table(:, 1) = init%u1_table(:, 1) / length
-        if (allocated(rod%theta0_table)) rod%theta0_table(:, 1) = init%theta0_table(:, 1) / length
-        if (allocated(rod%p0_table)) rod%p0_table(:, 1) = init%p0_table(:, 1) / length
-        if (allocated(rod%q0_table)) rod%q0_table(:, 1) = init%q0_table(:, 1) / length
-        if (allocated(rod%eta0_table)) rod%eta0_table(:, 1) = init%eta0_table(:, 1) / length
-    end function on_rod
+        if (present(step)) then
+            call require_step(step, 'initial.' // name // '_step', length)
+            allocate (rod_step, source=[step(1), step(2) / length])
+        end if
+        if (present(table)) then
+            call require_table(table, 'initial.' // name // '_file', file, length)
+            allocate (rod_table, source=table)
+            rod_table(:, 1) = table(:, 1) / length
+        end if
+        call require_boundary_zero(name, poly, x, why, rod_step, rod_table)
+        if (.not. present(g)) return
+        end_value = profile(poly=poly, x=1.0_dp, table=rod_table)
+        if (end_value > g + BOUNDARY_TOL * (1.0_dp + sum(abs(poly)))) call fatal(EXIT_INPUT, &
+            'initial.' // name // trim(merge('_file', '_poly', present(table))), 'got ' // name // '(1) = ' // &
+            format_real(end_value) // ' > g = ' // format_real(g) // &
+            '; the initial displacement must satisfy the contact constraint u0(1) <= g')
+    end subroutine validate_profile
 
     !> A step (amplitude, x_end): finite amplitude, 0 <= x_end <= length (1, or ell in m).
     subroutine require_step(step, where, length)

@@ -8,10 +8,11 @@
 !> A state holds u(0:s) and w(0:s, 1:N_FIELDS); the checkpoint stores them as the columns
 !> F_U+1 .. N_FIELDS+1, i.e. u, q, theta, v, P, eta.
 module fields_m
+    use kinds_m, only: dp
     implicit none
     private
     public :: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA
-    public :: field_t, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, is_dirichlet
+    public :: field_t, FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER, is_dirichlet, zero_dirichlet
     public :: series_t, SERIES, N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
               S_N_ELEMENTS, N_ENERGY_PARTS, S_ENERGY_PARTS
     public :: snapshot_t, SNAPSHOTS, N_SNAPSHOT_FIELDS, K_SIGMA
@@ -110,5 +111,17 @@ contains
             is_dirichlet = node == s
         end if
     end function is_dirichlet
+
+    !> The Dirichlet values of the fields w(0:s, 1:N_FIELDS) (or of their equations' rows) zero.
+    pure subroutine zero_dirichlet(w)
+        real(dp), intent(inout) :: w(0:, :)
+        integer :: f, s
+
+        s = ubound(w, 1)
+        do f = 1, N_FIELDS
+            if (is_dirichlet(f, 0, s)) w(0, f) = 0.0_dp
+            if (is_dirichlet(f, s, s)) w(s, f) = 0.0_dp
+        end do
+    end subroutine zero_dirichlet
 
 end module fields_m

@@ -12,7 +12,7 @@ module paper_method_m
     use banded_m, only: band_t, lapack_info_message
     use fields_m, only: N_FIELDS, F_V
     use scheme_m, only: assemble_matrix, add_lagged_coupling
-    use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, scatter_fields, gather_fields
+    use slots_m, only: THERMAL_SLOTS, MECHANICAL_SLOTS, scatter_fields, gather_fields
     use contact_laws_m, only: contact_law_t
     use mesh_m, only: mesh_t
     use state_m, only: state_t
@@ -28,7 +28,7 @@ module paper_method_m
         type(band_t) :: thermal        !< (q, theta, P, eta) block, factored
         type(band_t) :: mechanical     !< v block, factored
         ! work arrays, allocated once
-        real(dp), allocatable :: b(:, :), b_old(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), xt(:)
+        real(dp), allocatable :: b(:, :), w_lag(:, :), w_new(:, :), u_lag(:), work(:), xt(:)
     contains
         procedure :: setup => paper_setup
         procedure :: advance => paper_advance
@@ -55,21 +55,21 @@ contains
         if (info /= 0) call fail(result, 'mechanical block: '//lapack_info_message('dgbtrf', info))
         if (allocated(self%xt)) return
         s = mesh%s()
-        allocate (self%b(0:s, N_FIELDS), self%b_old(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
+        allocate (self%b(0:s, N_FIELDS), self%w_lag(0:s, N_FIELDS), &
                   self%w_new(0:s, N_FIELDS), self%u_lag(0:s), self%work(0:s), self%xt(self%thermal%n), &
                   stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the paper iteration''s work arrays')
     end subroutine paper_setup
 
-    !> The iteration for one Euler step of size dt of state, from rhs, the right-hand side of
-    !> (6.1) with every field (node by node: stepper_m's start_rhs). On failure the state is
-    !> left unchanged.
+    !> The iteration for one Euler step of size dt of state, from rhs(0:s, f), the right-hand
+    !> side of (6.1) of every field (stepper_m's start_rhs). On failure the state is left
+    !> unchanged.
     subroutine paper_advance(self, model, mesh, law, rhs, state, dt, result)
         class(paper_method_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         type(mesh_t), intent(in) :: mesh
         class(contact_law_t), intent(in) :: law
-        real(dp), intent(in), contiguous :: rhs(:)
+        real(dp), intent(in) :: rhs(0:, :)
         type(state_t), intent(inout) :: state
         real(dp), intent(in) :: dt
         type(step_result_t), intent(inout) :: result
@@ -78,20 +78,19 @@ contains
 
         if (.not. equal(dt, self%dt)) call paper_setup(self, model, mesh, dt, result)
         if (.not. result%ok) return
-        call gather_fields(MONOLITHIC_SLOTS, rhs, self%b_old)
         s = state%s
         self%w_lag = state%w                 ! iterate l-1 (l = 0: the previous time level)
         self%u_lag = state%u
         scale = 1.0_dp
         do l = 1, self%max_iter
             ! thermal block with the lagged velocity
-            self%b = self%b_old
+            self%b = rhs
             call add_lagged_coupling(model, dt, THERMAL_SLOTS, self%w_lag, self%b, self%work)
             call scatter_fields(THERMAL_SLOTS, self%b, self%xt)
             call self%thermal%solve(self%xt)
             call gather_fields(THERMAL_SLOTS, self%xt, self%w_new)
             ! mechanical block with the new theta, P and the lagged penalty
-            self%b(:, F_V) = self%b_old(:, F_V)
+            self%b(:, F_V) = rhs(:, F_V)
             call add_lagged_coupling(model, dt, MECHANICAL_SLOTS, self%w_new, self%b, self%work)
             self%b(s, F_V) = self%b(s, F_V) - law%lagged_impulse(dt, self%u_lag(s))
             call self%mechanical%solve(self%b(:, F_V))

@@ -27,9 +27,8 @@ module scheme_m
                     add_inertia_difference
     use mesh_m, only: mesh_t
     use banded_m, only: band_t
-    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet, zero_dirichlet
     use errors_m, only: check_allocation
-    use slots_m, only: scatter_fields
     implicit none
     private
     public :: element_block, band_width, assemble_matrix, assemble_blocks, active_fields
@@ -274,21 +273,19 @@ contains
         end do
     end subroutine dirichlet_blocks
 
-    !> Right-hand side of (6.1) from the previous time level (module header), into the system
-    !> vector b of the fields with slots(f) > 0 (b(slots(f), i): the right-hand side of field
-    !> f's equation at node i, assemble_matrix's order): each equation's terms are formed as a
-    !> column of y (contiguous, so they vectorise) and the columns are interleaved into b
-    !> (scatter_fields). Dirichlet rows are zero. The contact term is not included. No
-    !> allocation: called every time step. mesh: the mesh of the level (its mass and stiffness
-    !> matrices).
-    subroutine old_state_rhs(model, dt, u_old, w_old, slots, b, y, work, mesh)
+    !> Right-hand side of (6.1) from the previous time level (module header) of the fields
+    !> with slots(f) > 0: y(i, f), the right-hand side of field f's equation at node i (a
+    !> column each, contiguous, so they vectorise; the caller zeroes the Dirichlet rows and
+    !> interleaves them into the system vector: slots_m's scatter_fields). The contact term is
+    !> not included. No allocation: called every time step. mesh: the mesh of the level (its
+    !> mass and stiffness matrices).
+    subroutine old_state_rhs(model, dt, u_old, w_old, slots, y, work, mesh)
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt
         real(dp), intent(in) :: u_old(0:)          !< u^{n-1}
         real(dp), intent(in) :: w_old(0:, :)       !< fields at t_{n-1}, w_old(:, f)
         integer, intent(in) :: slots(N_FIELDS)
-        real(dp), intent(out), contiguous :: b(:)
-        real(dp), intent(out) :: y(0:ubound(u_old, 1), N_FIELDS)   !< scratch: field f's equation
+        real(dp), intent(out) :: y(0:ubound(u_old, 1), N_FIELDS)   !< field f's equation
         real(dp), intent(out) :: work(0:ubound(u_old, 1))           !< scratch
         type(mesh_t), intent(in) :: mesh
 
@@ -315,8 +312,6 @@ contains
             call mesh%apply_mass(w_old(:, F_ETA), y(:, F_ETA))
             y(:, F_ETA) = model%hbar * model%tau * y(:, F_ETA)
         end if
-        call zero_dirichlet_rows(y)
-        call scatter_fields(slots, y, b)
     end subroutine old_state_rhs
 
     !> b(:, row) -= (block (row, col) of (6.1)) * w(:, col) for every coupling from a field
@@ -344,18 +339,7 @@ contains
                 b(:, row) = b(:, row) - work
             end do
         end do
-        call zero_dirichlet_rows(b)
+        call zero_dirichlet(b)
     end subroutine add_lagged_coupling
-
-    pure subroutine zero_dirichlet_rows(b)
-        real(dp), intent(inout) :: b(0:, :)
-        integer :: f, s
-
-        s = ubound(b, 1)
-        do f = 1, N_FIELDS
-            if (is_dirichlet(f, 0, s)) b(0, f) = 0.0_dp
-            if (is_dirichlet(f, s, s)) b(s, f) = 0.0_dp
-        end do
-    end subroutine zero_dirichlet_rows
 
 end module scheme_m

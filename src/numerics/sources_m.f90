@@ -14,7 +14,7 @@
 module sources_m
     use kinds_m, only: dp
     use config_m, only: model_t
-    use fields_m, only: N_FIELDS, F_ETA, F_V, is_dirichlet
+    use fields_m, only: N_FIELDS, F_ETA, F_V
     use mesh_m, only: mesh_t
     implicit none
     private
@@ -46,20 +46,21 @@ contains
         no_traction = 0.0_dp
     end function no_traction
 
-    !> b(f, i) += dt int f_f(t, x) phi_i dx (times hbar for the eta law) and the traction on
-    !> the momentum row of x = 1; Dirichlet rows stay zero. b: the system vector with every
-    !> field (a run with sources has all of them: scheme_m's active_fields), node by node, on
-    !> mesh.
+    !> b(i, f) += dt int f_f(t, x) phi_i dx (times hbar for the eta law) and the traction on
+    !> the momentum row of x = 1: b, the right-hand side of every field's equation (a run with
+    !> sources has all of them: scheme_m's active_fields) on mesh, by field as scheme_m's
+    !> old_state_rhs gives it (the caller zeroes the Dirichlet rows after: fields_m's
+    !> zero_dirichlet).
     subroutine add_source_terms(source, model, t, dt, b, mesh)
         class(source_t), intent(in) :: source
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: t, dt
         type(mesh_t), intent(in) :: mesh
-        real(dp), intent(inout) :: b(N_FIELDS, 0:ubound(mesh%x, 1))
+        real(dp), intent(inout) :: b(0:ubound(mesh%x, 1), N_FIELDS)
         real(dp), parameter :: gauss_x(3) = [-sqrt(0.6_dp), 0.0_dp, sqrt(0.6_dp)]
         real(dp), parameter :: gauss_w(3) = [5.0_dp, 8.0_dp, 5.0_dp] / 9.0_dp
         real(dp) :: h, x, weight, phi_left, f(N_FIELDS), scale(N_FIELDS)
-        integer :: s, e, k, field
+        integer :: s, e, k
 
         s = mesh%s()
         scale = dt
@@ -71,15 +72,11 @@ contains
                 weight = 0.5_dp * h * gauss_w(k)
                 phi_left = 0.5_dp * (1.0_dp - gauss_x(k))      ! hat of node e-1 at x
                 f = scale * weight * source%evaluate(t, x)
-                b(:, e - 1) = b(:, e - 1) + f * phi_left
-                b(:, e) = b(:, e) + f * (1.0_dp - phi_left)
+                b(e - 1, :) = b(e - 1, :) + f * phi_left
+                b(e, :) = b(e, :) + f * (1.0_dp - phi_left)
             end do
         end do
-        b(F_V, s) = b(F_V, s) + dt * source%traction(t)
-        do field = 1, N_FIELDS
-            if (is_dirichlet(field, 0, s)) b(field, 0) = 0.0_dp
-            if (is_dirichlet(field, s, s)) b(field, s) = 0.0_dp
-        end do
+        b(s, F_V) = b(s, F_V) + dt * source%traction(t)
     end subroutine add_source_terms
 
 end module sources_m

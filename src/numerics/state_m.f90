@@ -7,7 +7,7 @@ module state_m
     use mesh_m, only: mesh_t, copy_mesh
     use initial_data_m, only: profile
     use errors_m, only: check_allocation, fatal, EXIT_INPUT
-    use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, is_dirichlet
+    use fields_m, only: N_FIELDS, F_U, F_Q, F_THETA, F_V, F_P, F_ETA, zero_dirichlet
     use checkpoint_m, only: checkpoint_t
     implicit none
     private
@@ -42,7 +42,7 @@ contains
         type(config_t), intent(in) :: cfg
         type(state_t), intent(out) :: state
         real(dp), intent(in), optional :: nodes(0:)
-        integer :: s, i, f, stat
+        integer :: s, i, stat
         character(len=256) :: message
 
         if (present(nodes)) then
@@ -65,10 +65,7 @@ contains
             end do
         end associate
         state%u(0) = 0.0_dp
-        do f = 1, N_FIELDS
-            if (is_dirichlet(f, 0, s)) state%w(0, f) = 0.0_dp
-            if (is_dirichlet(f, s, s)) state%w(s, f) = 0.0_dp
-        end do
+        call zero_dirichlet(state%w)
     end subroutine initial_state
 
     !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched; the

@@ -21,10 +21,10 @@ module stepper_m
     use step_result_m, only: step_result_t, fail
     use paper_method_m, only: paper_method_t
     use system_cache_m, only: monolithic_system_t, system_cache_t
-    use fields_m, only: N_FIELDS, F_V
+    use fields_m, only: N_FIELDS, F_V, zero_dirichlet
     use scheme_m, only: active_fields, assemble_matrix, assemble_blocks, old_state_rhs, &
                         initial_data_present
-    use slots_m, only: MONOLITHIC_SLOTS, slots_of, gather_fields
+    use slots_m, only: MONOLITHIC_SLOTS, slots_of, scatter_fields, gather_fields
     use block_tridiagonal_m, only: NB_MAX
     use contact_laws_m, only: contact_law_t, contact_law
     use time_scheme_m, only: time_scheme_t, time_scheme, step_plan_t
@@ -256,7 +256,7 @@ contains
         select case (self%method)
         case (METHOD_PAPER)
             call start_rhs(self, self%model, step_size, t_new, state%u, state%w)
-            call self%paper%advance(self%model, self%mesh, self%law, self%x, state, step_size, result)
+            call self%paper%advance(self%model, self%mesh, self%law, self%b, state, step_size, result)
         case default
             plan = self%scheme%plan(step_size, state%dt_last, allocated(state%u_prev), state%step)
             t_source = t_new - plan%source_back * step_size
@@ -284,17 +284,19 @@ contains
     end subroutine stepper_advance
 
     !> Right-hand side of (6.1) for `model` with step dt_eff from the level (u_from, w_from),
-    !> plus the sources at t_source, in the system vector x (node by node).
+    !> plus the sources at t_source, Dirichlet rows zero: by field in b, and node by node in
+    !> the system vector x.
     subroutine start_rhs(self, model, dt_eff, t_source, u_from, w_from)
         type(stepper_t), intent(inout) :: self
         type(model_t), intent(in) :: model
         real(dp), intent(in) :: dt_eff, t_source
         real(dp), intent(in) :: u_from(0:), w_from(0:, :)
 
-        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%x, self%b, self%work, &
-                           self%mesh)
+        call old_state_rhs(model, dt_eff, u_from, w_from, self%slots, self%b, self%work, self%mesh)
         if (allocated(self%source)) &
-            call add_source_terms(self%source, model, t_source, dt_eff, self%x, self%mesh)
+            call add_source_terms(self%source, model, t_source, dt_eff, self%b, self%mesh)
+        call zero_dirichlet(self%b)
+        call scatter_fields(self%slots, self%b, self%x)
     end subroutine start_rhs
 
     !> One monolithic step from the state itself (from_star = .false.) or from the level

@@ -1,11 +1,8 @@
-!> Creating the writer's file (output_m's create): <prefix>.h5.part with /mesh/x and the
-!> empty extendible /series and /snapshots datasets; /events at the end of the run; the
-!> groups and datasets of the other parts (make_group, create_extendible); and their
-!> self-description: long_name and units (CF style; '1' is nondimensional, and long_name
-!> names the scale of (2.10)), with &material the factor to SI units, and the HDF5 dimension
-!> scales (H5DS) that name each dataset's dimensions and coordinates as netCDF-4 does
-!> (docs/output.md, "netCDF"). A submodule of output_m, so that it sets up the writer's
-!> private state.
+!> Creating the writer's file (output_m's create), /events at the end of the run, the groups
+!> and datasets of the other parts (make_group, create_extendible), and their self-description
+!> (docs/output.md, "Datasets" and "netCDF"): CF-style long_name and units, with &material the
+!> factor to SI units, and the HDF5 dimension scales. A submodule of output_m, so that it sets
+!> up the writer's private state.
 submodule (output_m) output_create_s
     use hdf5, only: h5lcreate_hard_f
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
@@ -81,11 +78,8 @@ contains
     !> /mesh/x with the nodes x(0:s), and the empty extendible /series and /snapshots datasets:
     !> the series 1D, chunks of SERIES_CHUNK entries written SERIES_BUFFER_SIZE at a time;
     !> /snapshots/t 1D, the fields (s+1, n_snap) growing by one row per snapshot, one row per
-    !> chunk, so that each append writes whole chunks (see h5pset_cache_f). Dimension scales
-    !> (netCDF-4 dimensions and coordinates, docs/output.md): /series/t of every /series
-    !> dataset; /snapshots/t and x of every /snapshots field, where /snapshots/x is /mesh/x
-    !> itself (a second link to it: netCDF and xarray look for a dimension's coordinate in the
-    !> group of the variable or above).
+    !> chunk, so that each append writes whole chunks (see h5pset_cache_f). Their dimension
+    !> scales: docs/output.md, "netCDF" (which says why /snapshots/x is a link to /mesh/x).
     subroutine create_datasets(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)

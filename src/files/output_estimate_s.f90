@@ -1,8 +1,6 @@
-!> The per-snapshot error estimates of a run with &output error_estimate: a submodule of
-!> output_m, so that it reaches the writer's open file. /snapshots/error_estimate/<field>,
-!> and its time and space parts in error_estimate_time and error_estimate_space
-!> (docs/output.md), hold one value per snapshot: the estimated relative L2 error |f_h - f| / |f_h| of the
-!> field (error_companion_m computes it). Created by the first append and kept open until
+!> The per-snapshot error estimates of a run with &output error_estimate (/snapshots/
+!> error_estimate*: docs/output.md; error_companion_m computes them): a submodule of output_m,
+!> so that it reaches the writer's open file. Created by the first append and kept open until
 !> finish(); the values are buffered between flushes, as the series are.
 submodule (output_m) output_estimate_s
     implicit none

@@ -3,15 +3,11 @@
 !> (fail) and closing it (finish, abandon). A submodule of output_m, so that it reaches the
 !> writer's private state.
 !>
-!> Crash safety (docs/output.md, "A killed run"). Between structural changes the file is in
-!> SWMR write mode (h5_swmr_m), in which a flush writes metadata children before their
-!> parents, so a run killed at any moment leaves its last flush, with its checkpoint, readable
-!> by a SWMR reader. SWMR mode forbids new objects, attributes and deletions (HDF5 1.10 then
-!> corrupts its metadata cache), so whatever needs one ends it first (leave_swmr: the file is
-!> closed, clean, and reopened), and the next flush() starts it again. A run does so at most
-!> twice: at its first checkpoint, which creates the checkpoint slots (and /snapshots/native
-!> of an adaptive mesh) with room to be rewritten in SWMR mode, and at the end for its results
-!> and final attributes, which therefore are not crash-safe.
+!> Crash safety (docs/output.md, "A killed run": why, and the two windows where it lapses):
+!> between structural changes the file is in SWMR write mode (h5_swmr_m). SWMR mode forbids
+!> new objects, attributes and deletions (HDF5 1.10 then corrupts its metadata cache), so
+!> whatever needs one ends it first (leave_swmr: the file is closed, clean, and reopened),
+!> and the next flush() starts it again.
 submodule (output_m) output_file_s
     use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, h5iget_name_f, &
                     h5dopen_f, h5lexists_f, h5ldelete_f
@@ -88,7 +84,9 @@ contains
         if (.not. w%swmr) return
         call w%flush_series()
         call writer_flush_estimate(w)
-        ids = held_ids(w)
+        ! every dataset identifier the writer holds (negative: not open), stored back below
+        ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, &
+               reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
         do k = 1, MAX_OPEN
             if (ids(k) < 0) cycle
             call h5iget_name_f(ids(k), names(k), int(len(names(k)), size_t), length, hdferr)
@@ -108,30 +106,12 @@ contains
             call h5dopen_f(w%file_id, trim(names(k)), ids(k), hdferr)
             call w%check(hdferr, 'h5dopen_f '//trim(names(k)))
         end do
-        call hold_ids(w, ids)
-    end procedure writer_leave_swmr
-
-    !> Every dataset identifier the writer holds, in the order leave_swmr stores them back
-    !> (negative: not open).
-    pure function held_ids(w) result(ids)
-        class(h5_writer_t), intent(in) :: w
-        integer(hid_t) :: ids(MAX_OPEN)
-
-        ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, &
-               reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
-    end function held_ids
-
-    !> The writer's dataset identifiers from ids, in held_ids' order.
-    subroutine hold_ids(w, ids)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: ids(MAX_OPEN)
-
         w%mesh_x_id = ids(1)
         w%series_ids = ids(2:1 + N_SERIES)
         w%snap_t_id = ids(2 + N_SERIES)
         w%snap_field_ids = ids(3 + N_SERIES:2 + N_SERIES + N_SNAPSHOT_FIELDS)
         w%estimate_ids = reshape(ids(3 + N_SERIES + N_SNAPSHOT_FIELDS:), shape(w%estimate_ids))
-    end subroutine hold_ids
+    end procedure writer_leave_swmr
 
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
@@ -140,8 +120,7 @@ contains
     !> `<prefix>.h5`, then deletes the `<prefix>.h5.part` it continued; with keep_part over
     !> that .part (its checkpoint is later).
     module procedure writer_finish
-        integer(hid_t) :: ids(MAX_OPEN)
-        integer :: hdferr, k
+        integer :: hdferr
         logical :: ok
         character(len=:), allocatable :: message, target
 
@@ -152,12 +131,8 @@ contains
         call w%attr('status', status)
         call w%attr('logical_attributes', w%logical_names)
         call w%flush()   ! with its space reserved; closing then writes nothing new
-
-        ids = held_ids(w)
-        do k = 1, MAX_OPEN
-            if (ids(k) >= 0) call w%close_dataset(ids(k), '(a dataset the writer holds open)')
-        end do
-        call hold_ids(w, ids)
+        ! the strong close degree (writer_open_file) also closes every dataset the writer
+        ! holds; the next create() starts from a reset writer
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
         w%file_id = -1
@@ -189,10 +164,6 @@ contains
         ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
         if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
         w%file_id = -1
-        call hold_ids(w, spread(-1_hid_t, 1, MAX_OPEN))
-        w%n_estimate_buf = 0
-        w%n_buf = 0
-        if (allocated(w%buf)) deallocate (w%buf)
         call remove_file(w%part_path)
     end procedure writer_abandon
 

@@ -1,9 +1,6 @@
-!> The snapshots of an adaptive mesh on their own meshes (/snapshots/native, docs/output.md):
-!> a submodule of output_m, so that it reaches the writer's open file. Snapshot j holds the
-!> nodes native/x[offset[j] : offset[j] + count[j]] and the exact nodal values of every
-!> field there (the P1 solution the run computed); /snapshots/<field> hold the same P1
-!> functions evaluated on the fixed grid /mesh/x. Every append opens, extends, writes and
-!> closes the datasets.
+!> The snapshots of an adaptive mesh on their own meshes (/snapshots/native, its layout:
+!> docs/output.md): a submodule of output_m, so that it reaches the writer's open file.
+!> Every append opens, extends, writes and closes the datasets.
 submodule (output_m) output_native_s
     use hdf5, only: h5dopen_f, H5T_STD_I64LE
     implicit none
@@ -37,11 +34,9 @@ contains
         w%n_native_snap = w%n_native_snap + 1
     end procedure writer_append_native
 
-    !> The group and its empty datasets. Dimension scales (docs/output.md, "netCDF"): native/x
-    !> is the coordinate of the fields (dimension x of this group: every snapshot's nodes one
-    !> after the other), /snapshots/t that of offset and count. Created by the first append,
-    !> or by the first checkpoint of an adaptive mesh (write_checkpoint), so that SWMR
-    !> writing need not end for it later (output_file_s).
+    !> The group and its empty datasets with their dimension scales (docs/output.md, "netCDF").
+    !> Created by the first append, or by the first checkpoint of an adaptive mesh
+    !> (write_checkpoint), so that SWMR writing need not end for it later (output_file_s).
     module procedure writer_create_native
         integer(hid_t) :: dset_id, x_id
         integer :: k

@@ -4,9 +4,8 @@
 !> procedures. The time loop (run_m) says when; this module says what.
 module run_output_m
     use kinds_m, only: dp
-    use config_m, only: config_t
+    use config_m, only: config_t, model_t
     use fe_m, only: mesh_nodes, evaluate_p1
-    use config_m, only: model_t
     use fields_m, only: N_SERIES, S_T, S_ENERGY, S_U_END, S_PENETRATION, S_CONTACT_STRESS, S_ITERATIONS, S_DT, &
                         S_N_ELEMENTS, S_ENERGY_PARTS, N_ENERGY_PARTS, N_OUTPUT_FIELDS, OUTPUT_ORDER, N_SNAPSHOT_FIELDS, &
                         K_SIGMA
@@ -131,8 +130,9 @@ contains
     end subroutine write_dense_series
 
     !> The level_series values at t in the last accepted step (state: its end): the scheme's
-    !> interpolant (step_driver_t%dense_weights) of those of the step's levels, rows(:,
-    !> 1:n_rows), computed when n_rows = 0 (once per step).
+    !> interpolant (step_driver_t%dense_weights) of those of the step's n_rows levels, rows(:,
+    !> j) of the j-th most recent (state's with the monitor's energy, then
+    !> step_driver_t%past_level's), computed when n_rows = 0 (once per step).
     subroutine dense_series(driver, stepper, state, monitor, t, rows, n_rows, values)
         type(step_driver_t), intent(in) :: driver
         type(stepper_t), intent(in) :: stepper
@@ -142,38 +142,25 @@ contains
         real(dp), intent(inout) :: rows(N_SERIES, MAX_LEVELS)
         integer, intent(inout) :: n_rows
         real(dp), intent(out) :: values(N_SERIES)
-        real(dp) :: weight(MAX_LEVELS)
+        real(dp) :: weight(MAX_LEVELS), energy, parts(N_ENERGY_PARTS)
+        type(state_t) :: level
         integer :: j, n
 
         call driver%dense_weights(state, t, n, weight)
-        if (n_rows == 0) call interpolant_rows(driver, stepper, state, monitor, max(n, 2), rows)
+        if (n_rows == 0) then
+            call level_series(state, monitor%current_energy(), monitor%parts(state), rows(:, 1))
+            do j = 2, max(n, 2)
+                call driver%past_level(state, j, level)
+                call discrete_energy(stepper%model, level%u, level%w, level%mesh, energy, parts, stepper%law)
+                call level_series(level, energy, parts, rows(:, j))
+            end do
+        end if
         n_rows = max(n, 2)
         values = weight(1) * rows(:, 1)
         do j = 2, n_rows
             values = values + weight(j) * rows(:, j)
         end do
     end subroutine dense_series
-
-    !> rows(:, j) = level_series of the j-th most recent of the n levels of the last step's
-    !> interpolant: state's (the monitor's energy), then step_driver_t%past_level's.
-    subroutine interpolant_rows(driver, stepper, state, monitor, n, rows)
-        type(step_driver_t), intent(in) :: driver
-        type(stepper_t), intent(in) :: stepper
-        type(state_t), intent(in) :: state
-        type(energy_monitor_t), intent(in) :: monitor
-        integer, intent(in) :: n
-        real(dp), intent(out) :: rows(:, :)
-        type(state_t) :: level
-        real(dp) :: energy, parts(N_ENERGY_PARTS)
-        integer :: j
-
-        call level_series(state, monitor%current_energy(), monitor%parts(state), rows(:, 1))
-        do j = 2, n
-            call driver%past_level(state, j, level)
-            call discrete_energy(stepper%model, level%u, level%w, level%mesh, energy, parts, stepper%law)
-            call level_series(level, energy, parts, rows(:, j))
-        end do
-    end subroutine interpolant_rows
 
     !> One snapshot: every dataset of fields_m's SNAPSHOTS (the fields of OUTPUT_ORDER and
     !> the stress sigma of stress_m, with the coefficients of `model`) on the output grid

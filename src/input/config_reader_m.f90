@@ -1,18 +1,17 @@
-!> The namelist reader: read_config reads the input text (namelist_text_m finds and splits
-!> its groups), then the --set overrides (namelist_text_m too), each assignment by a namelist read
-!> of its own so that a bad value names its variable; the input variables and their kinds
-!> are those of input_vars_m. Only what the reader alone can know is checked here (text,
-!> syntax, names, types, &material); value ranges are checked by validate_m.
+!> The namelist reader: read_config reads the input text, then the --set overrides, group by
+!> group (namelist_text_m finds the groups and reads each assignment by a namelist read of its
+!> own, so that a bad value names its variable; the input variables and their kinds are those
+!> of input_vars_m), and the tables of &initial. Only what the reader alone can know is checked
+!> here (text, syntax, names, types, &material); value ranges are checked by validate_m.
 module config_reader_m
     use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use config_m, only: config_t, initial_t
-    use strings_m, only: lower, excerpt, quoted, identifier_at, int_str, format_real
-    use input_vars_m, only: read_namelist, var_kind, kind_description
-    use namelist_text_m, only: string_t, group_t, read_source, strip_comments, find_groups, split_group, &
-                               assignment_lhs, assignment_value, parse_override, override_summary
+    use strings_m, only: lower, excerpt, quoted, int_str, format_real
+    use namelist_text_m, only: string_t, group_t, read_source, strip_comments, find_groups, read_group, &
+                               parse_override, override_summary
     use material_m, only: check_material
     implicit none
     private
@@ -65,23 +64,6 @@ contains
         if (cfg%material%present) call check_material(cfg%material)
         call ieee_set_halting_mode(ieee_overflow, halt_on_overflow)
     end subroutine read_config
-
-    !> Read group `grp` into its part of cfg, over the values already there: each assignment
-    !> alone ('&group lhs = value /'), so that a bad value names its variable.
-    subroutine read_group(grp, cfg)
-        type(group_t), intent(inout) :: grp
-        type(config_t), intent(inout) :: cfg
-        character(len=LEN_MSG) :: msg
-        integer :: k, ios
-
-        call split_group(grp)
-        do k = 1, size(grp%eq)
-            call read_namelist(cfg, trim(grp%name), '&' // trim(grp%name) // ' ' // assignment_lhs(grp, k) // &
-                               ' = ' // assignment_value(grp, k) // ' /', ios, msg)
-            call check_read(ios, msg, grp, k)
-        end do
-        if (grp%name == 'material') cfg%material%present = .true.
-    end subroutine read_group
 
     !> An input text without any namelist group (an empty file, empty standard input: a
     !> forgotten '< input.nml') and no --set: stop rather than run every default silently.
@@ -173,25 +155,5 @@ contains
                               ' rows; a table needs at least two rows (position, value) covering the rod')
         table = table(:n, :)
     end subroutine read_table
-
-    !> After the namelist read of assignment k of grp: on failure, stop naming the variable,
-    !> the value given, what is allowed, and gfortran's message.
-    subroutine check_read(ios, msg, grp, k)
-        integer, intent(in) :: ios
-        character(len=*), intent(in) :: msg
-        type(group_t), intent(in) :: grp
-        integer, intent(in) :: k
-        character(len=:), allocatable :: lhs, name, value
-
-        if (ios == 0) return
-        lhs = assignment_lhs(grp, k)
-        name = identifier_at(lhs, 1)
-        value = assignment_value(grp, k)
-        if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
-        call fatal(EXIT_INPUT, grp%origin // trim(grp%name) // '.' // lower(name), &
-                   'got ' // quoted(excerpt(value)) // '; must be ' // &
-                   kind_description(var_kind(grp%name, name)) // &
-                   ' (namelist read: ' // trim(msg) // ')')
-    end subroutine check_read
 
 end module config_reader_m

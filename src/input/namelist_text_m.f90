@@ -1,8 +1,7 @@
-!> The namelist text of the input, before any value is read: the whole source in memory
-!> (standard input cannot be rewound), comments blanked, the groups '&name ... /' located
-!> (so that an unknown group, a group given twice or stray text is an error, in any order
-!> of the groups), and each group split into its assignments 'lhs = value', which the
-!> reader (config_reader_m) then reads one at a time. A command-line override '--set
+!> The namelist text of the input: the whole source in memory (standard input cannot be
+!> rewound), comments blanked, the groups '&name ... /' located (so that an unknown group, a
+!> group given twice or stray text is an error, in any order of the groups), and each group
+!> split into its assignments 'lhs = value', read one at a time (read_group). A command-line override '--set
 !> group.variable=value' becomes a group of that one assignment, read after the text: it
 !> passes the same checks and names itself in any error; what only a --set can get wrong
 !> (its form, a subscript, a value that would end the group) is checked when it is parsed,
@@ -10,20 +9,19 @@
 module namelist_text_m
     use, intrinsic :: iso_fortran_env, only: input_unit, iostat_end, iostat_eor
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
-    use config_m, only: LEN_NAME, LEN_PATH
+    use config_m, only: config_t, LEN_NAME, LEN_PATH
     use strings_m, only: lower, squeeze, excerpt, quoted, doubled_quotes, identifier_at, is_name_char, int_str
     use input_vars_m, only: GROUP_NAMES, KIND_COEFFS, KIND_PAIR, KIND_STRING, group_list, var_list, var_kind, &
-                            kind_description
+                            kind_description, read_namelist
     implicit none
     private
     public :: string_t, group_t
-    public :: read_source, strip_comments, find_groups, split_group, parse_override, override_summary
-    public :: assignment_lhs, assignment_value
+    public :: read_source, strip_comments, find_groups, read_group, parse_override, override_summary
 
     integer, parameter :: LEN_MSG = 512         !< iomsg buffers
 
     !> A namelist group of the input text, or a --set override as a group of one assignment;
-    !> split_group finds its assignments, body(first(k):eq(k)-1) the lhs of the k-th.
+    !> read_group finds its assignments, body(first(k):eq(k)-1) the lhs of the k-th.
     type :: group_t
         character(len=LEN_NAME) :: name = ''      !< lower case, without '&'
         integer :: line = 0                       !< the line of its '&name' (0: none open)
@@ -225,12 +223,16 @@ contains
         end do
     end function joined
 
-    !> Find the group's assignments 'lhs = value' and check what only the reader can: known
-    !> variable names, each given once, a value after '=', strings quoted.
-    subroutine split_group(grp)
+    !> Read group `grp` into its part of cfg, over the values already there: each assignment
+    !> 'lhs = value' by a namelist read of its own ('&group lhs = value /'), so that a bad
+    !> value names its variable, after what only the reader can check: a known variable
+    !> name, given once, a value after '=', a string quoted.
+    subroutine read_group(grp, cfg)
         type(group_t), intent(inout) :: grp
+        type(config_t), intent(inout) :: cfg
         character(len=:), allocatable :: lhs, name, value, where
-        integer :: k, p, n
+        character(len=LEN_MSG) :: msg
+        integer :: k, p, n, ios
 
         call find_assignments(grp)
         n = size(grp%eq)
@@ -258,8 +260,14 @@ contains
             if (var_kind(grp%name, name) == KIND_STRING .and. scan(value(1:1), '''"') == 0) &
                 call fatal(EXIT_INPUT, where, 'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // &
                            name // ' = ' // quoted(excerpt(value)))
+            call read_namelist(cfg, trim(grp%name), '&' // trim(grp%name) // ' ' // lhs // ' = ' // value // ' /', &
+                               ios, msg)
+            if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
+            if (ios /= 0) call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // &
+                kind_description(var_kind(grp%name, name)) // ' (namelist read: ' // trim(msg) // ')')
         end do
-    end subroutine split_group
+        if (grp%name == 'material') cfg%material%present = .true.
+    end subroutine read_group
 
     !> The variable of left-hand side `lhs` ('name' or 'name(i)') must be one of `group`.
     subroutine require_known(where, group, lhs)

@@ -46,14 +46,11 @@ module step_driver_m
         type(error_estimator_t) :: estimator
         type(step_controller_t) :: control
         type(event_log_t) :: events
-        type(state_t) :: saved                 !< the state before a tried step (adaptive)
-        !> the state's level (u, w) is the estimator's newest level, bit for bit (pushed at the
-        !> end of the step that reached it, unchanged since): a step tried from it saves the
-        !> rest of the state only, and a step taken back restores the level from the estimator
-        logical :: level_kept = .false.
-        !> the state saved before the last tried step has no level of its own (level_kept):
-        !> the level before that step is the estimator's newest (before the step's push)
-        logical :: saved_without_level = .false.
+        !> the state before a tried step (adaptive) without its level (u, w): an adaptive run's
+        !> level is the estimator's newest, bit for bit (pushed by init and by each accepted
+        !> step, moved with it by a remesh, read with it from a checkpoint), and a step taken
+        !> back gets it from there
+        type(state_t) :: saved
         logical :: in_contact = .false.        !< the contact state after the last accepted step
         logical :: warned_forced = .false.
         !> a step's t in the input's units (step_label): with &material in s (the time
@@ -153,9 +150,9 @@ contains
     !> The interpolant at time t of the last accepted step [t_{n-1}, t_n] (state holds X^n;
     !> dense_output_m): the polynomial through the levels since the last contact event, p+1
     !> of them (p the scheme's order) when held, else fewer. n points, weight(j) of the j-th
-    !> most recent level (j = 1: X^n); n = 1: one level since the event, and the straight
-    !> line from the state saved before the step is taken instead (weight(2) is the saved
-    !> state's).
+    !> most recent level (j = 1: X^n); with one level since the event, the straight line
+    !> from the level before the step (n = 2: the estimator's second level, which its reset
+    !> keeps, at the saved state's t).
     subroutine driver_dense_weights(self, state, t, n, weight)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
@@ -168,8 +165,9 @@ contains
             n = min(e%order + 1, e%n_levels)
             if (n < 2) then
                 ! a programming error (fixed steps keep their levels when dense output is on)
-                if (.not. allocated(self%saved%u)) &
+                if (.not. self%adaptive) &
                     error stop 'step_driver_m: dense output without the level before the step'
+                n = 2
                 weight(1:2) = lagrange_weights([state%t, self%saved%t], t)
                 return
             end if
@@ -190,10 +188,6 @@ contains
         call self%dense_weights(state, t, n, weight)
         u = weight(1) * state%u
         w = weight(1) * state%w
-        if (n < 2) then
-            u = u + weight(2) * self%saved%u
-            w = w + weight(2) * self%saved%w
-        end if
         do j = 2, n
             slot = self%estimator%slot(j)
             u = u + weight(j) * self%estimator%levels(:, 0, slot)
@@ -202,18 +196,13 @@ contains
     end subroutine driver_dense_level
 
     !> The j-th most recent level (j >= 2) of the last accepted step's interpolant
-    !> (dense_weights) into level, on state's mesh: the estimator's, or with one level since
-    !> an event the state saved before the step.
+    !> (dense_weights) into level, on state's mesh: the estimator's.
     subroutine driver_past_level(self, state, j, level)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
         integer, intent(in) :: j
         type(state_t), intent(inout) :: level
 
-        if (self%estimator%n_levels < 2) then
-            call copy_state(self%saved, level)
-            return
-        end if
         call copy_state(state, level, level=.false.)
         associate (e => self%estimator, slot => self%estimator%slot(j))
             call keep_copy(e%levels(:, 0, slot), e%levels(:, 1:, slot), level%u, level%w, 'a past level')
@@ -241,7 +230,6 @@ contains
         call check_allocation(stat, message, 'the remesh')
         call mesh%adapt(state%mesh, state%u, state%w, changed)
         if (.not. changed) return
-        self%level_kept = .false.
         call move_state(k_old, mesh%k, mesh%n_fine, stepper, state)
         allocate (levels_old, source=self%estimator%levels, stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the remesh')

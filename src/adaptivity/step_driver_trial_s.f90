@@ -119,10 +119,7 @@ contains
         trial%t_before = state%t
         trial%dt_last = state%dt_last
         trial%gap_start = state%u(state%s) - stepper%law%g
-        if (self%adaptive) then
-            self%saved_without_level = self%level_kept
-            call copy_state(state, self%saved, level=.not. self%saved_without_level)
-        end if
+        if (self%adaptive) call copy_state(state, self%saved, level=.false.)   ! (its level: undo_step)
         call stepper%advance(state, result, trial%dt)
         if (.not. result%ok) then
             failure = self%step_label(state%step + 1, advance_time(state, trial%dt), trim(result%message))
@@ -255,16 +252,6 @@ contains
             return
         end if
         call self%estimator%push(state%u, state%w, trial%dt)
-        self%level_kept = .true.
-        if (self%saved_without_level .and. self%estimator%n_levels < 2) then
-            ! after an event the levels are forgotten: dense output takes the level before
-            ! the step from the saved state (dense_weights), so it gets its level now
-            associate (e => self%estimator, before => self%estimator%slot(2))
-                call keep_copy(e%levels(:, 0, before), e%levels(:, 1:, before), self%saved%u, self%saved%w, &
-                               'the saved state')
-            end associate
-            self%saved_without_level = .false.
-        end if
         ! a step cut to end at an event, and the event's step, keep the proposal from before
         call self%control%accept(trial%dt, trial%est, trial%err, &
                                  shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
@@ -278,13 +265,11 @@ contains
         type(state_t), intent(inout) :: state
 
         call stepper%take_back(result)
-        call copy_state(self%saved, state, level=.not. self%saved_without_level)
-        if (self%saved_without_level) then   ! the level it started from: the estimator's newest
-            associate (e => self%estimator, newest => self%estimator%slot(1))
-                state%u = e%levels(:, 0, newest)
-                state%w = e%levels(:, 1:, newest)
-            end associate
-        end if
+        call copy_state(self%saved, state, level=.false.)
+        associate (e => self%estimator, newest => self%estimator%slot(1))   ! the level it started from
+            state%u = e%levels(:, 0, newest)
+            state%w = e%levels(:, 1:, newest)
+        end associate
     end subroutine undo_step
 
     !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.

@@ -105,13 +105,8 @@ contains
         call run%monitor%init(run%stepper%model, run%stepper%step_model, run%stepper%law, run%stepper%scheme, &
                               run%state)
         call run%driver%init(cfg, run%state, run%stepper, run%monitor)
-        if (cfg%output%error_estimate) then
-            if (cfg%mesh%adaptive) then
-                call run%companions%init(cfg, run%state, keys=run%mesh%k)
-            else
-                call run%companions%init(cfg, run%state)
-            end if
-        end if
+        ! keys: allocated, and so present, on an adaptive mesh only
+        if (cfg%output%error_estimate) call run%companions%init(cfg, run%state, keys=run%mesh%k)
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt, run%in_place)
             if (ckpt%has('run/wall_seconds')) call ckpt%sync('run/wall_seconds', run%wall_before)

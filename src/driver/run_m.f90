@@ -5,7 +5,7 @@ module run_m
     use iso_fortran_env, only: int64, error_unit
     use config_m, only: config_t, number_of_steps
     use errors_m, only: fatal, check_allocation, EXIT_NUMERIC, EXIT_INTERRUPTED
-    use stop_signal_m, only: install_stop_handlers, stop_signal_arrived, stop_signal_name, ignore_file_size_signal
+    use stop_signal_m, only: install_stop_handlers, stop_signal_arrived, stop_signal_name
     use state_m, only: state_t, initial_state, set_mesh
     use adaptive_mesh_m, only: adaptive_mesh_t
     use remesh_m, only: initial_mesh
@@ -139,8 +139,6 @@ contains
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
 
-        ! a file size limit (ulimit -f) makes a write fail (exit 4), as a full disk does
-        call ignore_file_size_signal()
         call output_grid(cfg, run%x_out)
         call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression, run%in_place)
         call record_inputs(run%writer, cfg)

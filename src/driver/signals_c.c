@@ -15,10 +15,12 @@ static void record_signal(int sig)
     received = sig;
 }
 
-/* Install the handler for SIGTERM, SIGINT and SIGUSR1 and unblock them; 0 on success, -1
- * on failure. A process may inherit them blocked (the signal mask survives exec): then a
- * scheduler's signal would stay pending and the run never stop; one that is already
- * pending is delivered here, once the handler records it. */
+/* Install the handler for SIGTERM, SIGINT and SIGUSR1 and unblock them, and ignore SIGXFSZ;
+ * 0 on success, -1 on failure. A process may inherit them blocked (the signal mask survives
+ * exec): then a scheduler's signal would stay pending and the run never stop; one that is
+ * already pending is delivered here, once the handler records it. SIGXFSZ's default action
+ * kills a process that writes past its file size limit (ulimit -f): ignored, the write fails
+ * with EFBIG, and the output writer stops with a message and exit status 4 as on a full disk. */
 int rc_install_stop_handlers(void)
 {
     struct sigaction action;
@@ -33,6 +35,10 @@ int rc_install_stop_handlers(void)
     for (k = 0; k < sizeof signals / sizeof signals[0]; k++)
         if (sigaction(signals[k], &action, NULL) != 0 || sigaddset(&stop_set, signals[k]) != 0)
             return -1;
+    action.sa_handler = SIG_IGN;
+    action.sa_flags = 0;
+    if (sigaction(SIGXFSZ, &action, NULL) != 0)
+        return -1;
     return sigprocmask(SIG_UNBLOCK, &stop_set, NULL) == 0 ? 0 : -1;
 }
 
@@ -46,17 +52,4 @@ int rc_stop_signal(void)
         if (received == signals[k])
             return (int)k + 1;
     return 0;
-}
-
-/* Ignore SIGXFSZ, whose default action kills a process that writes past its file size
- * limit (ulimit -f): the write then fails with EFBIG, and the output writer stops with a
- * message and exit status 4 as on a full disk. 0 on success, -1 on failure. */
-int rc_ignore_file_size_signal(void)
-{
-    struct sigaction action;
-
-    memset(&action, 0, sizeof action);
-    action.sa_handler = SIG_IGN;
-    sigemptyset(&action.sa_mask);
-    return sigaction(SIGXFSZ, &action, NULL) == 0 ? 0 : -1;
 }

@@ -5,7 +5,7 @@ module stop_signal_m
     use errors_m, only: fatal, EXIT_OUTPUT
     implicit none
     private
-    public :: install_stop_handlers, stop_signal_arrived, stop_signal_name, ignore_file_size_signal
+    public :: install_stop_handlers, stop_signal_arrived, stop_signal_name
 
     interface
         function c_install() bind(C, name='rc_install_stop_handlers') result(rc)
@@ -17,11 +17,6 @@ module stop_signal_m
             import :: c_int
             integer(c_int) :: sig
         end function c_stop_signal
-
-        function c_ignore_xfsz() bind(C, name='rc_ignore_file_size_signal') result(rc)
-            import :: c_int
-            integer(c_int) :: rc
-        end function c_ignore_xfsz
     end interface
 
     !> rc_stop_signal's 1, 2, 3
@@ -29,18 +24,14 @@ module stop_signal_m
 
 contains
 
-    !> From now on SIGTERM, SIGINT and SIGUSR1 only set the flag that stop_signal_name reads.
+    !> From now on SIGTERM, SIGINT and SIGUSR1 only set the flag that stop_signal_name reads,
+    !> and a write past the file size limit (ulimit -f) fails with EFBIG instead of killing
+    !> the run with SIGXFSZ, so that it ends like a full disk: message, exit status 4, the
+    !> .h5.part with its last checkpoint left to restart from (output_m).
     subroutine install_stop_handlers()
         if (c_install() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot install the handlers of SIGTERM, ' // &
-                                         'SIGINT and SIGUSR1 (sigaction or sigprocmask failed)')
+                                         'SIGINT and SIGUSR1 or ignore SIGXFSZ (sigaction or sigprocmask failed)')
     end subroutine install_stop_handlers
-
-    !> A write past the file size limit (ulimit -f) fails with EFBIG instead of killing the
-    !> run with SIGXFSZ, so that it ends like a full disk: message, exit status 4, the
-    !> .h5.part with its last checkpoint left to restart from (output_m).
-    subroutine ignore_file_size_signal()
-        if (c_ignore_xfsz() /= 0) call fatal(EXIT_OUTPUT, 'signals', 'cannot ignore SIGXFSZ (sigaction failed)')
-    end subroutine ignore_file_size_signal
 
     !> A stop signal has arrived (the time loop's test after every step: no allocation, unlike
     !> stop_signal_name).

@@ -169,20 +169,15 @@ contains
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(in) :: u(0:), w(0:, :)
         logical, intent(out) :: changed
-        real(dp), allocatable :: refine_ind(:), coarsen_ind(:)
-        logical, allocatable :: hot(:), keep(:), bisect(:), remove(:)
-        integer(int64), allocatable :: k_new(:), k_graded(:)
-        integer :: s, e, m, n, stat
-        character(len=256) :: message
+        real(dp) :: refine_ind(ubound(self%k, 1)), coarsen_ind(0:ubound(self%k, 1))
+        logical, dimension(ubound(self%k, 1)) :: hot, keep, bisect
+        logical :: remove(0:ubound(self%k, 1))
+        integer(int64), allocatable :: k_new(:)
+        integer :: s, e, m
         integer(int64) :: length
 
         s = self%s()
         call self%observe_scales(mesh, u, w)
-        allocate (refine_ind(s), coarsen_ind(0:s), hot(s), keep(s), bisect(s), remove(0:s), stat=stat, errmsg=message)
-        if (stat /= 0) then
-            call check_allocation(stat, message, 'the mesh indicator''s work arrays')
-            return   ! not reached: check_allocation stops the run
-        end if
         call indicators(self, mesh%x, u, w, refine_ind, coarsen_ind)
         hot = refine_ind > self%tol
         ! keep: within `buffer` elements of a hot one (refined up to max_level, never coarsened)
@@ -201,63 +196,52 @@ contains
             if (modulo(self%k(m - 1), 2_int64 * length) /= 0) cycle     ! not siblings
             remove(m) = coarsen_ind(m) <= self%tol / COARSEN_MARGIN
         end do
-        ! the new nodes: the old ones not removed, and the midpoints of bisected elements
-        allocate (k_new(0:2 * s), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the new mesh')
-        n = 0
-        k_new(0) = self%k(0)
-        do e = 1, s
-            if (bisect(e)) then
-                n = n + 1
-                k_new(n) = (self%k(e - 1) + self%k(e)) / 2
-            end if
-            if (e < s) then
-                if (remove(e)) cycle
-            end if
-            n = n + 1
-            k_new(n) = self%k(e)
-        end do
-        call balance(k_new(0:n), k_graded)
-        changed = size(self%k) /= size(k_graded)
-        if (.not. changed) changed = any(self%k /= k_graded)
-        if (changed) call self%set_keys(k_graded)
+        call bisected(self%k, bisect, remove, k_new)
+        call balance(k_new)
+        changed = size(self%k) /= size(k_new)
+        if (.not. changed) changed = any(self%k /= k_new)
+        if (changed) call self%set_keys(k_new)
     end subroutine mesh_adapt
 
-    !> The mesh k_in refined until neighbouring elements differ by at most one level (2:1
-    !> grading).
-    subroutine balance(k_in, k)
-        integer(int64), intent(in) :: k_in(0:)
-        integer(int64), allocatable, intent(out) :: k(:)
-        integer(int64), allocatable :: k_next(:)
-        integer :: e, n, s, stat
+    !> k_new = the nodes of keys k but those m where remove(m) (remove(s) = .false.), with the
+    !> midpoint of each element e where bisect(e).
+    subroutine bisected(k, bisect, remove, k_new)
+        integer(int64), intent(in) :: k(0:)
+        logical, intent(in) :: bisect(:), remove(0:)
+        integer(int64), allocatable, intent(out) :: k_new(:)
+        integer(int64) :: work(0:2 * ubound(k, 1))
+        integer :: e, n, stat
         character(len=256) :: message
-        logical :: split
 
-        allocate (k(0:ubound(k_in, 1)), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the balanced mesh')
-        k = k_in
-        do
-            s = ubound(k, 1)
-            allocate (k_next(0:2 * s), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the balanced mesh')
-            n = 0
-            k_next(0) = k(0)
-            split = .false.
-            do e = 1, s
-                if (too_coarse(k, e)) then
-                    n = n + 1
-                    k_next(n) = (k(e - 1) + k(e)) / 2
-                    split = .true.
-                end if
+        n = 0
+        work(0) = k(0)
+        do e = 1, ubound(k, 1)
+            if (bisect(e)) then
                 n = n + 1
-                k_next(n) = k(e)
-            end do
-            deallocate (k)
-            allocate (k(0:n), stat=stat, errmsg=message)
-            call check_allocation(stat, message, 'the balanced mesh')
-            k = k_next(0:n)
-            deallocate (k_next)
-            if (.not. split) exit
+                work(n) = (k(e - 1) + k(e)) / 2
+            end if
+            if (remove(e)) cycle
+            n = n + 1
+            work(n) = k(e)
+        end do
+        allocate (k_new(0:n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the new mesh')
+        k_new = work(0:n)
+    end subroutine bisected
+
+    !> The mesh of keys k bisected until neighbouring elements differ by at most one level
+    !> (2:1 grading).
+    subroutine balance(k)
+        integer(int64), allocatable, intent(inout) :: k(:)
+        integer(int64), allocatable :: k_next(:)
+        logical, allocatable :: split(:)
+        integer :: e
+
+        do
+            split = [(too_coarse(k, e), e = 1, ubound(k, 1))]
+            if (.not. any(split)) exit
+            call bisected(k, split, spread(.false., 1, size(k)), k_next)
+            call move_alloc(k_next, k)
         end do
 
     contains

@@ -109,20 +109,7 @@ contains
         if (cfg%output%error_estimate) call run%companions%init(cfg, run%state, keys=run%mesh%k)
         if (cfg%time%restart_from /= '') then
             call read_checkpoint(trim(cfg%time%restart_from), cfg, ckpt, run%in_place)
-            if (ckpt%has('run/wall_seconds')) call ckpt%sync('run/wall_seconds', run%wall_before)
-            call run%state%checkpoint(ckpt, 'state')
-            call run%state%mesh%checkpoint(ckpt)
-            if (cfg%mesh%adaptive) then
-                call run%mesh%checkpoint(ckpt)
-                call ckpt%sync('run/n_elements_max', run%n_elements_max)
-                call set_mesh(run%state, run%mesh%nodes())
-                call run%stepper%remesh(run%state)
-                call run%monitor%resize(run%state)
-            end if
-            call run%monitor%checkpoint(ckpt)
-            call run%stepper%checkpoint(ckpt)
-            call run%driver%checkpoint(ckpt)
-            if (cfg%output%error_estimate) call run%companions%checkpoint(ckpt)
+            call checkpoint(run, cfg, ckpt)
         end if
         if (cfg%output%snapshot_dt > 0.0_dp) &
             run%n_snapshot_next = floor(run%state%t / cfg%output%snapshot_dt * (1.0_dp + 1.0e-12_dp)) + 1
@@ -305,24 +292,37 @@ contains
         text = trim(text)//' (first t = '//format_real(times(first))//unit//')'
     end function event_summary
 
-    !> /checkpoint: every type that the run continues from saves itself (checkpoint_m), so
-    !> that a restart continues exactly.
-    subroutine checkpoint(run, cfg)
+    !> /checkpoint: every type that the run continues from saves itself (checkpoint_m's sync)
+    !> and the checkpoint is written; or, given `from` (read from a file: restart_m), each gets
+    !> itself back from it, the adaptive mesh first (it resizes the others). So a restart
+    !> continues exactly, and the save and the restore name the same entries.
+    subroutine checkpoint(run, cfg, from)
         type(run_t), intent(inout) :: run
         type(config_t), intent(in) :: cfg
+        type(checkpoint_t), intent(in), optional :: from
         type(checkpoint_t) :: ckpt
         real(dp) :: wall
 
+        if (present(from)) ckpt = from
         call run%state%checkpoint(ckpt, 'state')
         call run%state%mesh%checkpoint(ckpt)
-        call run%stepper%checkpoint(ckpt)
-        call run%monitor%checkpoint(ckpt)
-        call run%driver%checkpoint(ckpt)
         if (cfg%mesh%adaptive) then
             call run%mesh%checkpoint(ckpt)
             call ckpt%sync('run/n_elements_max', run%n_elements_max)
+            if (ckpt%reading) then
+                call set_mesh(run%state, run%mesh%nodes())
+                call run%stepper%remesh(run%state)
+                call run%monitor%resize(run%state)
+            end if
         end if
+        call run%monitor%checkpoint(ckpt)
+        call run%stepper%checkpoint(ckpt)
+        call run%driver%checkpoint(ckpt)
         if (cfg%output%error_estimate) call run%companions%checkpoint(ckpt)
+        if (ckpt%reading) then
+            if (ckpt%has('run/wall_seconds')) call ckpt%sync('run/wall_seconds', run%wall_before)
+            return
+        end if
         wall = wall_seconds(run)
         call ckpt%sync('run/wall_seconds', wall)
         call run%writer%write_checkpoint(ckpt, run%driver%step_label(run%state%step, run%state%t, ''))

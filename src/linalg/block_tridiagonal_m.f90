@@ -2,8 +2,7 @@
 !> fields in the system, at most NB_MAX = 5), node i couples only to nodes i-1 and i+1,
 !> so A is block tridiagonal: nb x nb blocks D_i (diagonal), E_i (row i, column i+1) and
 !> F_i (row i+1, column i) (scheme_m's assemble_blocks). The 5 x 5 kernel is written out
-!> to be unrolled; fewer fields (scheme_m's active_fields) use loops. The solve's chain
-!> of dependencies has one link per node (the band LU's: one per unknown).
+!> to be unrolled (docs/performance.md); fewer fields (scheme_m's active_fields) use loops.
 !>
 !> Factorisation: S_0 = D_0, S_i = D_i - F_{i-1} S_{i-1}^{-1} E_{i-1}; we keep G_i =
 !> S_i^{-1}, L_i = F_{i-1} G_{i-1} and H_i = G_i E_i. S_i is inverted with partial
@@ -114,14 +113,17 @@ contains
                 call factor_node(i, self%last, self%nb, f(:, :, before), e(:, :, before), e(:, :, now), &
                                  inline, self%g, self%l, self%h, info)
             end if
-            if (info /= 0) return
+            if (info /= 0) then   ! a singular pivot block
+                info = i + 1
+                return
+            end if
         end do
     end subroutine factor_nodes
 
     !> Node i of the block LU, nb = 5: g(:, :, i) = D_i becomes G_i = S_i^{-1}, S_i = D_i -
     !> L_i E_{i-1} with L_i = F_{i-1} G_{i-1}, and H_i = G_i E_i (f = F_{i-1}, e_before = E_{i-1},
     !> e_now = E_i). before_in_pattern: in_pattern(E_{i-1}) on entry, of E_i on return.
-    !> info: 0, or i + 1 for a singular pivot block.
+    !> info: the inversion's.
     subroutine factor_node5(i, last, f, e_before, e_now, inline, g, l, h, before_in_pattern, info)
         integer, intent(in) :: i, last
         real(dp), intent(in) :: f(NB_MAX, NB_MAX), e_before(NB_MAX, NB_MAX), e_now(NB_MAX, NB_MAX)
@@ -143,21 +145,16 @@ contains
             g(:, :, i) = g(:, :, i) - le   ! L_i E_{i-1} summed first
         end if
         if (inline) then
-            call invert5(g(:, :, i), info)
+            call invert5(g(:, :, i), info)   ! not through invert (docs/performance.md)
         else
             call invert(g(:, :, i), NB_MAX, .false., info)
         end if
-        if (info /= 0) then
-            info = i + 1
-            return
-        end if
-        if (i < last) then
-            before_in_pattern = in_pattern(e_now)
-            if (before_in_pattern) then
-                call product5_right_pattern(g(:, :, i), e_now, h(:, :, i))
-            else
-                call product5(g(:, :, i), e_now, h(:, :, i))
-            end if
+        if (info /= 0 .or. i == last) return
+        before_in_pattern = in_pattern(e_now)
+        if (before_in_pattern) then
+            call product5_right_pattern(g(:, :, i), e_now, h(:, :, i))
+        else
+            call product5(g(:, :, i), e_now, h(:, :, i))
         end if
     end subroutine factor_node5
 
@@ -174,11 +171,7 @@ contains
             g(:, :, i) = g(:, :, i) - matmul(l(:, :, i), e_before)
         end if
         call invert(g(:, :, i), nb, inline, info)
-        if (info /= 0) then
-            info = i + 1
-            return
-        end if
-        if (i < last) h(:, :, i) = matmul(g(:, :, i), e_now)
+        if (info == 0 .and. i < last) h(:, :, i) = matmul(g(:, :, i), e_now)
     end subroutine factor_node
 
     !> a = a^{-1} for an n x n pivot block: invert5 (inline; n < 5: a inside an identity
@@ -406,8 +399,8 @@ contains
         end do
     end subroutine invert5
 
-    !> k - 1 + maxloc(abs(column(k:NB_MAX)), dim=1) written out (the intrinsic's call was a fifth
-    !> of invert5): the first row of the largest |column(r)|, r >= k, NaNs passed over (all NaN: k).
+    !> k - 1 + maxloc(abs(column(k:NB_MAX)), dim=1) written out (docs/performance.md): the
+    !> first row of the largest |column(r)|, r >= k, NaNs passed over (all NaN: k).
     pure integer function pivot_index(column, k) result(p)
         real(dp), intent(in) :: column(NB_MAX)
         integer, intent(in) :: k

@@ -186,22 +186,17 @@ contains
     !> node is inactive. The contact term is added at the current level. With an active
     !> penalty BDF2 has no such law (the nonlinear term is not G-stable).
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
-    !> lin_now: E_lin(X^n) when the caller has it already (it is not computed again).
-    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, energy, lin_now)
+    !> lin: E_lin(X^n), which the caller has from discrete_energy.
+    subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, lin, energy)
         type(model_t), intent(in) :: model
         class(contact_law_t), intent(in) :: law
         real(dp), intent(in), contiguous :: u(0:), w(0:, :), u_prev(0:), w_prev(0:, :)
         type(mesh_t), intent(in) :: mesh           !< the mesh of both levels
         real(dp), intent(inout), contiguous :: u_work(0:), w_work(0:, :)
+        real(dp), intent(in) :: lin
         real(dp), intent(out) :: energy
-        real(dp), intent(in), optional :: lin_now
-        real(dp) :: lin, lin_extrapolated
+        real(dp) :: lin_extrapolated
 
-        if (present(lin_now)) then
-            lin = lin_now
-        else
-            call discrete_energy(model, u, w, mesh, lin)
-        end if
         u_work = 2.0_dp * u - u_prev
         w_work = 2.0_dp * w - w_prev
         call discrete_energy(model, u_work, w_work, mesh, lin_extrapolated)
@@ -270,8 +265,7 @@ contains
         if (.not. self%have_law) return
         if (size(self%u_work) /= size(state%u)) call self%resize(state)
         call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
-                         self%u_work, self%w_work, self%law_energy, &
-                         lin_now=sum(self%last_parts(:PART_MASS_FLUX)))
+                         self%u_work, self%w_work, sum(self%last_parts(:PART_MASS_FLUX)), self%law_energy)
     end subroutine measure
 
     !> The energies of the level (observe's new level, or the level moved to a new mesh by

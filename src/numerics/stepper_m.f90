@@ -389,8 +389,8 @@ contains
         if (.not. all_finite(self%x)) call fail(result, 'non-finite value in the solution')
     end subroutine apply_contact
 
-    !> all(ieee_is_finite(x)) as a loop the compiler vectorises (the elemental call per entry
-    !> was most of apply_contact): abs(x) <= huge is false for a NaN and for an infinity.
+    !> all(ieee_is_finite(x)) as a loop the compiler vectorises (docs/performance.md):
+    !> abs(x) <= huge is false for a NaN and for an infinity.
     pure logical function all_finite(x)
         real(dp), intent(in), contiguous :: x(:)
         integer :: i, n_bad

@@ -117,9 +117,8 @@ contains
 
     !> Solve A x = b in place with the factors of factor(): forward substitution with L and the
     !> row interchanges, back substitution with the band of U: the order of LAPACK's dgbtrs
-    !> ('N', one right-hand side), but U's diagonal divides as a product with its reciprocal,
-    !> so the bits differ from dgbtrs's. Not dgbtrs itself: its BLAS call per column (dswap,
-    !> dger of length kl) costs more than the arithmetic at kl = ku = 7 (docs/performance.md).
+    !> ('N', one right-hand side) in plain loops (docs/performance.md), but U's diagonal
+    !> divides as a product with its reciprocal, so the bits differ from dgbtrs's.
     !> No allocation: called every time step. It cannot fail once factor() succeeded
     !> (calling it before is a bug in rodcontact and stops the program).
     subroutine band_solve(self, b)
@@ -156,7 +155,7 @@ contains
         end do
     end subroutine band_solve
 
-    !> A readable message for a LAPACK info value of routine ('dgbtrf', 'dgbtrs').
+    !> A readable message for a LAPACK info value of routine (e.g. 'dgbtrf').
     function lapack_info_message(routine, info) result(message)
         character(len=*), intent(in) :: routine
         integer, intent(in) :: info

@@ -20,25 +20,23 @@ module fields_m
     integer, parameter :: N_FIELDS = 5
     integer, parameter :: F_U = 0, F_Q = 1, F_THETA = 2, F_V = 3, F_P = 4, F_ETA = 5
 
-    !> What a field is. zero_at: the end where its space forces it to vanish (S_h: x = 0,
-    !> V_h: x = 1); energy: its term in E^n of Corollary 6.2.
+    !> What a field is (its term in E^n: energy_m).
     type :: field_t
         character(len=8) :: name
         character(len=3) :: space        !< 'S_h' (zero at x = 0) or 'V_h' (zero at x = 1)
         character(len=40) :: long_name
-        character(len=24) :: energy      !< the field's term in 2 E^n (integrand)
         character(len=8) :: units        !< '1': nondimensional, scales of (2.10)
         character(len=24) :: scale       !< which scale of (2.10): root attribute scale.<scale> (&material)
     end type field_t
 
     !> Indexed by F_*; names as in the output file (docs/output.md).
     type(field_t), parameter :: FIELDS(F_U:N_FIELDS) = [ &
-        field_t('u', 'S_h', 'displacement', 'alpha u_x^2', '1', 'displacement'), &
-        field_t('q', 'S_h', 'heat flux', 'tau0 q^2', '1', 'heat_flux'), &
-        field_t('theta', 'V_h', 'temperature', 'c theta^2 + 2 d P theta', '1', 'temperature'), &
-        field_t('v', 'S_h', 'velocity', 'rho v^2', '1', 'velocity'), &
-        field_t('P', 'V_h', 'chemical potential', 'r P^2', '1', 'chemical_potential'), &
-        field_t('eta', 'S_h', 'diffusion flux', 'tau hbar eta^2', '1', 'diffusion_flux')]
+        field_t('u', 'S_h', 'displacement', '1', 'displacement'), &
+        field_t('q', 'S_h', 'heat flux', '1', 'heat_flux'), &
+        field_t('theta', 'V_h', 'temperature', '1', 'temperature'), &
+        field_t('v', 'S_h', 'velocity', '1', 'velocity'), &
+        field_t('P', 'V_h', 'chemical potential', '1', 'chemical_potential'), &
+        field_t('eta', 'S_h', 'diffusion flux', '1', 'diffusion_flux')]
 
     !> The order of the fields in /snapshots (and of every reader): u, v, theta, P, q, eta.
     integer, parameter :: N_OUTPUT_FIELDS = N_FIELDS + 1

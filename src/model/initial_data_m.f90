@@ -5,7 +5,7 @@ module initial_data_m
     use kinds_m, only: dp
     implicit none
     private
-    public :: profile, STEP_TOL
+    public :: profile
 
     !> A point within STEP_TOL of the step's end x_end is on the jump, so that a node
     !> computed as i/s that should equal x_end is not lost to round-off.

@@ -167,39 +167,26 @@ contains
         end if
     end subroutine copy_state
 
-    !> (u_copy, w_copy) = (u, w), allocated with their bounds on the first call (what: for
-    !> the message if the allocation fails).
+    !> (u_copy, w_copy) = (u, w) with their bounds: the arrays are kept when u_copy has as many
+    !> entries as u (the mesh is the same), else allocated anew (what: for the message if the
+    !> allocation fails).
     subroutine keep_copy(u, w, u_copy, w_copy, what)
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp), allocatable, intent(inout) :: u_copy(:), w_copy(:, :)
         character(len=*), intent(in) :: what
-
-        call sized_level(u_copy, w_copy, ubound(u, 1), size(w, 2), what)
-        u_copy = u
-        w_copy = w
-    end subroutine keep_copy
-
-    !> A level's arrays u(0:last), w(0:last, n_fields): kept when u has last + 1 entries (the
-    !> mesh is the same), else allocated anew and zero (what: for the message if the
-    !> allocation fails).
-    subroutine sized_level(u, w, last, n_fields, what)
-        real(dp), allocatable, intent(inout) :: u(:), w(:, :)
-        integer, intent(in) :: last, n_fields
-        character(len=*), intent(in) :: what
         integer :: stat
         character(len=256) :: message
 
-        if (allocated(u)) then
-            if (size(u) == last + 1) return
-            deallocate (u, w)   ! the mesh has changed
+        if (allocated(u_copy)) then
+            if (size(u_copy) /= size(u)) deallocate (u_copy, w_copy)   ! the mesh has changed
         end if
-        allocate (u(0:last), stat=stat, errmsg=message)
-        call check_allocation(stat, message, what)
-        allocate (w(0:last, n_fields), stat=stat, errmsg=message)
-        call check_allocation(stat, message, what)
-        u = 0.0_dp
-        w = 0.0_dp
-    end subroutine sized_level
+        if (.not. allocated(u_copy)) then
+            allocate (u_copy(0:ubound(u, 1)), w_copy(0:ubound(w, 1), size(w, 2)), stat=stat, errmsg=message)
+            call check_allocation(stat, message, what)
+        end if
+        u_copy = u
+        w_copy = w
+    end subroutine keep_copy
 
     !> The level, the level before and the time counters in a checkpoint (checkpoint_m's sync)
     !> under owner (e.g. 'state'): owner/level and owner/previous (s+1, 1+N_FIELDS: the columns
@@ -216,19 +203,14 @@ contains
         if (ckpt%reading) then
             call ckpt%get(owner//'/level', level)
             self%s = size(level, 1) - 1
-            call sized_level(self%u, self%w, self%s, N_FIELDS, 'the state')
-            self%u = level(:, 1)
-            self%w = level(:, 2:)
+            call keep_copy(level(:, 1), level(:, 2:), self%u, self%w, 'the state')
             if (ckpt%has(owner//'/previous')) then
                 call ckpt%get(owner//'/previous', level)
                 if (all(size(level, 1) /= [0, self%s + 1])) &
                     call fatal(EXIT_INPUT, 'time.restart_from', &
                                'the checkpoint''s '//owner//' levels differ in size')
-                if (size(level, 1) > 0) then
-                    call sized_level(self%u_prev, self%w_prev, self%s, N_FIELDS, 'the previous level')
-                    self%u_prev = level(:, 1)
-                    self%w_prev = level(:, 2:)
-                end if
+                if (size(level, 1) > 0) &
+                    call keep_copy(level(:, 1), level(:, 2:), self%u_prev, self%w_prev, 'the previous level')
             end if
         else
             call ckpt%put(owner//'/level', reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS]))

@@ -265,7 +265,8 @@ contains
         if (.not. self%have_law) return
         if (size(self%u_work) /= size(state%u)) call self%resize(state)
         call bdf2_energy(self%model, self%law, state%u, state%w, state%u_prev, state%w_prev, state%mesh, &
-                         self%u_work, self%w_work, sum(self%last_parts(:PART_MASS_FLUX)), self%law_energy)
+                         self%u_work, self%w_work, sum(self%last_parts(:PART_MASS_FLUX)), &
+                         self%law_energy)
     end subroutine measure
 
     !> The energies of the level (observe's new level, or the level moved to a new mesh by

@@ -181,7 +181,8 @@ contains
             if (size(u_copy) /= size(u)) deallocate (u_copy, w_copy)   ! the mesh has changed
         end if
         if (.not. allocated(u_copy)) then
-            allocate (u_copy(0:ubound(u, 1)), w_copy(0:ubound(w, 1), size(w, 2)), stat=stat, errmsg=message)
+            allocate (u_copy(0:ubound(u, 1)), w_copy(0:ubound(w, 1), size(w, 2)), &
+                      stat=stat, errmsg=message)
             call check_allocation(stat, message, what)
         end if
         u_copy = u

@@ -60,7 +60,6 @@ module adaptive_mesh_m
         procedure :: s => mesh_s
         procedure :: nodes => mesh_nodes_of
         procedure :: level => mesh_level
-        procedure :: observe_scales => mesh_observe_scales
         procedure :: adapt => mesh_adapt
         procedure :: set_keys => mesh_set_keys
         procedure :: checkpoint => mesh_checkpoint
@@ -148,20 +147,6 @@ contains
         mesh_level = self%max_level - trailz(self%k(e) - self%k(e - 1))
     end function mesh_level
 
-    !> scale_f = max(scale_f, |f|_L2) for the level (u, w) on mesh.
-    subroutine mesh_observe_scales(self, mesh, u, w)
-        class(adaptive_mesh_t), intent(inout) :: self
-        type(mesh_t), intent(in) :: mesh
-        real(dp), intent(in) :: u(0:), w(0:, :)
-        integer :: f
-
-        self%norm(0) = l2_norm(mesh%x, u)
-        do f = 1, N_FIELDS
-            self%norm(f) = l2_norm(mesh%x, w(:, f))
-        end do
-        self%scale = max(self%scale, self%norm)
-    end subroutine mesh_observe_scales
-
     !> The next mesh for the level (u, w) on the current mesh (the nodes of self%k; module
     !> header); changed: it differs from the current one (then self%k holds it).
     subroutine mesh_adapt(self, mesh, u, w, changed)
@@ -173,11 +158,16 @@ contains
         logical, dimension(ubound(self%k, 1)) :: hot, keep, bisect
         logical :: remove(0:ubound(self%k, 1))
         integer(int64), allocatable :: k_new(:)
-        integer :: s, e, m
+        integer :: s, e, m, f
         integer(int64) :: length
 
         s = self%s()
-        call self%observe_scales(mesh, u, w)
+        ! each field's L2 norm, and scale_f = max(scale_f, |f|_L2)
+        self%norm(0) = l2_norm(mesh%x, u)
+        do f = 1, N_FIELDS
+            self%norm(f) = l2_norm(mesh%x, w(:, f))
+        end do
+        self%scale = max(self%scale, self%norm)
         call indicators(self, mesh%x, u, w, refine_ind, coarsen_ind)
         hot = refine_ind > self%tol
         ! keep: within `buffer` elements of a hot one (refined up to max_level, never coarsened)

@@ -51,17 +51,15 @@ contains
         logical, intent(in) :: onset
         logical, intent(out) :: found
         real(dp) :: times(3), gaps(3)
-        integer :: slot
 
-        t_event = crossing_time(t_before, dt, gap_start, gap_end)
         found = .false.
-        if (estimator%order < 2 .or. estimator%n_levels < 2) return
-        associate (e => estimator)
-            slot = e%slot(2)     ! the level before t_before
-            times = [t_before + dt, t_before, t_before - e%step(1)]
-            gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, slot) - g]
-        end associate
-        call interpolant_root(times, gaps, t_lo, t_hi, t_event, found)
+        if (estimator%order >= 2 .and. estimator%n_levels >= 2) then
+            associate (e => estimator, before => estimator%slot(2))   ! the level before t_before
+                times = [t_before + dt, t_before, t_before - e%step(1)]
+                gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, before) - g]
+            end associate
+            call interpolant_root(times, gaps, t_lo, t_hi, t_event, found)
+        end if
         if (.not. found) t_event = crossing_time(t_before, dt, gap_start, gap_end)
     end function gap_event_time
 
@@ -103,7 +101,6 @@ contains
             end do
         end associate
         call interpolant_root(times(1:k + n), force(1:k + n), t_lo, t_hi, t_event, found)
-        if (.not. found) t_event = t_hi
     end subroutine release_time
 
 end module event_location_m

@@ -265,7 +265,8 @@ contains
         reference = max(self%norm, NORM_FLOOR * self%scale)
         if (reference(0) > 0.0_dp) call add_field(x, u, reference(0), refine_ind, coarsen_ind)
         do f = 1, N_FIELDS
-            if (reference(f) > 0.0_dp) call add_field(x, w(:, f), reference(f), refine_ind, coarsen_ind)
+            if (reference(f) > 0.0_dp) &
+                call add_field(x, w(:, f), reference(f), refine_ind, coarsen_ind)
         end do
     end subroutine indicators
 

@@ -266,7 +266,8 @@ contains
         do k = 1, N_COMPANIONS
             associate (level => self%pair(k)%ahead)
                 if (.not. (all(ieee_is_finite(level%u)) .and. all(ieee_is_finite(level%w)))) &
-                    call stop_companions(self, 'companion '//NAMES(k:k)//': non-finite value in the solution')
+                    call stop_companions(self, 'companion '//NAMES(k:k)// &
+                                         ': non-finite value in the solution')
             end associate
         end do
         if (self%failed) then
@@ -370,7 +371,8 @@ contains
         self%k_run = keys
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
-                call companion_keys(keys, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), k_new)
+                call companion_keys(keys, self%n_coarse, self%n_fine, ELEMENTS_PER_ELEMENT(j), &
+                                    k_new)
                 if (size(k_new) == size(c%k)) then
                     if (all(k_new == c%k)) cycle
                 end if
@@ -405,7 +407,8 @@ contains
             d2 = norm(c - a(a_on_c), weights_c)
             ! the observed order log2(d2 / d1), ORDER_MIN also when a difference vanishes
             r = ORDER_MIN
-            if (d1 > 0.0_dp .and. d2 > 0.0_dp) r = min(max(log(d2 / d1) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
+            if (d1 > 0.0_dp .and. d2 > 0.0_dp) &
+                r = min(max(log(d2 / d1) / log(2.0_dp), ORDER_MIN), ORDER_MAX)
             ! a fine difference smaller than the coarse one allows (r clamped at ORDER_MAX):
             ! the coarse pair's extrapolation, d2 / 2^r, is the estimate's size
             total = (a - x(x_on_a)) / (2.0_dp**r - 1.0_dp)
@@ -414,7 +417,8 @@ contains
             time = (d - c) / (4.0_dp**p_t * (2.0_dp**p_t - 1.0_dp))
             values(k, PART_TOTAL) = relative(norm(total, weights_a), norm(x(x_on_a), weights_a))
             values(k, PART_TIME) = relative(norm(time, weights_c), norm(x(x_on_c), weights_c))
-            values(k, PART_SPACE) = sqrt(max(values(k, PART_TOTAL)**2 - values(k, PART_TIME)**2, 0.0_dp))
+            values(k, PART_SPACE) = sqrt(max(values(k, PART_TOTAL)**2 - values(k, PART_TIME)**2, &
+                                             0.0_dp))
         end do
     end subroutine extrapolate
 

@@ -156,12 +156,14 @@ contains
             associate (l => self%levels, k1 => slot(1), k2 => slot(2), k3 => slot(3))
                 !GCC$ unroll 4
                 do i = 0, s
-                    self%u_diff(i) = ((u(i) - c1 * l(i, 0, k1)) - c2 * l(i, 0, k2)) - c3 * l(i, 0, k3)
+                    self%u_diff(i) = ((u(i) - c1 * l(i, 0, k1)) - c2 * l(i, 0, k2)) &
+                                     - c3 * l(i, 0, k3)
                 end do
                 do f = 1, N_FIELDS
                     !GCC$ unroll 4
                     do i = 0, s
-                        self%w_diff(i, f) = ((w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)) - c3 * l(i, f, k3)
+                        self%w_diff(i, f) = ((w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)) &
+                                            - c3 * l(i, f, k3)
                     end do
                 end do
             end associate
@@ -239,7 +241,8 @@ contains
             call self%resize(size(levels, 1) - 1)
             call self%reset()
             do j = size(steps), 1, -1
-                call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), steps(j))
+                call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), &
+                               steps(j))
             end do
             return
         end if

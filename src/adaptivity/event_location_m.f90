@@ -56,7 +56,8 @@ contains
         if (estimator%order >= 2 .and. estimator%n_levels >= 2) then
             associate (e => estimator, before => estimator%slot(2))   ! the level before t_before
                 times = [t_before + dt, t_before, t_before - e%step(1)]
-                gaps = [merge(trial_gap, gap_end, onset), gap_start, e%levels(ubound(e%levels, 1), 0, before) - g]
+                gaps = [merge(trial_gap, gap_end, onset), gap_start, &
+                        e%levels(ubound(e%levels, 1), 0, before) - g]
             end associate
             call interpolant_root(times, gaps, t_lo, t_hi, t_event, found)
         end if
@@ -70,7 +71,8 @@ contains
     !> and, with_end, at the state's level at t_before + dt too; the root in [t_lo, t_hi] of the
     !> polynomial through them (dense_output_m), at most p+1 of them (p the scheme's order).
     !> found = .false. (t_event = t_hi): no root there, or fewer than two levels.
-    subroutine release_time(estimator, alpha, state, t_before, dt, with_end, t_lo, t_hi, t_event, found)
+    subroutine release_time(estimator, alpha, state, t_before, dt, with_end, t_lo, t_hi, t_event, &
+                            found)
         type(error_estimator_t), intent(in) :: estimator
         real(dp), intent(in) :: alpha    !< the model's alpha
         type(state_t), intent(in) :: state

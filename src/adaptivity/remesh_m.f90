@@ -27,7 +27,8 @@ contains
         integer :: pass
         logical :: changed
 
-        call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, front_buffer(cfg))
+        call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, &
+                       front_buffer(cfg))
         changed = .false.
         do pass = 1, cfg%mesh%max_level + 2
             call initial_state(cfg, state, mesh%nodes())

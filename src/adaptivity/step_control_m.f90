@@ -137,7 +137,8 @@ contains
         if (err >= 0.0_dp .and. .not. self%no_growth) then
             factor = self%growth_max
             if (err > 0.0_dp) factor = min(self%growth_max, SAFETY * err**(-1.0_dp / real(self%order + 1, dp)))
-            if (factor >= GROWTH_MIN) self%dt_next = min(on_ladder(dt * factor, self%ladder_base), self%dt_max)
+            if (factor >= GROWTH_MIN) &
+                self%dt_next = min(on_ladder(dt * factor, self%ladder_base), self%dt_max)
         end if
         self%dt_next = max(self%dt_next, self%dt_min)
         self%no_growth = .false.

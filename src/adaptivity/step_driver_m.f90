@@ -111,7 +111,8 @@ contains
         if (cfg%mesh%adaptive) self%v_front = front_speed(cfg%model)
         self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         call self%estimator%init(stepper%scheme, state%s)
-        call self%control%init(cfg%time, stepper%scheme, scale=energy_norm(monitor%current_energy()))
+        call self%control%init(cfg%time, stepper%scheme, &
+                               scale=energy_norm(monitor%current_energy()))
         call self%estimator%push(state%u, state%w, 0.0_dp)
         self%in_contact = stepper%law%penetration(state%u(state%s)) > 0.0_dp
         self%t_scale = time_scale(cfg%material)
@@ -205,7 +206,8 @@ contains
 
         call copy_state(state, level, level=.false.)
         associate (e => self%estimator, slot => self%estimator%slot(j))
-            call keep_copy(e%levels(:, 0, slot), e%levels(:, 1:, slot), level%u, level%w, 'a past level')
+            call keep_copy(e%levels(:, 0, slot), e%levels(:, 1:, slot), level%u, level%w, &
+                           'a past level')
         end associate
     end subroutine driver_past_level
 

@@ -119,10 +119,12 @@ contains
         trial%t_before = state%t
         trial%dt_last = state%dt_last
         trial%gap_start = state%u(state%s) - stepper%law%g
-        if (self%adaptive) call copy_state(state, self%saved, level=.false.)   ! (its level: undo_step)
+        ! without its level (undo_step takes it from the estimator)
+        if (self%adaptive) call copy_state(state, self%saved, level=.false.)
         call stepper%advance(state, result, trial%dt)
         if (.not. result%ok) then
-            failure = self%step_label(state%step + 1, advance_time(state, trial%dt), trim(result%message))
+            failure = self%step_label(state%step + 1, advance_time(state, trial%dt), &
+                                      trim(result%message))
             return
         end if
         call contact_state(stepper%law, state, result, trial%contact, trial%gap_end)
@@ -211,7 +213,8 @@ contains
             else
                 ! the cut step ended short of the event: cut again at the event its end locates
                 call event_landing(t_before, t_bound - t_before, t_event, self%dt_min, cut, dt_land)
-                cut = cut .and. found .and. t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
+                cut = cut .and. found .and. &
+                      t_event - (t_before + dt) > max(LANDING_FRACTION * dt, self%dt_min)
             end if
         end associate
     end subroutine landing

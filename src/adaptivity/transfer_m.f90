@@ -58,7 +58,8 @@ contains
         level_new(:, 0) = evaluate_p1(x_old, level_old(:, 0), x_new)
         do f = 1, N_FIELDS
             if (massless_end .and. f == F_V) then
-                call velocity_projection(k_old, k_new, n_fine, model%mass_lumped, level_old(:, f), level_new(:, f))
+                call velocity_projection(k_old, k_new, n_fine, model%mass_lumped, level_old(:, f), &
+                                         level_new(:, f))
                 level_new(s_new, f) = level_old(s_old, f)
             else if (refinement_only) then
                 level_new(:, f) = evaluate_p1(x_old, level_old(:, f), x_new)
@@ -92,8 +93,10 @@ contains
             kc = min(k_old(i), k_new(e))
             a = real(ka, dp) / real(n_fine, dp)
             c = real(kc, dp) / real(n_fine, dp)
-            fa = f(i - 1) + (f(i) - f(i - 1)) * real(ka - k_old(i - 1), dp) / real(k_old(i) - k_old(i - 1), dp)
-            fc = f(i - 1) + (f(i) - f(i - 1)) * real(kc - k_old(i - 1), dp) / real(k_old(i) - k_old(i - 1), dp)
+            fa = f(i - 1) + (f(i) - f(i - 1)) * real(ka - k_old(i - 1), dp) &
+                 / real(k_old(i) - k_old(i - 1), dp)
+            fc = f(i - 1) + (f(i) - f(i - 1)) * real(kc - k_old(i - 1), dp) &
+                 / real(k_old(i) - k_old(i - 1), dp)
             ! the hat of the new element's left node at a and c (the right node's is 1 - it)
             xl = real(k_new(e - 1), dp)
             xr = real(k_new(e), dp)
@@ -143,7 +146,8 @@ contains
         real(dp), intent(in) :: f(0:)
         real(dp), intent(out) :: g(0:)
         integer(int64) :: k_union(0:ubound(k_old, 1) + ubound(k_new, 1))
-        real(dp) :: f_tied(0:ubound(k_old, 1)), b(0:ubound(k_new, 1)), diag(0:ubound(k_new, 1)), off(ubound(k_new, 1))
+        real(dp) :: f_tied(0:ubound(k_old, 1)), b(0:ubound(k_new, 1))
+        real(dp) :: diag(0:ubound(k_new, 1)), off(ubound(k_new, 1))
         real(dp) :: m(2, 2), w
         integer :: s, n, j, e
 
@@ -173,7 +177,8 @@ contains
         ! M_v on the new mesh; the unknown g_{s-1} = g_s (row and column s added to s - 1); g_0 = 0
         diag = 0.0_dp
         do e = 1, s
-            m = inertia_element(real(k_new(e) - k_new(e - 1), dp) / real(n_fine, dp), lumped, .true., e == s)
+            m = inertia_element(real(k_new(e) - k_new(e - 1), dp) / real(n_fine, dp), &
+                                lumped, .true., e == s)
             diag(e - 1) = diag(e - 1) + m(1, 1)
             diag(e) = diag(e) + m(2, 2)
             off(e) = m(1, 2)

@@ -203,7 +203,8 @@ contains
         ! k n_steps cannot overflow
         k = int(N_MILESTONES, int64) * step / max(n_steps, 1) + 1
         next = huge(1)
-        if (k <= N_MILESTONES .and. n_steps > 0) next = int((k * n_steps + N_MILESTONES - 1) / N_MILESTONES)
+        if (k <= N_MILESTONES .and. n_steps > 0) &
+            next = int((k * n_steps + N_MILESTONES - 1) / N_MILESTONES)
     end function next_milestone
 
     !> One report line, e.g.

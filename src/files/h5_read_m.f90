@@ -47,7 +47,8 @@ contains
         call get_environment_variable('RODCONTACT_HDF5_ERRORS', env_value, env_len, env_status)
         if (env_status /= 0 .or. env_value /= '1') then
             call h5eset_auto_f(0, hdferr)
-            if (hdferr < 0) call fatal(EXIT_OUTPUT, 'hdf5', 'cannot configure HDF5 error printing (h5eset_auto_f)')
+            if (hdferr < 0) &
+                call fatal(EXIT_OUTPUT, 'hdf5', 'cannot configure HDF5 error printing (h5eset_auto_f)')
         end if
         library_open = .true.
     end subroutine h5_library_init

@@ -29,7 +29,8 @@ contains
         slot = 1 - w%checkpoint_slot      ! the slot not holding the last checkpoint
         first = .not. allocated(w%ckpt_set)
         if (first) call create_slots(w, ckpt)   ! (writes it into both)
-        if (size(w%ckpt_names) /= ckpt%n) call w%fail('internal error: a checkpoint of other entries than the first')
+        if (size(w%ckpt_names) /= ckpt%n) &
+            call w%fail('internal error: a checkpoint of other entries than the first')
         do k = 1, ckpt%n
             if (ckpt%entries(k)%name /= w%ckpt_names(k)) &
                 call w%fail('internal error: checkpoint entry '//ckpt%entries(k)%name//' out of order')

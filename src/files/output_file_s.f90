@@ -91,7 +91,8 @@ contains
             if (ids(k) < 0) cycle
             call h5iget_name_f(ids(k), names(k), int(len(names(k)), size_t), length, hdferr)
             call w%check(hdferr, 'h5iget_name_f')
-            if (length >= len(names(k))) call w%fail('internal error: a dataset name longer than 511 characters')
+            if (length >= len(names(k))) &
+                call w%fail('internal error: a dataset name longer than 511 characters')
             call h5dclose_f(ids(k), hdferr)
             call w%check(hdferr, 'h5dclose_f '//trim(names(k)))
         end do
@@ -182,7 +183,8 @@ contains
         call h5fget_filesize_f(w%file_id, bytes, hdferr)
         call w%check(hdferr, 'h5fget_filesize_f')
         call reserve_file_size(w%part_path, int(bytes, int64), ok, message)
-        if (.not. ok) call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
+        if (.not. ok) &
+            call w%fail('no room to flush its '//int_str(int(bytes / 1024))//' KiB ('//message//')')
     end subroutine reserve
 
     !> Abandon the file and stop with a message naming the file and the reason. During
@@ -277,7 +279,8 @@ contains
         if (.not. allocated(w%ckpt_ids)) return
         do slot = 0, 1
             do k = 1, size(w%ckpt_ids, 1)
-                if (w%ckpt_ids(k, slot) >= 0) call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
+                if (w%ckpt_ids(k, slot) >= 0) &
+                    call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
             end do
         end do
     end subroutine close_checkpoint

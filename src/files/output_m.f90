@@ -358,7 +358,8 @@ contains
         call w%need_open("attribute '"//name//"' written")
         if (w%swmr) then
             ! held dataset identifiers change when SWMR writing ends: none may be the target
-            if (present(on)) call w%fail("internal error: attribute '"//name//"' of a dataset in SWMR mode")
+            if (present(on)) &
+                call w%fail("internal error: attribute '"//name//"' of a dataset in SWMR mode")
             call w%leave_swmr()
         end if
         obj_id = w%file_id
@@ -406,7 +407,8 @@ contains
         class(h5_writer_t), intent(in) :: w
         character(len=*), intent(in) :: what
 
-        if (.not. w%opened) call fatal(EXIT_OUTPUT, 'output', 'internal error: '//what//' on a closed writer')
+        if (.not. w%opened) &
+            call fatal(EXIT_OUTPUT, 'output', 'internal error: '//what//' on a closed writer')
     end subroutine writer_need_open
 
     !> Append the buffered series entries to the /series datasets.

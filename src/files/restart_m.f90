@@ -128,7 +128,8 @@ contains
             return
         end if
         call rename_file(resumed, part, ok, message)
-        if (.not. ok) call fatal(EXIT_OUTPUT, 'output', message//' (taking over the later checkpoint of a resumed run)')
+        if (.not. ok) &
+            call fatal(EXIT_OUTPUT, 'output', message//' (taking over the later checkpoint of a resumed run)')
     end subroutine take_over_resumed
 
     !> The slot of the last complete checkpoint of `file` (/checkpoint/current), -1 if none
@@ -176,7 +177,8 @@ contains
         end do
         associate (tables => table_items(cfg%initial))
             do k = 1, size(tables)
-                if (.not. attr_exists(file, tables(k)%name)) call refuse(file, tables(k)%name, 'not recorded', 'a table')
+                if (.not. attr_exists(file, tables(k)%name)) &
+                    call refuse(file, tables(k)%name, 'not recorded', 'a table')
                 was = recorded_item(file, tables(k))
                 if (.not. same(was, tables(k))) call refuse(file, tables(k)%name, int_str(size(was%reals) / 2)// &
                     ' rows (those recorded there)', int_str(size(tables(k)%reals) / 2)//' rows of other values')
@@ -293,7 +295,8 @@ contains
 
         missing = ''
         do k = 1, N_SERIES
-            if (.not. dataset_exists(file, '/series/'//trim(SERIES(k)%name))) missing = '/series/'//trim(SERIES(k)%name)
+            if (.not. dataset_exists(file, '/series/'//trim(SERIES(k)%name))) &
+                missing = '/series/'//trim(SERIES(k)%name)
         end do
         do k = 1, N_SNAPSHOT_FIELDS
             if (.not. dataset_exists(file, '/snapshots/'//trim(SNAPSHOTS(k)%name))) &
@@ -367,7 +370,8 @@ contains
         character(len=*), intent(in) :: file, dset
         integer, intent(in) :: have, need
 
-        if (have < need) call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//dset//' has fewer rows than its time column')
+        if (have < need) &
+            call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//dset//' has fewer rows than its time column')
     end subroutine require_rows
 
     !> How many leading rows to copy: times up to t_last and strictly increasing (a file left

@@ -171,7 +171,8 @@ contains
         end if
         call writer%attr('error_estimate', 'companion solutions at (2 dt, 2 h), (4 dt, 4 h), (8 dt, 4 h); '// &
                              'Richardson with observed orders (docs/scheme.md)')
-        if (companions%failure /= '') call writer%attr('error_estimate_failure', trim(companions%failure))
+        if (companions%failure /= '') &
+            call writer%attr('error_estimate_failure', trim(companions%failure))
         do part = 1, size(ESTIMATE_PARTS)
             do k = 1, N_OUTPUT_FIELDS
                 call writer%attr(trim(ESTIMATE_PARTS(part))//'.'//trim(FIELDS(OUTPUT_ORDER(k))%name), &

@@ -111,7 +111,8 @@ contains
 
         items = [input_item_t ::]
         do k = 1, size(INPUT_VARS)
-            if (INPUT_VARS(k)%group /= 'material' .or. cfg%material%present) items = [items, input_item(cfg, k)]
+            if (INPUT_VARS(k)%group /= 'material' .or. cfg%material%present) &
+                items = [items, input_item(cfg, k)]
         end do
         items = [items, string_item('input.source', trim(cfg%source)), &
                  string_item('input.overrides', trim(cfg%overrides)), table_items(cfg%initial)]

@@ -60,7 +60,8 @@ contains
                                          "': it is a directory")
             msg = ''
             open (newunit=unit, file=trim(source), status='old', action='read', iostat=ios, iomsg=msg)
-            if (ios /= 0) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': " // trim(msg))
+            if (ios /= 0) &
+                call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': " // trim(msg))
             call read_lines(unit, "'" // trim(source) // "'", where, lines)
             ! the text is in memory: a failure to close a read-only file cannot lose anything
             close (unit, iostat=ios)
@@ -262,7 +263,8 @@ contains
                            name // ' = ' // quoted(excerpt(value)))
             call read_namelist(cfg, trim(grp%name), '&' // trim(grp%name) // ' ' // lhs // ' = ' // value // ' /', &
                                ios, msg)
-            if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: show the whole assignment
+            if (len(lhs) > len(name)) &
+                value = lhs // ' = ' // value   ! subscripted: show the whole assignment
             if (ios /= 0) call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // &
                 kind_description(var_kind(grp%name, name)) // ' (namelist read: ' // trim(msg) // ')')
         end do
@@ -296,7 +298,8 @@ contains
                 else if (body(j:j) == '=') then
                     p = len_trim(body(:j - 1))
                     if (p > 0) then   ! skip a subscript: name(2) = ...
-                        if (body(p:p) == ')') p = len_trim(body(:max(0, index(body(:p), '(', back=.true.) - 1)))
+                        if (body(p:p) == ')') &
+                            p = len_trim(body(:max(0, index(body(:p), '(', back=.true.) - 1)))
                     end if
                     do while (p > 0)
                         if (.not. is_name_char(body(p:p))) exit

@@ -76,7 +76,10 @@ contains
         self%levels = 0.0_dp
     end subroutine estimator_resize
 
-    !> Forget the levels (after a contact event: the solution is not smooth across it).
+    !> Forget the levels for the estimate (after a contact event: the solution is not smooth
+    !> across it). The stored levels stay: the step driver takes a rejected step's state back
+    !> from the newest (always the run's level) and dense output's line after an event from the
+    !> second (step_driver_m's dense_level).
     subroutine estimator_reset(self)
         class(error_estimator_t), intent(inout) :: self
 

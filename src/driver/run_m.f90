@@ -294,7 +294,8 @@ contains
 
     !> /checkpoint: every type that the run continues from saves itself (checkpoint_m's sync)
     !> and the checkpoint is written; or, given `from` (read from a file: restart_m), each gets
-    !> itself back from it, the adaptive mesh first (it resizes the others). So a restart
+    !> itself back from it, the state and its mesh first, then the adaptive mesh (which resizes
+    !> the stepper and the monitor to the state's mesh) before the others. So a restart
     !> continues exactly, and the save and the restore name the same entries.
     subroutine checkpoint(run, cfg, from)
         type(run_t), intent(inout) :: run

@@ -44,10 +44,10 @@ contains
         real(dp), intent(in) :: t
         integer, intent(in) :: kind
 
-        if (.not. allocated(self%t)) allocate (self%t(8), self%kind(8))
-        if (self%n == size(self%t)) then
-            self%t = [self%t, self%t]
-            self%kind = [self%kind, self%kind]
+        if (.not. allocated(self%t)) allocate (self%t(0), self%kind(0))
+        if (self%n == size(self%t)) then   ! full: double, by at least 8
+            self%t = [self%t, spread(0.0_dp, 1, max(8, self%n))]
+            self%kind = [self%kind, spread(0, 1, max(8, self%n))]
         end if
         self%n = self%n + 1
         self%t(self%n) = t
@@ -84,7 +84,6 @@ contains
             call ckpt%get('events/kind', kind)
             self%kind = int(kind)
             self%n = size(self%t)
-            if (self%n == 0) deallocate (self%t, self%kind)   ! (log_add's doubling starts at 8)
         else
             call ckpt%put('events/t', self%times())
             call ckpt%put('events/kind', int(self%kinds(), int64))

@@ -98,7 +98,9 @@ def main():
 
     w("# Performance")
     w("")
-    w("Written by `scripts/bench.sh` (a benchmark, not a test) on %s; do not edit by hand: rerun it. "
+    w("Written by `scripts/bench.sh` (a benchmark, not a test) on %s; do not edit by hand: rerun it "
+      "(the sections from 'Impact against the exact solution' on are kept as they are: bench/impact.sh "
+      "and bench/impact_pairs.sh rewrite that one, the later ones measure one change each, by hand). "
       "The raw data are in `out/bench/`. The machine is shared with other jobs, so wall times are "
       "noisy: every case was run %s times and the tables give medians; ratios are taken within one "
       "process (the kernel benchmark times all cases round robin); instruction counts "
@@ -623,22 +625,15 @@ def main():
 
 
 def kept_impact_section(doc):
-    """The section that bench/impact.sh writes between its markers, kept from the page as it is
-    (that script, not this one, rewrites it), with the part after it up to the markers of
-    bench/impact_pairs.sh's table where that follows."""
+    """The page from the heading of the section that bench/impact.sh writes between its markers
+    to the page's end, kept as it is: that section and bench/impact_pairs.sh's table are rewritten
+    by those scripts, and the sections after them are written by hand (measurements of one
+    change, with their commands), not by this script."""
     if not os.path.exists(doc):
         return []
     text = open(doc).read()
-    a, b = text.find("<!-- impact-bench:begin -->"), text.find("<!-- impact-bench:end -->")
-    if a < 0 or b < 0:
+    a = text.find("<!-- impact-bench:begin -->")
+    if a < 0:
         return []
-    end = b + len("<!-- impact-bench:end -->")
-    pairs_end = text.find("<!-- impact-pairs:end -->", b)
-    if pairs_end >= 0:
-        end = pairs_end + len("<!-- impact-pairs:end -->")
     head = text.rfind("\n## ", 0, a)
-    return [""] + text[head + 1:end].split("\n")
-
-
-if __name__ == "__main__":
-    main()
+    return [""] + text[head + 1:].rstrip("\n").split("\n")

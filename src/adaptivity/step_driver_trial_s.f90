@@ -14,8 +14,8 @@ submodule (step_driver_m) step_driver_trial_s
     use adaptive_mesh_m, only: FRONT_CFL
     implicit none
 
-    !> One tried step of take_step: its size, where it started and ends, the contact state
-    !> it reached, its estimate and the contact event it crossed.
+    !> One tried step of take_step: its size, where it started and ends, the stepper's result,
+    !> the contact state it reached, its estimate and the contact event it crossed.
     type :: trial_t
         real(dp) :: dt = 0.0_dp             !< its size
         real(dp) :: target = 0.0_dp         !< t_stop or the next snapshot time
@@ -24,6 +24,7 @@ submodule (step_driver_m) step_driver_trial_s
         real(dp) :: t_before = 0.0_dp       !< the state's t before it
         real(dp) :: dt_last = 0.0_dp        !< the state's dt_last before it
         real(dp) :: gap_start = 0.0_dp      !< u(1) - g before it
+        type(step_result_t) :: result       !< the stepper's (advance)
         real(dp) :: gap_end = 0.0_dp        !< the gap at its end (contact_state)
         logical :: contact = .false.        !< the contact state at its end
         logical :: flipped = .false.        !< it changed the contact state
@@ -47,15 +48,16 @@ contains
         failure = ''
         do
             call choose_step(self, state, t_stop, trial, t_snapshot)
-            call try_step(self, state, stepper, result, trial, failure)
+            call try_step(self, state, stepper, trial, failure)
             at_snapshot = trial%at_snapshot
-            if (.not. result%ok) return   ! failure says why
+            if (.not. trial%result%ok) exit   ! failure says why
             ! fixed steps compute no estimate (the run's error: &output error_estimate)
             if (.not. self%adaptive) exit
-            call judge(self, state, stepper, result, trial, retry)
+            call judge(self, state, stepper, trial, retry)
             if (.not. retry) exit
         end do
-        call accept(self, state, monitor, trial, failure)
+        result = trial%result
+        if (result%ok) call accept(self, state, monitor, trial, failure)
     end procedure driver_take_step
 
     !> The next step (trial%dt): &time dt or the controller's proposal (at most the scheme's
@@ -108,11 +110,10 @@ contains
     !> Try the step of trial%dt from state (adaptive steps: the state saved before it):
     !> where it started, the contact state it reached and (flipped) the time of its event;
     !> failure: the solve failed.
-    subroutine try_step(self, state, stepper, result, trial, failure)
+    subroutine try_step(self, state, stepper, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
         type(stepper_t), intent(inout) :: stepper
-        type(step_result_t), intent(inout) :: result
         type(trial_t), intent(inout) :: trial
         character(len=*), intent(inout) :: failure
 
@@ -121,13 +122,13 @@ contains
         trial%gap_start = state%u(state%s) - stepper%law%g
         ! without its level (undo_step takes it from the estimator)
         if (self%adaptive) call copy_state(state, self%saved, level=.false.)
-        call stepper%advance(state, result, trial%dt)
-        if (.not. result%ok) then
+        call stepper%advance(state, trial%result, trial%dt)
+        if (.not. trial%result%ok) then
             failure = self%step_label(state%step + 1, advance_time(state, trial%dt), &
-                                      trim(result%message))
+                                      trim(trial%result%message))
             return
         end if
-        call contact_state(stepper%law, state, result, trial%contact, trial%gap_end)
+        call contact_state(stepper%law, state, trial%result, trial%contact, trial%gap_end)
         trial%flipped = trial%contact .neqv. self%in_contact
         if (trial%flipped) &   ! the straight line's (adaptive steps: landing)
             trial%t_event = crossing_time(trial%t_before, trial%dt, trial%gap_start, trial%gap_end)
@@ -139,11 +140,10 @@ contains
     !> event it crossed located (landing), the step taken back to end there (retry, at most
     !> MAX_LANDINGS times); a step whose estimate exceeds the tolerance taken back to be
     !> retried smaller (retry), unless at dt_min (then accepted, counted as forced).
-    subroutine judge(self, state, stepper, result, trial, retry)
+    subroutine judge(self, state, stepper, trial, retry)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
         type(stepper_t), intent(inout) :: stepper
-        type(step_result_t), intent(in) :: result
         type(trial_t), intent(inout) :: trial
         logical, intent(out) :: retry
         logical :: cut
@@ -154,15 +154,15 @@ contains
             trial%err = self%control%ratio(trial%est)
         end if
         if (trial%flipped .or. (trial%landings > 0 .and. trial%landings < MAX_LANDINGS)) then
-            call landing(self, state, result, stepper%law, trial, cut)
+            call landing(self, state, stepper%law, trial, cut)
             if (cut .and. trial%landings < MAX_LANDINGS) then
-                call undo_step(self, stepper, result, state)
+                call undo_step(self, stepper, trial%result, state)
                 trial%landings = trial%landings + 1
                 return
             end if
         end if
         if (trial%err > 1.0_dp .and. trial%dt > self%dt_min) then
-            call undo_step(self, stepper, result, state)
+            call undo_step(self, stepper, trial%result, state)
             call self%control%reject(trial%dt, trial%err)
             trial%landings = 0
             return
@@ -179,10 +179,9 @@ contains
     !> release: release_time, else gap_event_time) and say whether the step is retried to end
     !> there (cut, of size dt_land; events_m's event_landing). t_bound: the end of the last
     !> flipped step, beyond which the event is not sought.
-    subroutine landing(self, state, result, law, trial, cut)
+    subroutine landing(self, state, law, trial, cut)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
-        type(step_result_t), intent(in) :: result
         class(contact_law_t), intent(in) :: law
         type(trial_t), intent(inout) :: trial
         logical, intent(out) :: cut
@@ -202,7 +201,7 @@ contains
                                   t_bound, t_event, found)
             else
                 t_event = gap_event_time(self%estimator, t_before, dt, trial%gap_start, trial%gap_end, &
-                                         result%trial_gap, .not. self%in_contact, law%g, t_lo, t_bound, found)
+                                         trial%result%trial_gap, .not. self%in_contact, law%g, t_lo, t_bound, found)
             end if
             if (flipped) then
                 call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)

@@ -69,8 +69,8 @@ contains
         call w%check(hdferr, 'h5dcreate_f /checkpoint/current')
         call h5sclose_f(space_id, hdferr)
         call put_current(w, -1_int64)
-        allocate (w%ckpt_names(ckpt%n), w%ckpt_set(ckpt%n), w%ckpt_ids(ckpt%n, 0:1), w%ckpt_dims(2, ckpt%n, 0:1), &
-                  w%ckpt_types(ckpt%n), stat=stat, errmsg=message)
+        allocate (w%ckpt_names(ckpt%n), w%ckpt_set(ckpt%n), w%ckpt_ids(ckpt%n, 0:1), w%ckpt_types(ckpt%n), &
+                  stat=stat, errmsg=message)
         call check_allocation(stat, message, 'the checkpoint writer')
         w%ckpt_ids = -1
         w%ckpt_types = -1
@@ -164,7 +164,6 @@ contains
             call w%check(hdferr, 'h5pclose_f /'//name)
             call h5sclose_f(space_id, hdferr)
             call w%check(hdferr, 'h5sclose_f /'//name)
-            w%ckpt_dims(:, d, slot) = entry%dims
         end associate
         call put_set(w, d, slot, ckpt)
     end subroutine create_set
@@ -178,7 +177,7 @@ contains
     end function word_type
 
     !> Write the dataset of first entry d in a slot (opened if leave_swmr closed it; an array
-    !> resized if its shape changed; an owner's scalars packed in their order).
+    !> given its shape, a change only if the shape changed; an owner's scalars packed in their order).
     subroutine put_set(w, d, slot, ckpt)
         class(h5_writer_t), intent(inout) :: w
         integer, intent(in) :: d, slot
@@ -194,10 +193,9 @@ contains
                 call h5dopen_f(w%file_id, name, id, hdferr)
                 call w%check(hdferr, 'h5dopen_f /'//name)
             end if
-            if (any(w%ckpt_dims(:, d, slot) /= entry%dims)) then
+            if (entry%rank > 0) then
                 call h5dset_extent_f(id, int(entry%dims(:entry%rank), hsize_t), hdferr)
                 call w%check(hdferr, 'h5dset_extent_f /'//name)
-                w%ckpt_dims(:, d, slot) = entry%dims
             end if
             hdferr = 0
             if (entry%rank == 0) then
@@ -217,7 +215,7 @@ contains
         end associate
     end subroutine put_set
 
-    !> Point /checkpoint/current at a slot (-1: none).
+    !> Point /checkpoint/current at a slot (-1: none); opened if leave_swmr closed it.
     subroutine put_current(w, slot)
         class(h5_writer_t), intent(inout) :: w
         integer(int64), intent(in) :: slot
@@ -225,6 +223,10 @@ contains
         type(c_ptr) :: buf
         integer :: hdferr
 
+        if (w%ckpt_current_id < 0) then
+            call h5dopen_f(w%file_id, 'checkpoint/current', w%ckpt_current_id, hdferr)
+            call w%check(hdferr, 'h5dopen_f /checkpoint/current')
+        end if
         value = slot
         buf = c_loc(value)
         call h5dwrite_f(w%ckpt_current_id, h5kind_to_type(int64, H5_INTEGER_KIND), buf, hdferr)

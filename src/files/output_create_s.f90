@@ -14,13 +14,12 @@ contains
 
     !> Open `<prefix>.h5.part` (creating the parent directory if needed), write /mesh/x and
     !> create the empty extendible /series and /snapshots datasets. x(0:s) are the nodes;
-    !> compression (0 .. MAX_COMPRESSION, default 0) the deflate level of the /snapshots
+    !> compression (0 .. 9, validated by the input, default 0) the deflate level of the /snapshots
     !> fields (with the shuffle filter before it; 0: no filters). in_place: the run resumes
     !> <prefix>.h5.part, which stays as it is until finish(); the file is <prefix>//RESUMED_SUFFIX.
     module procedure writer_create
         character(len=:), allocatable :: dir, message
         logical :: ok
-        integer :: hdferr
 
         if (w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: create() on a writer that is &
                                  &already writing '"//w%part_path//"'")
@@ -36,11 +35,8 @@ contains
         ! a new .part: a resumed run's file left beside the old one no longer continues it
         if (w%replaces == '') call remove_file(trim(prefix)//RESUMED_SUFFIX)
         w%creating = .true.
-        if (size(x) < 2) call w%fail('internal error: create() given fewer than 2 mesh nodes')
         w%n_nodes = size(x)
         if (present(compression)) w%compression = compression
-        if (w%compression < 0 .or. w%compression > MAX_COMPRESSION) &
-            call w%fail('internal error: compression level outside 0 .. 9')
         w%logical_names = ''
         w%checkpoint_note = ''
 
@@ -64,8 +60,6 @@ contains
         call writer_open_file(w, create=.true.)
 
         call create_datasets(w, x)
-        allocate (w%buf(SERIES_BUFFER_SIZE, N_SERIES), stat=hdferr)
-        if (hdferr /= 0) call w%fail('cannot allocate the series buffer')
         call w%attr('status', 'incomplete')
         w%creating = .false.
     end procedure writer_create
@@ -92,10 +86,12 @@ contains
                           'position x along the rod (nondimensional, scale: position)', &
                           '1', scale='x')
         call w%make_group('/series')
-        associate (t => SERIES(S_T))
-            call w%create_extendible('/series/'//trim(t%name), H5T_IEEE_F64LE, EMPTY, CHUNK, &
-                                     w%series_ids(S_T), described(t%long_name, t%scale), &
-                                     t%units, scale='t')
+        call w%start_buffered(w%series, N_SERIES, SERIES_BUFFER_SIZE)
+        w%series%paths = '/series/'//SERIES%name
+        w%series%whole = SERIES%is_integer
+        associate (t => SERIES(S_T), ids => w%series%ids)
+            call w%create_extendible(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, EMPTY, CHUNK, &
+                                     ids(S_T), described(t%long_name, t%scale), t%units, scale='t')
             call w%make_group('/snapshots')
             call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, &
                                      w%snap_t_id, described(t%long_name, t%scale), &
@@ -103,12 +99,11 @@ contains
         end associate
         do k = 1, N_SERIES
             if (k == S_T) cycle
-            associate (f => SERIES(k))
-                call w%create_extendible('/series/'//trim(f%name), &
+            associate (f => SERIES(k), ids => w%series%ids)
+                call w%create_extendible(trim(w%series%paths(k)), &
                                          merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
-                                         EMPTY, CHUNK, w%series_ids(k), &
-                                         described(f%long_name, f%scale), f%units, &
-                                         coords=[w%series_ids(S_T)])
+                                         EMPTY, CHUNK, ids(k), described(f%long_name, f%scale), &
+                                         f%units, coords=[ids(S_T)])
             end associate
         end do
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
@@ -336,7 +331,7 @@ contains
         w%si_factors(w%n_si) = factor
         w%si_units(w%n_si) = si_units
         do k = 1, N_SERIES
-            if (SERIES(k)%scale == scale) call put_si(w, w%series_ids(k), factor, si_units)
+            if (SERIES(k)%scale == scale) call put_si(w, w%series%ids(k), factor, si_units)
         end do
         if (SERIES(S_T)%scale == scale) call put_si(w, w%snap_t_id, factor, si_units)
         do k = 1, N_SNAPSHOT_FIELDS

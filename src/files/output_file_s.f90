@@ -9,14 +9,11 @@
 !> whatever needs one ends it first (leave_swmr: the file is closed, clean, and reopened),
 !> and the next flush() starts it again.
 submodule (output_m) output_file_s
-    use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, h5iget_name_f, &
+    use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, &
                     h5dopen_f, h5lexists_f, h5ldelete_f
     use h5ds, only: h5dsdetach_scale_f
     use h5_swmr_m, only: start_swmr_write
     implicit none
-
-    !> At most this many datasets are held open by the writer (mesh, series, snapshots, estimates)
-    integer, parameter :: MAX_OPEN = 1 + N_SERIES + 1 + N_SNAPSHOT_FIELDS + 3 * N_OUTPUT_FIELDS
 
 contains
 
@@ -62,8 +59,8 @@ contains
         integer :: hdferr
 
         call w%need_open('flush()')
-        call w%flush_series()
-        call writer_flush_estimate(w)
+        call w%write_buffer(w%series)
+        call w%write_buffer(w%estimates)
         call reserve(w)
         call h5fflush_f(w%file_id, H5F_SCOPE_GLOBAL_F, hdferr)
         call w%check(hdferr, 'h5fflush_f')
@@ -76,43 +73,44 @@ contains
     !> close the file, which a SWMR close leaves clean and complete, and reopen it with every
     !> dataset the writer holds open. Nothing to do outside SWMR mode.
     module procedure writer_leave_swmr
-        character(len=512) :: names(MAX_OPEN)
-        integer(hid_t) :: ids(MAX_OPEN)
-        integer(size_t) :: length
         integer :: hdferr, k
 
         if (.not. w%swmr) return
-        call w%flush_series()
-        call writer_flush_estimate(w)
-        ! every dataset identifier the writer holds (negative: not open), stored back below
-        ids = [w%mesh_x_id, w%series_ids, w%snap_t_id, w%snap_field_ids, &
-               reshape(w%estimate_ids, [3 * N_OUTPUT_FIELDS])]
-        do k = 1, MAX_OPEN
-            if (ids(k) < 0) cycle
-            call h5iget_name_f(ids(k), names(k), int(len(names(k)), size_t), length, hdferr)
-            call w%check(hdferr, 'h5iget_name_f')
-            if (length >= len(names(k))) &
-                call w%fail('internal error: a dataset name longer than 511 characters')
-            call h5dclose_f(ids(k), hdferr)
-            call w%check(hdferr, 'h5dclose_f '//trim(names(k)))
-        end do
-        call close_checkpoint(w)
+        call w%write_buffer(w%series)
+        call w%write_buffer(w%estimates)
         call reserve(w)
+        ! the strong close degree (writer_open_file) closes every dataset too; the
+        ! checkpoint's are reopened by the next checkpoint (output_checkpoint_s)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f (leaving SWMR writing)')
         w%swmr = .false.
+        if (allocated(w%ckpt_ids)) w%ckpt_ids = -1
+        w%ckpt_current_id = -1
         call writer_open_file(w, create=.false.)
-        do k = 1, MAX_OPEN
-            if (ids(k) < 0) cycle
-            call h5dopen_f(w%file_id, trim(names(k)), ids(k), hdferr)
-            call w%check(hdferr, 'h5dopen_f '//trim(names(k)))
+        call reopen(w, w%mesh_x_id, '/mesh/x')
+        call reopen(w, w%snap_t_id, '/snapshots/t')
+        do k = 1, N_SNAPSHOT_FIELDS
+            call reopen(w, w%snap_field_ids(k), '/snapshots/'//trim(SNAPSHOTS(k)%name))
         end do
-        w%mesh_x_id = ids(1)
-        w%series_ids = ids(2:1 + N_SERIES)
-        w%snap_t_id = ids(2 + N_SERIES)
-        w%snap_field_ids = ids(3 + N_SERIES:2 + N_SERIES + N_SNAPSHOT_FIELDS)
-        w%estimate_ids = reshape(ids(3 + N_SERIES + N_SNAPSHOT_FIELDS:), shape(w%estimate_ids))
+        do k = 1, size(w%series%ids)
+            call reopen(w, w%series%ids(k), trim(w%series%paths(k)))
+        end do
+        if (.not. allocated(w%estimates%ids)) return
+        do k = 1, size(w%estimates%ids)
+            call reopen(w, w%estimates%ids(k), trim(w%estimates%paths(k)))
+        end do
     end procedure writer_leave_swmr
+
+    !> Open the dataset at `path` again (leave_swmr), as dset_id.
+    subroutine reopen(w, dset_id, path)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(out) :: dset_id
+        character(len=*), intent(in) :: path
+        integer :: hdferr
+
+        call h5dopen_f(w%file_id, path, dset_id, hdferr)
+        call w%check(hdferr, 'h5dopen_f '//path)
+    end subroutine reopen
 
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
@@ -139,8 +137,6 @@ contains
         w%file_id = -1
         w%opened = .false.
         w%swmr = .false.
-        deallocate (w%buf)
-        if (allocated(w%estimate_buf)) deallocate (w%estimate_buf)
 
         target = w%final_path
         if (present(keep_part)) then
@@ -268,22 +264,6 @@ contains
             end associate
         end do
     end subroutine detach_native
-
-    !> Close the checkpoint's datasets (leave_swmr: the file is closed and reopened; the next
-    !> checkpoint opens them again).
-    subroutine close_checkpoint(w)
-        class(h5_writer_t), intent(inout) :: w
-        integer :: k, slot
-
-        if (w%ckpt_current_id >= 0) call w%close_dataset(w%ckpt_current_id, '/checkpoint/current')
-        if (.not. allocated(w%ckpt_ids)) return
-        do slot = 0, 1
-            do k = 1, size(w%ckpt_ids, 1)
-                if (w%ckpt_ids(k, slot) >= 0) &
-                    call w%close_dataset(w%ckpt_ids(k, slot), '(a checkpoint dataset)')
-            end do
-        end do
-    end subroutine close_checkpoint
 
     !> Remove the object `name` if it exists (finish(): what SWMR writing made the run create
     !> in advance and it never used).

@@ -1,21 +1,13 @@
-!> The HDF5 writer of the output file: /mesh/x, /series/<name> (fields_m's SERIES),
-!> /snapshots/t and /snapshots/<name> (fields_m's SNAPSHOTS), root and dataset attributes;
-!> docs/output.md gives the layout as h5py sees it (Fortran sees the snapshot fields with
-!> the dimensions reversed, (s+1, n_snap)).
-!> The file is written as `<prefix>.h5.part` and renamed to `<prefix>.h5` by finish(), so
-!> no run leaves a truncated file under the final name (docs/output.md); a run resumed in
-!> place writes `<prefix>.resume.h5.part` (RESUMED_SUFFIX), which finish() renames over
-!> the .part it continues or to `<prefix>.h5` (docs/robustness.md). Until finish()
-!> writes the real status, the root attribute `status` reads 'incomplete'. Between
-!> structural changes the file is in HDF5's SWMR write mode, so that a run killed at any
-!> moment leaves its last flush readable (output_file_s; docs/output.md, "A killed run").
-!>
+!> The HDF5 writer of the output file (its layout: docs/output.md, where h5py sees the
+!> snapshot fields as (n_snap, s+1)): /mesh/x, /series and /snapshots named by fields_m's
+!> tables, root and dataset attributes. Written as `<prefix>.h5.part` (resumed in place:
+!> RESUMED_SUFFIX), renamed by finish(), its root attribute `status` 'incomplete' until
+!> then; in HDF5's SWMR write mode between structural changes (output_file_s).
 !> The writer knows nothing of the scheme: it stores what it is given, named by the tables.
 module output_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use strings_m, only: int_str
-    use config_m, only: MAX_COMPRESSION
     use errors_m, only: fatal, fatal_now, EXIT_OUTPUT
     use fsys_m, only: mkdir_p, rename_file, remove_file, parent_dir, dir_exists, create_empty_file, &
                       write_failure_reason, reserve_file_size
@@ -43,10 +35,8 @@ module output_m
     !> Series entries held in memory between writes: memory bounded by 4096 x N_SERIES
     !> reals (192 KiB) whatever the length of the run.
     integer, parameter :: SERIES_BUFFER_SIZE = 4096
-    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64
-    !> (snapshot fields: one row per chunk, see create()).
-    !> HDF5 allocates a chunk whole when its first entry is written, so the chunk is what a
-    !> short run pays for; a full buffer fills 16 chunks. (docs/output.md, "Chunks")
+    !> Chunk length of the /series datasets and /snapshots/t: 256 entries, 2 KiB of float64,
+    !> what a short run pays for each (docs/output.md, "Chunks"); snapshot fields: a row a chunk.
     integer, parameter :: SERIES_CHUNK = 256
     !> Attribute layout of /checkpoint: slotN/<owner>/<array>, slotN/<owner>/scalars (a compound)
     character(len=*), parameter :: CHECKPOINT_LAYOUT = 'slotN/owner/name, slotN/owner/scalars'
@@ -58,6 +48,17 @@ module output_m
                                                         'error_estimate_time', 'error_estimate_space']
     !> At most this many SI scales (material_m's si_scales, and '' for counts)
     integer, parameter :: MAX_SI_SCALES = 16
+
+    !> Datasets that grow together by one entry per append, through a buffer written when
+    !> full and at every flush (the series; the error estimates)
+    type :: buffered_t
+        integer(hid_t), allocatable :: ids(:)
+        character(len=64), allocatable :: paths(:)
+        logical, allocatable :: whole(:)       !< int32 datasets, written from whole numbers
+        real(dp), allocatable :: buf(:, :)     !< (entry, dataset)
+        integer :: n_buf = 0                   !< entries waiting in buf
+        integer(hsize_t) :: n = 0              !< entries in the file
+    end type buffered_t
 
     !> Writer of one rodcontact HDF5 file. Use: create, then any number of append_series /
     !> append_snapshot / attr / flush, then finish (or abandon on an output failure).
@@ -74,16 +75,13 @@ module output_m
         integer :: n_nodes = 0
         integer :: compression = 0                 !< deflate level of the extendible datasets (0: none)
         integer(hid_t) :: file_id = -1
-        integer(hid_t) :: series_ids(N_SERIES) = -1
+        type(buffered_t) :: series                 !< /series/<name>, in fields_m's SERIES order
         integer(hid_t) :: snap_t_id = -1
         integer(hid_t) :: snap_field_ids(N_SNAPSHOT_FIELDS) = -1
-        integer(hsize_t) :: n_series_written = 0   !< series entries already in the file
         integer(hsize_t) :: n_snap = 0             !< snapshots in the file
         integer :: checkpoint_slot = 1             !< slot of the last checkpoint (1: none yet, so slot 0 is next)
         !> what the last complete checkpoint is ('step 250 (t = 2.5000E-02)'), '' before the first
         character(len=:), allocatable :: checkpoint_note
-        integer :: n_buf = 0                       !< series entries waiting in the buffer
-        real(dp), allocatable :: buf(:, :)         !< (SERIES_BUFFER_SIZE, N_SERIES)
         character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
         integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
@@ -94,9 +92,8 @@ module output_m
         character(len=24) :: si_names(MAX_SI_SCALES) = ''
         real(dp) :: si_factors(MAX_SI_SCALES) = 0.0_dp
         character(len=16) :: si_units(MAX_SI_SCALES) = ''
-        integer(hsize_t) :: n_estimate_snap = 0    !< snapshots in /snapshots/error_estimate* (output_estimate_s)
-        integer(hid_t) :: estimate_ids(N_OUTPUT_FIELDS, 3) = -1   !< its datasets, open until finish()
-        integer :: n_estimate_buf = 0              !< estimates waiting in estimate_buf
+        !> /snapshots/error_estimate*/<field> (estimate_path), from the first append (output_estimate_s)
+        type(buffered_t) :: estimates
         logical :: swmr = .false.                  !< the file is in SWMR write mode (output_file_s)
         logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
         logical :: native_created = .false.        !< /snapshots/native exists (output_native_s)
@@ -104,12 +101,10 @@ module output_m
         !> the checkpoint's datasets, open from the first checkpoint (output_checkpoint_s),
         !> each known by its first entry
         integer(hid_t), allocatable :: ckpt_ids(:, :)         !< (first entry, slot)
-        integer, allocatable :: ckpt_dims(:, :, :)            !< (2, first entry, slot): their shapes
         character(len=64), allocatable :: ckpt_names(:)       !< the entries' names
         integer, allocatable :: ckpt_set(:)                   !< an entry's dataset: its first entry
         integer(hid_t), allocatable :: ckpt_types(:)          !< an owner's scalars' compound type
         integer(hid_t) :: ckpt_current_id = -1                !< /checkpoint/current
-        real(dp), allocatable :: estimate_buf(:, :, :)   !< (SERIES_CHUNK, N_OUTPUT_FIELDS, 3)
     contains
         procedure :: create => writer_create
         procedure :: append_series => writer_append_series
@@ -128,18 +123,17 @@ module output_m
         procedure, private :: check => writer_check
         procedure, private :: need_open => writer_need_open
         procedure, private :: fail => writer_fail
-        procedure, private :: flush_series => writer_flush_series
         procedure, private :: make_group => writer_make_group
+        procedure, private :: start_buffered => writer_start_buffered
+        procedure, private :: push => writer_push
+        procedure, private :: write_buffer => writer_write_buffer
         procedure, private :: create_extendible => writer_create_extendible
         procedure, private :: append_rows => writer_append_rows
         procedure, private :: close_dataset => writer_close_dataset
         procedure, private :: leave_swmr => writer_leave_swmr
     end type h5_writer_t
 
-    interface   ! creating the file and its datasets, describing them, the contact events
-                ! (src/files/output_create_s.f90), the checkpoint writer (src/files/output_checkpoint_s.f90),
-                ! opening, SWMR writing, failing and closing (src/files/output_file_s.f90); their
-                ! arguments are declared here only (the submodules' `module procedure`)
+    interface   ! the submodules' procedures (output_*_s.f90), their arguments declared here only
         module subroutine writer_create(w, prefix, x, compression, in_place)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix
@@ -228,12 +222,9 @@ module output_m
 
         module subroutine writer_append_estimate(w, values)
             class(h5_writer_t), intent(inout) :: w
-            real(dp), intent(in) :: values(:, :)
+            real(dp), intent(in) :: values(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS))
         end subroutine writer_append_estimate
 
-        module subroutine writer_flush_estimate(w)
-            class(h5_writer_t), intent(inout) :: w
-        end subroutine writer_flush_estimate
         module subroutine writer_write_checkpoint(w, ckpt, note)
             class(h5_writer_t), intent(inout) :: w
             type(checkpoint_t), intent(in) :: ckpt
@@ -261,9 +252,7 @@ contains
         real(dp), intent(in) :: values(N_SERIES)
 
         call w%need_open('append_series()')
-        w%n_buf = w%n_buf + 1
-        w%buf(w%n_buf, :) = values
-        if (w%n_buf == SERIES_BUFFER_SIZE) call w%flush_series()
+        call w%push(w%series, values)
     end subroutine writer_append_series
 
     !> Add one snapshot at time t: values(:, k) holds the nodal values (boundary zeros
@@ -286,11 +275,8 @@ contains
     end subroutine writer_append_snapshot
 
     !> Scalar attribute of the root group (or of dataset `on`), replaced if present: float64,
-    !> int32, a variable-length UTF-8 string (h5py: str), or a logical, stored as int32 1
-    !> (.true.) / 0 (.false.): numeric, so scripts can test it directly (`if
-    !> f.attrs['output.quiet']:`), unlike 'false' strings, which are true in Python. What
-    !> makes it unambiguous: finish() lists every logical attribute in the root attribute
-    !> `logical_attributes` (docs/output.md).
+    !> int32, a variable-length UTF-8 string (h5py: str), or a logical as int32 1 / 0, which
+    !> Python tests as it should, listed by finish() in `logical_attributes` (docs/output.md).
     subroutine writer_attr_scalar(w, name, value, on)
         class(h5_writer_t), intent(inout) :: w
         character(len=*), intent(in) :: name
@@ -411,18 +397,45 @@ contains
             call fatal(EXIT_OUTPUT, 'output', 'internal error: '//what//' on a closed writer')
     end subroutine writer_need_open
 
-    !> Append the buffered series entries to the /series datasets.
-    subroutine writer_flush_series(w)
+    !> Set `set` up for n datasets (the caller creates them into set%ids, names them in
+    !> set%paths and marks the int32 ones in set%whole), buffering `capacity` entries.
+    subroutine writer_start_buffered(w, set, n, capacity)
         class(h5_writer_t), intent(inout) :: w
+        type(buffered_t), intent(inout) :: set
+        integer, intent(in) :: n, capacity
+        integer :: stat
+        character(len=256) :: message
+
+        allocate (set%ids(n), set%paths(n), set%whole(n), set%buf(capacity, n), stat=stat, errmsg=message)
+        if (stat /= 0) call w%fail('no memory for an output buffer ('//trim(message)//')')
+        set%ids = -1
+        set%whole = .false.
+    end subroutine writer_start_buffered
+
+    !> Add one entry, values(k) of dataset k, to the buffered datasets `set`.
+    subroutine writer_push(w, set, values)
+        class(h5_writer_t), intent(inout) :: w
+        type(buffered_t), intent(inout) :: set
+        real(dp), intent(in) :: values(:)
+
+        set%n_buf = set%n_buf + 1
+        set%buf(set%n_buf, :) = values
+        if (set%n_buf == size(set%buf, 1)) call w%write_buffer(set)
+    end subroutine writer_push
+
+    !> Append the entries waiting in the buffer of `set` to its datasets.
+    subroutine writer_write_buffer(w, set)
+        class(h5_writer_t), intent(inout) :: w
+        type(buffered_t), intent(inout) :: set
         integer :: k
 
-        if (w%n_buf == 0) return
-        do k = 1, N_SERIES
-            call w%append_rows(w%series_ids(k), '/series/'//trim(SERIES(k)%name), w%n_series_written, &
-                               [int(w%n_buf, hsize_t)], w%buf(1:w%n_buf, k), whole=SERIES(k)%is_integer)
+        if (set%n_buf == 0) return
+        do k = 1, size(set%ids)
+            call w%append_rows(set%ids(k), trim(set%paths(k)), set%n, [int(set%n_buf, hsize_t)], &
+                               set%buf(1:set%n_buf, k), whole=set%whole(k))
         end do
-        w%n_series_written = w%n_series_written + w%n_buf
-        w%n_buf = 0
-    end subroutine writer_flush_series
+        set%n = set%n + set%n_buf
+        set%n_buf = 0
+    end subroutine writer_write_buffer
 
 end module output_m

@@ -1,29 +1,22 @@
-!> The adaptive mesh of &mesh adaptive = .true.: bisection of the n_elements coarse
-!> elements up to max_level times, refined where the error indicator is large and
-!> coarsened back where the solution is smooth (run_m remeshes every &mesh remesh_every
-!> steps; step_driver_m's remesh moves the solution with transfer_m). This type holds the
-!> refinement's own data (the node keys, the field scales); the geometry the solver uses is
-!> the state's mesh_t (numerics/mesh_m), which adapt reads and the remesh sets from nodes().
+!> The adaptive mesh of &mesh adaptive = .true. (docs/scheme.md, "Adaptive mesh"): bisection of
+!> the n_elements coarse elements up to max_level times, refined where the error indicator is
+!> large and coarsened back where the solution is smooth, neighbouring elements at most one
+!> level apart (2:1 grading). It holds the refinement's own data (the node keys, the field
+!> scales); the solver's geometry is the state's mesh_t, which adapt reads and the remesh
+!> (step_driver_m, with transfer_m) sets from nodes().
 !>
-!> Nodes are kept as integers k_i in units of the finest possible element,
-!> 1 / n_fine with n_fine = n_elements 2^max_level: x_i = k_i / n_fine is the same number
-!> whenever it is computed (a restart rebuilds the mesh bit for bit), an element's level is
-!> max_level - log2(k_e - k_{e-1}), and two elements are siblings when they halve an
-!> element of the level above. x = 0 and x = 1 (the contact node) are always nodes.
+!> Nodes are integers k_i in units of the finest possible element: x_i = k_i / n_fine, n_fine =
+!> n_elements 2^max_level, is the same number whenever it is computed (a restart rebuilds the
+!> mesh bit for bit), an element's level is max_level - log2(k_e - k_{e-1}), and x = 0 and x = 1
+!> (the contact node) are nodes of every mesh.
 !>
-!> Indicator (docs/scheme.md, "Adaptive mesh"): hierarchical. Removing the node m that
-!> bisects a parent element of length H changes a P1 function f by its detail
-!> d_m = f_m - (f_{m-1} + f_{m+1})/2 times the hat of m, whose L2 norm is sqrt(H/3). Bisecting
-!> an element e would add the detail d_e ~ h_e^2 |f''| / 8, with f'' taken from the jumps of
-!> the slope at the element's end nodes. Each field f (u, v, theta, P, q, eta) is measured
-!> relative to the largest L2 norm it has had (scale_f), and per unit length, so that
-!> sum_e indicator_e^2 h_e <= error_tol^2 bounds the relative L2 interpolation error by
-!> error_tol:
+!> Indicators (hierarchical), per unit length and relative to each field's L2 norm scale_f, so
+!> that sum_e indicator_e^2 h_e <= error_tol^2 bounds the relative L2 interpolation error:
 !>   refine e      if  max_f |d_e| sqrt(h_e/3) / (scale_f sqrt(h_e)) > error_tol,
 !>   coarsen m     if  max_f |d_m| sqrt(H/3) / (scale_f sqrt(H)) <= error_tol / COARSEN_MARGIN,
-!> and the elements within `buffer` elements of one above error_tol are refined and kept,
-!> so that a front moving between two remeshes stays on fine elements. Neighbouring
-!> elements differ by at most one level (2:1 grading).
+!> d_m = f_m - (f_{m-1} + f_{m+1})/2 the detail of the node m that bisects a parent of length H
+!> (sqrt(H/3) the L2 norm of its hat), d_e ~ h_e^2 |f''| / 8 the detail a bisection of e would
+!> add; the elements within `buffer` elements of one above error_tol are refined and kept.
 module adaptive_mesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -54,7 +47,6 @@ module adaptive_mesh_m
         integer(int64) :: n_fine = 0            !< n_coarse 2^max_level
         integer(int64), allocatable :: k(:)     !< k(0:s): node i at x = k(i) / n_fine
         real(dp) :: scale(0:N_FIELDS) = 0.0_dp  !< largest L2 norm of each field so far
-        real(dp) :: norm(0:N_FIELDS) = 0.0_dp   !< each field's L2 norm at the last adapt (which sets it)
     contains
         procedure :: init => mesh_init
         procedure :: s => mesh_s
@@ -154,7 +146,7 @@ contains
         type(mesh_t), intent(in) :: mesh
         real(dp), intent(in) :: u(0:), w(0:, :)
         logical, intent(out) :: changed
-        real(dp) :: refine_ind(ubound(self%k, 1)), coarsen_ind(0:ubound(self%k, 1))
+        real(dp) :: refine_ind(ubound(self%k, 1)), coarsen_ind(0:ubound(self%k, 1)), norm(0:N_FIELDS)
         logical, dimension(ubound(self%k, 1)) :: hot, keep, bisect
         logical :: remove(0:ubound(self%k, 1))
         integer(int64), allocatable :: k_new(:)
@@ -162,13 +154,21 @@ contains
         integer(int64) :: length
 
         s = self%s()
-        ! each field's L2 norm, and scale_f = max(scale_f, |f|_L2)
-        self%norm(0) = l2_norm(mesh%x, u)
+        ! each field's L2 norm, and scale_f = max(scale_f, |f|_L2); the indicators relative to
+        ! the present norm, but not below NORM_FLOOR of the largest (a field decaying to zero
+        ! is not resolved down to round-off)
+        norm(0) = l2_norm(mesh%x, u)
         do f = 1, N_FIELDS
-            self%norm(f) = l2_norm(mesh%x, w(:, f))
+            norm(f) = l2_norm(mesh%x, w(:, f))
         end do
-        self%scale = max(self%scale, self%norm)
-        call indicators(self, mesh%x, u, w, refine_ind, coarsen_ind)
+        self%scale = max(self%scale, norm)
+        norm = max(norm, NORM_FLOOR * self%scale)
+        refine_ind = 0.0_dp
+        coarsen_ind = 0.0_dp
+        if (norm(0) > 0.0_dp) call add_field(mesh%x, u, norm(0), refine_ind, coarsen_ind)
+        do f = 1, N_FIELDS
+            if (norm(f) > 0.0_dp) call add_field(mesh%x, w(:, f), norm(f), refine_ind, coarsen_ind)
+        end do
         hot = refine_ind > self%tol
         ! keep: within `buffer` elements of a hot one (refined up to max_level, never coarsened)
         keep = hot
@@ -249,28 +249,8 @@ contains
         end function too_coarse
     end subroutine balance
 
-    !> The indicators of the module header: refine_ind(e) for bisecting element e,
-    !> coarsen_ind(m) for removing node m (both relative, per unit length).
-    subroutine indicators(self, x, u, w, refine_ind, coarsen_ind)
-        type(adaptive_mesh_t), intent(in) :: self
-        real(dp), intent(in) :: x(0:), u(0:), w(0:, :)
-        real(dp), intent(out) :: refine_ind(:), coarsen_ind(0:)
-        integer :: f
-        real(dp) :: reference(0:N_FIELDS)
-
-        refine_ind = 0.0_dp
-        coarsen_ind = 0.0_dp
-        ! relative to the field's present norm, but not below NORM_FLOOR of its largest
-        ! (a field decaying to zero is not resolved down to round-off)
-        reference = max(self%norm, NORM_FLOOR * self%scale)
-        if (reference(0) > 0.0_dp) call add_field(x, u, reference(0), refine_ind, coarsen_ind)
-        do f = 1, N_FIELDS
-            if (reference(f) > 0.0_dp) &
-                call add_field(x, w(:, f), reference(f), refine_ind, coarsen_ind)
-        end do
-    end subroutine indicators
-
-    !> refine_ind = max(refine_ind, this field's), likewise coarsen_ind (see indicators).
+    !> refine_ind = max(refine_ind, this field's indicators), likewise coarsen_ind (module
+    !> header), f measured relative to scale.
     pure subroutine add_field(x, f, scale, refine_ind, coarsen_ind)
         real(dp), intent(in) :: x(0:), f(0:), scale
         real(dp), intent(inout) :: refine_ind(:), coarsen_ind(0:)

@@ -1,19 +1,10 @@
 !> The meshes of the error estimate's companions on an adaptive mesh (&output error_estimate
-!> with &mesh adaptive; error_companion_m, docs/scheme.md "The error estimate of a run").
-!>
-!> The run's mesh is a bisection mesh of n_coarse coarse elements (adaptive_mesh_m: node keys
-!> k_i in units of the finest possible element, a coarse element 2^max_level of them). A
-!> companion coarser by `ratio` (2: A, 4: C and D) has the coarse mesh of n_coarse / ratio
-!> elements, bisected top-down: an element of length H (in keys) is kept when every element
-!> of the run inside it is at least H / ratio long, else bisected. So each companion element
-!> is at most `ratio` times the run's elements it covers, and exactly `ratio` times where the
-!> run's level is the same over it; where the run's level changes (2:1 grading) the element
-!> on the coarse side is ratio / 2 times the run's. Its nodes are nodes of the run's mesh
-!> (a bisection stops at the first length that every run element inside reaches, and a run
-!> element crossing the midpoint would be at least H long), and the mesh of ratio 4 is nested
-!> in the mesh of ratio 2 (an element kept for 2 is kept for 4, and the top-down walk of 4
-!> reaches it or a larger one first). The companion's mesh is a function of the run's: it is
-!> rebuilt whenever the run remeshes, and from a checkpoint's run mesh on a restart.
+!> with &mesh adaptive; docs/scheme.md, "The error estimate of a run", says why). The companion
+!> coarser by `ratio` (2: A, 4: C and D) than the run's bisection mesh (adaptive_mesh_m's keys)
+!> is the coarse mesh of n_coarse / ratio elements bisected top-down: an element of length H is
+!> kept when every element of the run inside it is at least H / ratio long. Its nodes are the
+!> run's (a run element crossing the midpoint would be at least H long), the mesh of ratio 4 is
+!> nested in that of ratio 2, and it is rebuilt whenever the run's mesh changes.
 module companion_mesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
@@ -32,7 +23,7 @@ contains
         integer, intent(in) :: n_coarse, ratio
         integer(int64), allocatable, intent(out) :: k_comp(:)
         integer(int64) :: work(0:ubound(k_run, 1)), length
-        integer :: n, i, j, e, stat
+        integer :: n, i, e, stat
         character(len=256) :: message
 
         length = int(ratio, int64) * (n_fine / int(n_coarse, int64))
@@ -40,9 +31,7 @@ contains
         work(0) = 0_int64
         i = 0
         do e = 1, n_coarse / ratio
-            j = i
-            call keep_or_bisect(int(e - 1, int64) * length, length, i, j)
-            i = j
+            call keep_or_bisect(int(e - 1, int64) * length, length, i)
         end do
         allocate (k_comp(0:n), stat=stat, errmsg=message)
         call check_allocation(stat, message, 'a companion''s mesh')
@@ -51,12 +40,11 @@ contains
     contains
 
         !> The element [a, a + h] of the companion, whose left end is the run's node i: kept
-        !> (its right end appended) or bisected; j: the run's node at its right end.
-        recursive subroutine keep_or_bisect(a, h, i, j)
+        !> (its right end appended) or bisected; i is then the run's node at its right end.
+        recursive subroutine keep_or_bisect(a, h, i)
             integer(int64), intent(in) :: a, h
-            integer, intent(in) :: i
-            integer, intent(out) :: j
-            integer :: mid
+            integer, intent(inout) :: i
+            integer :: j
             integer(int64) :: shortest
 
             j = i
@@ -68,9 +56,10 @@ contains
             if (int(ratio, int64) * shortest >= h) then
                 n = n + 1
                 work(n) = a + h
+                i = j
             else
-                call keep_or_bisect(a, h / 2, i, mid)
-                call keep_or_bisect(a + h / 2, h / 2, mid, j)
+                call keep_or_bisect(a, h / 2, i)
+                call keep_or_bisect(a + h / 2, h / 2, i)
             end if
         end subroutine keep_or_bisect
     end subroutine companion_keys

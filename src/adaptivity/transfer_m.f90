@@ -11,14 +11,9 @@
 !>       c theta^2 + 2 d P theta + r P^2.
 !>   Where the new mesh only adds nodes (refinement), the old function lies in the new
 !>       space and both are exact: the values are interpolated, and the energy is unchanged.
-!>   v with the redistributed mass (&contact mass = 'redistributed'; velocity_projection):
-!>       the kinetic energy is rho v^T M_v v with fe_m's inertia_element, a blend of the
-!>       consistent and the lumped mass and the contact node x = 1 massless, which is no L2
-!>       norm of the function v: the consistent projection can raise it at a remesh (by the
-!>       massless node's velocity entering the new last elements, and by the lumped part,
-!>       h_e (v_a - v_b)^2 / 6 per element, which merging elements can raise). So v is moved
-!>       in M_v's own terms (velocity_projection), and x = 1 keeps its v (no energy), as it
-!>       keeps u.
+!>   v with the redistributed mass (&contact mass = 'redistributed'), whose kinetic energy
+!>       is no L2 norm of v: moved in that mass's own terms, x = 1 keeping its v
+!>       (velocity_projection says why).
 !>
 !> Both meshes are given by the integer keys of adaptive_mesh_m (node i at k_i / n_fine).
 !> A level is packed as (0:s, 0:N_FIELDS): column 0 u, columns F_* the fields.
@@ -41,7 +36,7 @@ contains
         integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
         real(dp), intent(in) :: level_old(0:, 0:)
         real(dp), intent(out) :: level_new(0:, 0:)
-        type(model_t), intent(in), optional :: model
+        type(model_t), intent(in) :: model
         real(dp) :: x_old(0:ubound(k_old, 1)), x_new(0:ubound(k_new, 1))
         integer(int64) :: k_union(0:ubound(k_old, 1) + ubound(k_new, 1))
         integer :: f, s_old, s_new, n
@@ -53,8 +48,7 @@ contains
         s_new = ubound(k_new, 1)
         call merge_keys(k_old, k_new, k_union, n)
         refinement_only = n == s_new   ! every old key is a new one
-        massless_end = .false.
-        if (present(model)) massless_end = model%mass_end_moved .and. min(s_old, s_new) > 1
+        massless_end = model%mass_end_moved .and. min(s_old, s_new) > 1
         level_new(:, 0) = evaluate_p1(x_old, level_old(:, 0), x_new)
         do f = 1, N_FIELDS
             if (massless_end .and. f == F_V) then
@@ -129,17 +123,13 @@ contains
 
     !> g = the velocity f (keys k_old) moved to keys k_new so that the kinetic energy
     !> v^T M_v v of the redistributed mass (fe_m's inertia_element: the blend with the lumped
-    !> fraction `lumped`, x = 1 massless) cannot rise. The last element's energy is h v_{s-1}^2,
-    !> that of the function constant v_{s-1} on it, so f is taken so (f_s = f_{s-1}) and g is
-    !> sought among the functions constant on their last element (g_s = g_{s-1}; the caller
-    !> puts back x = 1's own v). On the union U of both meshes, M_v^U is no larger than M_v of
-    !> either mesh for their functions (the consistent part is the same L2 integral; the lumped
-    !> part h_e (v_a - v_b)^2 / 6 of an element split into a and 1 - a of it scales by
-    !> a^3 + (1-a)^3 < 1; a function constant on the last element keeps h v^2 there). g is the
-    !> projection M_v^new g = I_new^T M_v^U I_old f (I: the interpolation onto U), so
-    !>   g^T M_v^new g <= g^T M_v^U g ... = |P f|_U^2 <= f^T M_v^U f <= f^T M_v^old f,
-    !> P the M_v^U-orthogonal projection onto the new space. Where the new mesh only adds
-    !> nodes, U is the new mesh and g = I_new f (interpolation), as for the other fields.
+    !> fraction `lumped`, x = 1 massless) cannot rise (docs/scheme.md, "Mass redistribution",
+    !> says why): f is taken constant on its last element (f_s = f_{s-1}; its energy there is
+    !> h v_{s-1}^2), g is sought among the functions constant on their last element (g_s =
+    !> g_{s-1}; the caller puts back x = 1's own v), as the projection M_v^new g = I_new^T M_v^U
+    !> I_old f on the union U of both meshes (I: the interpolation onto U; M_v^U is no larger
+    !> than either mesh's M_v for its functions). Where the new mesh only adds nodes, U is the
+    !> new mesh and g = I_new f (interpolation), as for the other fields.
     subroutine velocity_projection(k_old, k_new, n_fine, lumped, f, g)
         integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
         real(dp), intent(in) :: lumped
@@ -190,7 +180,8 @@ contains
         g(s) = g(s - 1)
     end subroutine velocity_projection
 
-    !> k(0:n) = the increasing union of the increasing keys a and b (each key once).
+    !> k(0:n) = the increasing union of the increasing keys a and b (each key once), which end
+    !> on the same key (n_fine: both meshes end at x = 1), so that neither runs out first.
     pure subroutine merge_keys(a, b, k, n)
         integer(int64), intent(in) :: a(0:), b(0:)
         integer(int64), intent(out) :: k(0:)
@@ -200,25 +191,11 @@ contains
         i = 0
         j = 0
         n = -1
-        do while (i <= ubound(a, 1) .or. j <= ubound(b, 1))
+        do while (i <= ubound(a, 1))
             n = n + 1
-            if (j > ubound(b, 1)) then
-                k(n) = a(i)
-                i = i + 1
-            else if (i > ubound(a, 1)) then
-                k(n) = b(j)
-                j = j + 1
-            else if (a(i) < b(j)) then
-                k(n) = a(i)
-                i = i + 1
-            else if (b(j) < a(i)) then
-                k(n) = b(j)
-                j = j + 1
-            else
-                k(n) = a(i)
-                i = i + 1
-                j = j + 1
-            end if
+            k(n) = min(a(i), b(j))
+            if (a(i) == k(n)) i = i + 1
+            if (b(j) == k(n)) j = j + 1
         end do
     end subroutine merge_keys
 

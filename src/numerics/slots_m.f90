@@ -1,7 +1,7 @@
 !> The system vector of (6.1): where each field sits within a node (its slot) in the
 !> monolithic system, in the paper's Section 7 blocks and in a monolithic system of fewer
 !> fields (scheme_m's active_fields), and the fields' way in and out of it: nodes
-!> interleaved, unknown (node i, field f) at nf*i + slots(f), nf = count(slots > 0).
+!> interleaved, unknown (node i, field f) at nf*i + slots(f) of nf*(s+1), nf = count(slots > 0).
 module slots_m
     use kinds_m, only: dp
     use fields_m, only: N_FIELDS
@@ -54,11 +54,9 @@ contains
             end do
             return
         end if
+        ! field by field: field f is every nf-th entry of x from its slot
         do f = 1, N_FIELDS
-            if (slots(f) == 0) cycle
-            do i = 0, ubound(w, 1)
-                x(nf * i + slots(f)) = w(i, f)
-            end do
+            if (slots(f) > 0) x(slots(f)::nf) = w(:, f)
         end do
     end subroutine scatter_fields
 
@@ -77,10 +75,7 @@ contains
             return
         end if
         do f = 1, N_FIELDS
-            if (slots(f) == 0) cycle
-            do i = 0, ubound(w, 1)
-                w(i, f) = x(nf * i + slots(f))
-            end do
+            if (slots(f) > 0) w(:, f) = x(slots(f)::nf)
         end do
     end subroutine gather_fields
 

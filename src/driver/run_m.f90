@@ -21,7 +21,7 @@ module run_m
     use run_output_m, only: output_grid, write_series, write_dense_series, write_snapshot, write_dense_snapshots, &
                             write_error_estimate
     use error_companion_m, only: error_companions_t
-    use run_attributes_m, only: record_inputs, record_scales, record_results
+    use run_attributes_m, only: record_inputs, dataset_scales, record_scales, record_results
     use provenance_m, only: record_provenance
     use progress_m, only: progress_t
     use version_m, only: PROGRAM_VERSION, SOURCE_VERSION
@@ -127,7 +127,8 @@ contains
         type(config_t), intent(in) :: cfg
 
         call output_grid(cfg, run%x_out)
-        call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression, run%in_place)
+        call run%writer%create(trim(cfg%output%prefix), run%x_out, cfg%output%compression, run%in_place, &
+                               dataset_scales(cfg))
         call record_inputs(run%writer, cfg)
         call record_provenance(run%writer, PROGRAM_VERSION, SOURCE_VERSION)
         if (cfg%material%present) call record_scales(run%writer, cfg)

@@ -17,6 +17,7 @@ contains
     !> compression (0 .. 9, validated by the input, default 0) the deflate level of the /snapshots
     !> fields (with the shuffle filter before it; 0: no filters). in_place: the run resumes
     !> <prefix>.h5.part, which stays as it is until finish(); the file is <prefix>//RESUMED_SUFFIX.
+    !> scales (&material): the SI scales, labelling every dataset measured in one (label()).
     module procedure writer_create
         character(len=:), allocatable :: dir, message
         logical :: ok
@@ -36,6 +37,7 @@ contains
         if (w%replaces == '') call remove_file(trim(prefix)//RESUMED_SUFFIX)
         w%creating = .true.
         w%n_nodes = size(x)
+        if (present(scales)) w%si = scales
         if (present(compression)) w%compression = compression
         w%logical_names = ''
         w%checkpoint_note = ''
@@ -78,24 +80,25 @@ contains
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
         integer(hsize_t) :: row(2)
+        integer(hid_t) :: x_id
         integer :: hdferr, k
 
         call w%make_group('/mesh')
-        ! /mesh/x stays open until finish(), for describe_si
-        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, w%mesh_x_id, &
+        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, x_id, &
                           'position x along the rod (nondimensional, scale: position)', &
-                          '1', scale='x')
+                          '1', si='position', scale='x')
         call w%make_group('/series')
         call w%start_buffered(w%series, N_SERIES, SERIES_BUFFER_SIZE)
         w%series%paths = '/series/'//SERIES%name
         w%series%whole = SERIES%is_integer
         associate (t => SERIES(S_T), ids => w%series%ids)
             call w%create_extendible(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, EMPTY, CHUNK, &
-                                     ids(S_T), described(t%long_name, t%scale), t%units, scale='t')
+                                     ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
+                                     scale='t')
             call w%make_group('/snapshots')
             call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, &
                                      w%snap_t_id, described(t%long_name, t%scale), &
-                                     t%units, scale='t')
+                                     t%units, si=t%scale, scale='t')
         end associate
         do k = 1, N_SERIES
             if (k == S_T) cycle
@@ -103,7 +106,7 @@ contains
                 call w%create_extendible(trim(w%series%paths(k)), &
                                          merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
                                          EMPTY, CHUNK, ids(k), described(f%long_name, f%scale), &
-                                         f%units, coords=[ids(S_T)])
+                                         f%units, si=f%scale, coords=[ids(S_T)])
             end associate
         end do
         row = [int(w%n_nodes, hsize_t), 1_hsize_t]
@@ -111,12 +114,13 @@ contains
             associate (f => SNAPSHOTS(k))
                 call w%create_extendible('/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
                                          [row(1), 0_hsize_t], row, w%snap_field_ids(k), &
-                                         described(f%long_name, f%scale), f%units, &
-                                         coords=[w%snap_t_id, w%mesh_x_id], compress=.true.)
+                                         described(f%long_name, f%scale), f%units, si=f%scale, &
+                                         coords=[w%snap_t_id, x_id], compress=.true.)
             end associate
         end do
         call h5lcreate_hard_f(w%file_id, '/mesh/x', w%file_id, '/snapshots/x', hdferr)
         call w%check(hdferr, 'h5lcreate_hard_f /snapshots/x')
+        call w%close_dataset(x_id, '/mesh/x')
     end subroutine create_datasets
 
     !> Create an empty dataset at `path` whose last dimension is unlimited, dims its initial
@@ -287,9 +291,9 @@ contains
     end procedure described
 
     !> The CF-style attributes of dataset dset_id (`path`): long_name and units ('1':
-    !> nondimensional), and for one created after describe_si (/snapshots/native, /events)
-    !> whose quantity has fields_m's scale `si`, si_factor and si_units (none without
-    !> &material). With `scale`, it is the dimension scale (netCDF-4: the coordinate
+    !> nondimensional), and when its quantity has fields_m's scale `si`, one of create()'s
+    !> SI scales (&material), si_factor and si_units: its value in SI units is si_factor
+    !> times the stored value. With `scale`, it is the dimension scale (netCDF-4: the coordinate
     !> variable) of the dimension of that name; coords(j), if given, is the dimension scale
     !> of its dimension j, counted as h5py counts them (1: the slowest-varying; the Fortran
     !> API counts them so, C and h5py from 0).
@@ -303,10 +307,11 @@ contains
 
         call w%attr('long_name', trim(long_name), on=dset_id)
         call w%attr('units', trim(units), on=dset_id)
-        if (present(si)) then
-            do k = 1, w%n_si
-                if (w%si_names(k) /= si) cycle
-                call put_si(w, dset_id, w%si_factors(k), trim(w%si_units(k)))
+        if (present(si) .and. allocated(w%si)) then
+            do k = 1, size(w%si)
+                if (w%si(k)%name /= si) cycle
+                call w%attr('si_factor', w%si(k)%factor, on=dset_id)
+                call w%attr('si_units', trim(w%si(k)%units), on=dset_id)
             end do
         end if
         if (present(scale)) then
@@ -319,36 +324,5 @@ contains
             call w%check(hdferr, 'h5dsattach_scale_f '//path)
         end do
     end subroutine label
-
-    !> Attributes si_factor and si_units on every dataset whose quantity has fields_m's
-    !> scale `scale`: its value in SI units is si_factor times the stored value.
-    module procedure writer_describe_si
-        integer :: k
-
-        if (w%n_si == size(w%si_names)) call w%fail('internal error: more SI scales than MAX_SI_SCALES')
-        w%n_si = w%n_si + 1
-        w%si_names(w%n_si) = scale
-        w%si_factors(w%n_si) = factor
-        w%si_units(w%n_si) = si_units
-        do k = 1, N_SERIES
-            if (SERIES(k)%scale == scale) call put_si(w, w%series%ids(k), factor, si_units)
-        end do
-        if (SERIES(S_T)%scale == scale) call put_si(w, w%snap_t_id, factor, si_units)
-        do k = 1, N_SNAPSHOT_FIELDS
-            if (SNAPSHOTS(k)%scale == scale) call put_si(w, w%snap_field_ids(k), factor, si_units)
-        end do
-        if (scale == 'position') call put_si(w, w%mesh_x_id, factor, si_units)
-    end procedure writer_describe_si
-
-    !> Attributes si_factor and si_units of dataset dset_id.
-    subroutine put_si(w, dset_id, factor, si_units)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(in) :: dset_id
-        real(dp), intent(in) :: factor
-        character(len=*), intent(in) :: si_units
-
-        call w%attr('si_factor', factor, on=dset_id)
-        call w%attr('si_units', si_units, on=dset_id)
-    end subroutine put_si
 
 end submodule output_create_s

@@ -87,7 +87,6 @@ contains
         if (allocated(w%ckpt_ids)) w%ckpt_ids = -1
         w%ckpt_current_id = -1
         call writer_open_file(w, create=.false.)
-        call reopen(w, w%mesh_x_id, '/mesh/x')
         call reopen(w, w%snap_t_id, '/snapshots/t')
         do k = 1, N_SNAPSHOT_FIELDS
             call reopen(w, w%snap_field_ids(k), '/snapshots/'//trim(SNAPSHOTS(k)%name))

@@ -13,6 +13,7 @@ module output_m
                       write_failure_reason, reserve_file_size
     use h5_read_m, only: h5_library_init
     use checkpoint_m, only: checkpoint_t
+    use material_m, only: si_scale_t
     use fields_m, only: FIELDS, OUTPUT_ORDER, SNAPSHOTS, N_SNAPSHOT_FIELDS, N_OUTPUT_FIELDS, SERIES, N_SERIES, S_T
     use iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
     use hdf5, only: hid_t, hsize_t, size_t, h5fcreate_f, h5fclose_f, h5fflush_f, h5fget_filesize_f, &
@@ -46,8 +47,6 @@ module output_m
     !> final estimate's root attributes <part>.<field>
     character(len=*), parameter :: ESTIMATE_PARTS(3) = [character(len=20) :: 'error_estimate', &
                                                         'error_estimate_time', 'error_estimate_space']
-    !> At most this many SI scales (material_m's si_scales, and '' for counts)
-    integer, parameter :: MAX_SI_SCALES = 16
 
     !> Datasets that grow together by one entry per append, through a buffer written when
     !> full and at every flush (the series; the error estimates)
@@ -83,15 +82,9 @@ module output_m
         !> what the last complete checkpoint is ('step 250 (t = 2.5000E-02)'), '' before the first
         character(len=:), allocatable :: checkpoint_note
         character(len=:), allocatable :: logical_names   !< the logical root attributes, ' '-separated
-        integer(hid_t) :: mesh_x_id = -1           !< /mesh/x, open until finish() (for describe_si)
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
         integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
-        !> the SI scales given to describe_si (&material), for the datasets created later
-        !> (/snapshots/native, /events)
-        integer :: n_si = 0
-        character(len=24) :: si_names(MAX_SI_SCALES) = ''
-        real(dp) :: si_factors(MAX_SI_SCALES) = 0.0_dp
-        character(len=16) :: si_units(MAX_SI_SCALES) = ''
+        type(si_scale_t), allocatable :: si(:)     !< the datasets' SI scales (create(), &material)
         !> /snapshots/error_estimate*/<field> (estimate_path), from the first append (output_estimate_s)
         type(buffered_t) :: estimates
         logical :: swmr = .false.                  !< the file is in SWMR write mode (output_file_s)
@@ -114,7 +107,6 @@ module output_m
         procedure, private :: attr_scalar => writer_attr_scalar
         procedure, private :: attr_array => writer_attr_array
         generic :: attr => attr_scalar, attr_array
-        procedure :: describe_si => writer_describe_si
         procedure :: flush => writer_flush
         procedure :: write_checkpoint => writer_write_checkpoint
         procedure :: write_events => writer_write_events
@@ -134,12 +126,13 @@ module output_m
     end type h5_writer_t
 
     interface   ! the submodules' procedures (output_*_s.f90), their arguments declared here only
-        module subroutine writer_create(w, prefix, x, compression, in_place)
+        module subroutine writer_create(w, prefix, x, compression, in_place, scales)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: prefix
             real(dp), intent(in) :: x(0:)
             integer, intent(in), optional :: compression
             logical, intent(in), optional :: in_place
+            type(si_scale_t), intent(in), optional :: scales(:)
         end subroutine writer_create
 
         module subroutine writer_open_file(w, create)
@@ -230,12 +223,6 @@ module output_m
             type(checkpoint_t), intent(in) :: ckpt
             character(len=*), intent(in) :: note
         end subroutine writer_write_checkpoint
-
-        module subroutine writer_describe_si(w, scale, factor, si_units)
-            class(h5_writer_t), intent(inout) :: w
-            character(len=*), intent(in) :: scale, si_units
-            real(dp), intent(in) :: factor
-        end subroutine writer_describe_si
 
         pure module function described(long_name, scale) result(text)
             character(len=*), intent(in) :: long_name, scale

@@ -19,7 +19,7 @@ module run_attributes_m
     use output_m, only: h5_writer_t, ESTIMATE_PARTS
     implicit none
     private
-    public :: record_inputs, record_scales, record_results, ERROR_ESTIMATE_NONE
+    public :: record_inputs, dataset_scales, record_scales, record_results, ERROR_ESTIMATE_NONE
 
     !> The root attribute error_estimate of a run without &output error_estimate.
     character(len=*), parameter :: ERROR_ESTIMATE_NONE = &
@@ -65,9 +65,18 @@ contains
         end do
     end subroutine record_items
 
-    !> With &material: the groups of (2.10) (root attributes derived.*), each scale of the
-    !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units) and, on
-    !> every dataset measured in one, si_factor and si_units.
+    !> The SI scales of the datasets (output_m's create): with &material those of (2.10) and
+    !> '' for the counts (factor 1, so that every dataset converts), without it none.
+    function dataset_scales(cfg) result(scales)
+        type(config_t), intent(in) :: cfg
+        type(si_scale_t), allocatable :: scales(:)
+
+        allocate (scales(0))
+        if (cfg%material%present) scales = [si_scales(cfg%material), si_scale_t('', 1.0_dp, '1')]
+    end function dataset_scales
+
+    !> With &material: the groups of (2.10) (root attributes derived.*) and each scale of the
+    !> nondimensional variables (scale.<name>, its SI units in scale.<name>.units).
     subroutine record_scales(writer, cfg)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
@@ -90,10 +99,7 @@ contains
         do k = 1, size(scales)
             call writer%attr('scale.'//trim(scales(k)%name), scales(k)%factor)
             call writer%attr('scale.'//trim(scales(k)%name)//'.units', trim(scales(k)%units))
-            call writer%describe_si(trim(scales(k)%name), scales(k)%factor, trim(scales(k)%units))
         end do
-        ! the counts (fields_m's scale ''): SI factor 1, so that every dataset converts
-        call writer%describe_si('', 1.0_dp, '1')
     end subroutine record_scales
 
     !> At the end of the run cfg: the contact events (/events) and the root attributes of

@@ -10,17 +10,13 @@ submodule (output_m) output_checkpoint_s
 
 contains
 
-    !> Write the checkpoint ckpt (checkpoint_m's record): entry 'owner/name' as dataset
-    !> /checkpoint/slotN/owner/name, a scalar as member name of the compound
-    !> /checkpoint/slotN/owner/scalars; note says which state it is ('step 250 (t = ...)',
-    !> for the message of a later output failure). Raw data reach the file as they are
-    !> written, so a kill in the middle of a checkpoint would leave a torn one; hence two
-    !> slots: the new checkpoint goes into the slot not in use, the file is flushed, and only
-    !> then /checkpoint/current is pointed at it (and flushed). SWMR writing's flushes
-    !> (output_file_s) write a chunk index before what points to it, so a run killed at any
-    !> moment leaves the last complete checkpoint, and the history flushed with it, readable.
-    !> The first checkpoint creates both slots; later ones put the same entries (checked) into
-    !> the same datasets, held open.
+    !> Write the checkpoint ckpt (checkpoint_m's record) into the slot not in use; note says
+    !> which state it is ('step 250 (t = ...)', for the message of a later output failure).
+    !> Raw data reach the file as they are written, so only after a flush is
+    !> /checkpoint/current pointed at the new slot (and flushed): a kill at any moment leaves
+    !> the last complete checkpoint (docs/output.md, "Checkpoints" and "A killed run"). The
+    !> first checkpoint creates both slots; later ones put the same entries (checked) into
+    !> the same datasets.
     module procedure writer_write_checkpoint
         integer :: k, slot
         logical :: first

@@ -124,12 +124,9 @@ contains
     end subroutine create_datasets
 
     !> Create an empty dataset at `path` whose last dimension is unlimited, dims its initial
-    !> size (last entry 0), chunk the chunk shape, and label it (label()).
-    !> With compress (the snapshot fields only) and compression > 0: shuffle and deflate.
-    !> Only datasets whose chunks are written once, whole, are compressed: rewriting a
-    !> partly filled compressed chunk (the series and /snapshots/t at each flush) moves it,
-    !> and HDF5 may reuse the space it leaves for later data, overwriting what the last
-    !> flush (and its checkpoint) pointed to; a full disk or a kill would then lose it.
+    !> size (last entry 0), chunk the chunk shape, and label it (label()). With compress and
+    !> compression > 0: shuffle and deflate, for datasets whose chunks are written once, whole
+    !> (the snapshot fields: docs/output.md, "Chunks and compression", says why only they).
     !> Arguments (w, path, file_type, dims, chunk, dset_id, long_name, units, si, scale,
     !> coords, compress): output_m's interface.
     module procedure writer_create_extendible

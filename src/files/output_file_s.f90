@@ -1,13 +1,9 @@
 !> The writer's file itself (output_m): opening it with HDF5's 1.10 format, its
 !> single-writer/multiple-reader (SWMR) write mode, room for its flushes (reserve), failing
-!> (fail) and closing it (finish, abandon). A submodule of output_m, so that it reaches the
-!> writer's private state.
-!>
-!> Crash safety (docs/output.md, "A killed run": why, and the two windows where it lapses):
-!> between structural changes the file is in SWMR write mode (h5_swmr_m). SWMR mode forbids
-!> new objects, attributes and deletions (HDF5 1.10 then corrupts its metadata cache), so
-!> whatever needs one ends it first (leave_swmr: the file is closed, clean, and reopened),
-!> and the next flush() starts it again.
+!> (fail) and closing it (finish, abandon). Crash safety: docs/output.md, "A killed run".
+!> SWMR mode forbids new objects, attributes and deletions (HDF5 1.10 then corrupts its
+!> metadata cache), so whatever needs one ends it first (leave_swmr: the file is closed,
+!> clean, and reopened), and the next flush() starts it again.
 submodule (output_m) output_file_s
     use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, &
                     h5dopen_f, h5lexists_f, h5ldelete_f
@@ -30,10 +26,8 @@ contains
         call h5pset_fclose_degree_f(fapl_id, H5F_CLOSE_STRONG_F, hdferr)
         call w%check(hdferr, 'h5pset_fclose_degree_f')
         ! no chunk cache: every chunk is written, and its space allocated, by the h5dwrite_f
-        ! that fills it, so that a full disk fails there, between flushes, and a flush
-        ! (flush()) writes metadata only, into space reserved for it first. Appends write
-        ! whole chunks (a snapshot row, 256 series entries) except at a flush, so the cache
-        ! would save nothing.
+        ! that fills it, so that a full disk fails there, between flushes, and a flush writes
+        ! metadata only, into space reserved for it first (appends write whole chunks)
         call h5pset_cache_f(fapl_id, 0, 0_size_t, 0_size_t, 0.75, hdferr)
         call w%check(hdferr, 'h5pset_cache_f')
         ! the 1.10 format (superblock 3; the chunk index of an extendible dataset is an

@@ -74,8 +74,7 @@ module error_companion_m
         integer :: n_since = 0             !< the run's steps since the last snapshot
         !> the last estimate (values(k, part): field OUTPUT_ORDER(k))
         real(dp) :: last(N_OUTPUT_FIELDS, N_ESTIMATE_PARTS) = 0.0_dp
-        !> an adaptive mesh (&mesh adaptive): the run's coarse elements, finest elements, keys
-        logical :: adaptive = .false.
+        !> an adaptive mesh (k_run allocated only then): the run's coarse and finest elements, keys
         integer :: n_coarse = 0
         integer(int64) :: n_fine = 0
         integer(int64), allocatable :: k_run(:)
@@ -105,8 +104,7 @@ contains
 
         self%on = .true.
         if (.not. cfg%time%adaptive) self%dt_fixed = cfg%time%dt
-        self%adaptive = present(keys)
-        if (self%adaptive) then
+        if (present(keys)) then
             self%n_coarse = cfg%mesh%n_elements
             self%n_fine = int(cfg%mesh%n_elements, int64) * 2_int64**cfg%mesh%max_level
             self%k_run = keys
@@ -118,7 +116,7 @@ contains
                 k = ELEMENTS_PER_ELEMENT(j)
                 coarse%mesh%n_elements = cfg%mesh%n_elements / k
                 coarse%time%dt = real(c%steps_per_step, dp) * cfg%time%dt
-                if (self%adaptive) then   ! its own mesh, nested in the run's (companion_mesh_m)
+                if (present(keys)) then   ! its own mesh, nested in the run's (companion_mesh_m)
                     call companion_keys(keys, self%n_coarse, self%n_fine, k, c%k)
                     call initial_state(coarse, c%state, nodes_of_keys(c%k, self%n_fine))
                     on_run = key_positions(c%k, keys)
@@ -129,7 +127,7 @@ contains
                 c%state%u = initial%u(on_run)
                 c%state%w = initial%w(on_run, :)
                 call c%stepper%init(coarse, c%result, source)
-                if (self%adaptive) call c%stepper%remesh(c%state)
+                if (present(keys)) call c%stepper%remesh(c%state)
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
                 c%stepper%check_finite = .false.
                 if (.not. c%result%ok) call stop_companions(self, 'setting up companion '//NAMES(j:j)// &
@@ -275,7 +273,7 @@ contains
             self%last = values
             return
         end if
-        if (self%adaptive) then   ! C's nodes are A's, A's are the run's (companion_mesh_m)
+        if (allocated(self%k_run)) then   ! C's nodes are A's, A's are the run's (companion_mesh_m)
             associate (k_a => self%pair(COMP_A)%k, k_c => self%pair(COMP_C)%k)
                 call extrapolate(self, state, key_positions(k_a, self%k_run), key_positions(k_c, self%k_run), &
                                  key_positions(k_c, k_a), values, trapezoid_weights(k_a), trapezoid_weights(k_c))
@@ -327,9 +325,8 @@ contains
         real(dp), allocatable :: queue(:)
         integer(int64), allocatable :: keys(:)
         integer :: j
-        logical :: failed
 
-        if (self%adaptive .and. ckpt%reading) then   ! the companions' meshes for the run's
+        if (allocated(self%k_run) .and. ckpt%reading) then   ! the companions' meshes for the run's
             call ckpt%get('adaptive_mesh/keys', keys)
             call companions_remesh(self, keys)
         end if
@@ -352,10 +349,9 @@ contains
                 end if
             end associate
         end do
-        failed = self%failed
-        call ckpt%sync('error_companions/failed', failed)
+        call ckpt%sync('error_companions/failed', self%failed)
         call ckpt%sync('error_companions/n_since', self%n_since)
-        if (failed) call stop_companions(self, 'failed before the checkpoint')
+        if (self%failed .and. self%failure == '') self%failure = 'failed before the checkpoint'
     end subroutine companions_checkpoint
 
     !> The run's adaptive mesh has changed (keys: its new node keys; remesh_m): each companion

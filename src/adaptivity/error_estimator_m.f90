@@ -1,14 +1,11 @@
-!> The local error estimate of adaptive time steps (&time adaptive = .true.; fixed steps
-!> compute none, the error of a run is error_companion_m's, with &output error_estimate).
-!>
-!> Estimate (docs/scheme.md, "Adaptive time steps"): the predictor-corrector difference, as
-!> in the BDF codes (DASSL, CVODE). P^n is the polynomial of degree p (the scheme's order)
-!> through the last p+1 accepted levels, extrapolated to t_n; for smooth solutions
+!> The local error estimate of adaptive time steps (&time adaptive = .true.; docs/scheme.md,
+!> "Adaptive time steps", says why this one): the predictor-corrector difference of the BDF
+!> codes (DASSL, CVODE). P^n is the polynomial of degree p (the scheme's order) through the
+!> last p+1 accepted levels, extrapolated to t_n; for smooth solutions
 !>   X^n - P^n = X^(p+1) / (p+1)! * d_1 ... d_{p+1} + h.o.t.,  d_j = t_n - t_{n-j},
-!> while the local error of the step is C X^(p+1) h_n^(p+1) (C, p and the exact factor
-!> are the scheme's: time_scheme_m's order and error_factor), so
+!> while the step's local error is C X^(p+1) h_n^(p+1) (time_scheme_m's error_factor), so
 !>   est_n = factor * |X^n - P^n|_E,   |X|_E = sqrt(2 E_lin(X))   (Corollary 6.2's energy),
-!> over all fields at once. It costs no solve: one extrapolation and one energy per step.
+!> over all fields at once: no solve, one extrapolation and one energy per step.
 !> The levels are a ring; callers reach the j-th most recent through slot(j), step(j) and
 !> times(t, n), never through the ring's index.
 module error_estimator_m
@@ -145,46 +142,38 @@ contains
         type(error_estimator_t), intent(inout) :: self
         real(dp), intent(in) :: u(0:), w(0:, :)
         real(dp), intent(in) :: weight(:)
-        integer :: f, i, s, slot(MAX_LEVELS)
-        real(dp) :: c1, c2, c3
+        integer :: f, j, slot(MAX_LEVELS)
 
-        s = ubound(u, 1)
-        do i = 1, size(weight)
-            slot(i) = self%slot(i)
+        slot = [(self%slot(j), j = 1, MAX_LEVELS)]
+        call subtract(u, 0, self%u_diff)
+        do f = 1, N_FIELDS
+            call subtract(w(:, f), f, self%w_diff(:, f))
         end do
-        if (size(weight) == 3) then
-            c1 = weight(1); c2 = weight(2); c3 = weight(3)
-            ! unrolled 4 times (GCC's directive; a comment to other compilers): the vector loop's
-            ! own instructions were 3 of 14 per two values
-            associate (l => self%levels, k1 => slot(1), k2 => slot(2), k3 => slot(3))
-                !GCC$ unroll 4
-                do i = 0, s
-                    self%u_diff(i) = ((u(i) - c1 * l(i, 0, k1)) - c2 * l(i, 0, k2)) &
-                                     - c3 * l(i, 0, k3)
-                end do
-                do f = 1, N_FIELDS
+
+    contains
+
+        !> diff = x - P^n's field f (0: u), unrolled (GCC's directive; a comment to other
+        !> compilers; docs/performance.md).
+        subroutine subtract(x, f, diff)
+            real(dp), intent(in) :: x(0:)
+            integer, intent(in) :: f
+            real(dp), intent(out) :: diff(0:)
+            integer :: i
+
+            associate (l => self%levels, c => weight, k1 => slot(1), k2 => slot(2), k3 => slot(3))
+                if (size(weight) == 3) then
                     !GCC$ unroll 4
-                    do i = 0, s
-                        self%w_diff(i, f) = ((w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)) &
-                                            - c3 * l(i, f, k3)
+                    do i = 0, ubound(x, 1)
+                        diff(i) = ((x(i) - c(1) * l(i, f, k1)) - c(2) * l(i, f, k2)) - c(3) * l(i, f, k3)
                     end do
-                end do
-            end associate
-        else   ! Euler (p = 1): the same sums over two levels
-            c1 = weight(1); c2 = weight(2)
-            associate (l => self%levels, k1 => slot(1), k2 => slot(2))
-                !GCC$ unroll 8
-                do i = 0, s
-                    self%u_diff(i) = (u(i) - c1 * l(i, 0, k1)) - c2 * l(i, 0, k2)
-                end do
-                do f = 1, N_FIELDS
+                else   ! Euler (p = 1): the same sums over two levels
                     !GCC$ unroll 8
-                    do i = 0, s
-                        self%w_diff(i, f) = (w(i, f) - c1 * l(i, f, k1)) - c2 * l(i, f, k2)
+                    do i = 0, ubound(x, 1)
+                        diff(i) = (x(i) - c(1) * l(i, f, k1)) - c(2) * l(i, f, k2)
                     end do
-                end do
+                end if
             end associate
-        end if
+        end subroutine subtract
     end subroutine extrapolation_difference
 
     !> |X|_E = sqrt(2 E) of an energy E (Corollary 6.2).
@@ -210,7 +199,7 @@ contains
         dt = self%steps(self%slot(j))
     end function estimator_step
 
-    !> The times of the n most recent levels, the newest at t_newest.
+    !> The times of the n >= 1 most recent levels, the newest at t_newest.
     pure function estimator_times(self, t_newest, n) result(times)
         class(error_estimator_t), intent(in) :: self
         real(dp), intent(in) :: t_newest
@@ -218,7 +207,6 @@ contains
         real(dp) :: times(n)
         integer :: j
 
-        if (n < 1) return
         times(1) = t_newest
         do j = 2, n
             times(j) = times(j - 1) - self%step(j - 1)

@@ -8,7 +8,7 @@ submodule (output_m) output_create_s
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
-    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+    integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
 
 contains
 
@@ -79,7 +79,6 @@ contains
     subroutine create_datasets(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
-        integer(hsize_t) :: row(2)
         integer(hid_t) :: x_id
         integer :: hdferr, k
 
@@ -92,11 +91,11 @@ contains
         w%series%paths = '/series/'//SERIES%name
         w%series%whole = SERIES%is_integer
         associate (t => SERIES(S_T), ids => w%series%ids)
-            call w%create_extendible(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, EMPTY, CHUNK, &
+            call w%create_extendible(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, CHUNK, &
                                      ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
                                      scale='t')
             call w%make_group('/snapshots')
-            call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, EMPTY, CHUNK, &
+            call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, CHUNK, &
                                      w%snap_t_id, described(t%long_name, t%scale), &
                                      t%units, si=t%scale, scale='t')
         end associate
@@ -105,15 +104,14 @@ contains
             associate (f => SERIES(k), ids => w%series%ids)
                 call w%create_extendible(trim(w%series%paths(k)), &
                                          merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
-                                         EMPTY, CHUNK, ids(k), described(f%long_name, f%scale), &
+                                         CHUNK, ids(k), described(f%long_name, f%scale), &
                                          f%units, si=f%scale, coords=[ids(S_T)])
             end associate
         end do
-        row = [int(w%n_nodes, hsize_t), 1_hsize_t]
         do k = 1, N_SNAPSHOT_FIELDS
             associate (f => SNAPSHOTS(k))
                 call w%create_extendible('/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
-                                         [row(1), 0_hsize_t], row, w%snap_field_ids(k), &
+                                         [int(w%n_nodes, hsize_t), 1_hsize_t], w%snap_field_ids(k), &
                                          described(f%long_name, f%scale), f%units, si=f%scale, &
                                          coords=[w%snap_t_id, x_id], compress=.true.)
             end associate
@@ -123,20 +121,22 @@ contains
         call w%close_dataset(x_id, '/mesh/x')
     end subroutine create_datasets
 
-    !> Create an empty dataset at `path` whose last dimension is unlimited, dims its initial
-    !> size (last entry 0), chunk the chunk shape, and label it (label()). With compress and
+    !> Create an empty dataset at `path` of chunks of shape `chunk`, whose last dimension is
+    !> unlimited (and 0), the others those of the chunk, and label it (label()). With compress and
     !> compression > 0: shuffle and deflate, for datasets whose chunks are written once, whole
     !> (the snapshot fields: docs/output.md, "Chunks and compression", says why only they).
-    !> Arguments (w, path, file_type, dims, chunk, dset_id, long_name, units, si, scale,
-    !> coords, compress): output_m's interface.
+    !> Arguments (w, path, file_type, chunk, dset_id, long_name, units, si, scale, coords,
+    !> compress): output_m's interface.
     module procedure writer_create_extendible
         logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
-        integer(hsize_t) :: maxdims(size(dims))
+        integer(hsize_t) :: dims(size(chunk)), maxdims(size(chunk))
         integer :: hdferr, rank
 
-        rank = size(dims)
-        maxdims = dims
+        rank = size(chunk)
+        dims = chunk
+        dims(rank) = 0
+        maxdims = chunk
         maxdims(rank) = H5S_UNLIMITED_F
         call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
         call w%check(hdferr, 'h5screate_simple_f '//path)

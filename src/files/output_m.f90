@@ -85,11 +85,11 @@ module output_m
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
         integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
         type(si_scale_t), allocatable :: si(:)     !< the datasets' SI scales (create(), &material)
-        !> /snapshots/error_estimate*/<field> (estimate_path), from the first append (output_estimate_s)
+        !> /snapshots/error_estimate*/<field> (estimate_path), from the first append (output_snapshot_s)
         type(buffered_t) :: estimates
         logical :: swmr = .false.                  !< the file is in SWMR write mode (output_file_s)
         logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
-        logical :: native_created = .false.        !< /snapshots/native exists (output_native_s)
+        logical :: native_created = .false.        !< /snapshots/native exists (output_snapshot_s)
         integer :: n_checkpoints = 0               !< checkpoints written
         !> the checkpoint's datasets, open from the first checkpoint (output_checkpoint_s),
         !> each known by its first entry
@@ -189,12 +189,12 @@ module output_m
             character(len=*), intent(in) :: path
         end subroutine writer_make_group
 
-        module subroutine writer_create_extendible(w, path, file_type, dims, chunk, dset_id, &
-                                                   long_name, units, si, scale, coords, compress)
+        module subroutine writer_create_extendible(w, path, file_type, chunk, dset_id, long_name, &
+                                                   units, si, scale, coords, compress)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: path, long_name, units
             integer(hid_t), intent(in) :: file_type
-            integer(hsize_t), intent(in) :: dims(:), chunk(:)
+            integer(hsize_t), intent(in) :: chunk(:)
             integer(hid_t), intent(out) :: dset_id
             character(len=*), intent(in), optional :: si, scale
             integer(hid_t), intent(in), optional :: coords(:)

@@ -1,13 +1,17 @@
-!> The snapshots of an adaptive mesh on their own meshes (/snapshots/native, its layout:
-!> docs/output.md): a submodule of output_m, so that it reaches the writer's open file.
-!> Every append opens, extends, writes and closes the datasets.
-submodule (output_m) output_native_s
+!> What a snapshot adds beyond the output grid (docs/output.md), a submodule of output_m, so
+!> that it reaches the writer's open file: on an adaptive mesh the snapshot on its own mesh
+!> (/snapshots/native; every append opens, extends, writes and closes its datasets), and with
+!> &output error_estimate the estimates (/snapshots/error_estimate*; error_companion_m computes
+!> them), created by the first append, kept open until finish() and buffered as the series are.
+submodule (output_m) output_snapshot_s
     use hdf5, only: h5dopen_f, H5T_STD_I64LE
     implicit none
 
     character(len=*), parameter :: GROUP = '/snapshots/native'
     integer(hsize_t), parameter :: VALUES_CHUNK(1) = [4096_hsize_t]   !< float64 entries (32 KiB)
-    integer(hsize_t), parameter :: EMPTY(1) = [0_hsize_t], CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+    integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+    character(len=*), parameter :: WHAT(3) = [character(len=40) :: '(time and space)', &
+                                              '(time part)', '(space part)']
 
 contains
 
@@ -44,12 +48,12 @@ contains
         call w%leave_swmr()
         call w%make_group(GROUP)
         w%native_created = .true.
-        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, EMPTY, VALUES_CHUNK, x_id, &
+        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, VALUES_CHUNK, x_id, &
                                  'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
                                  '1', si='position', scale='x')
         do k = 1, N_SNAPSHOT_FIELDS
             associate (f => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
-                call w%create_extendible(path, H5T_IEEE_F64LE, EMPTY, VALUES_CHUNK, dset_id, &
+                call w%create_extendible(path, H5T_IEEE_F64LE, VALUES_CHUNK, dset_id, &
                                          described(trim(f%long_name)//' at the nodes of its own '// &
                                                    'mesh (native/x)', f%scale), &
                                          f%units, si=f%scale, coords=[x_id])
@@ -67,7 +71,7 @@ contains
         character(len=*), intent(in) :: name, long_name
         integer(hid_t) :: dset_id
 
-        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, EMPTY, CHUNK, dset_id, &
+        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, CHUNK, dset_id, &
                                  long_name, '1', si='', coords=[w%snap_t_id])
         call w%close_dataset(dset_id, GROUP//'/'//name)
     end subroutine create_index
@@ -87,4 +91,42 @@ contains
         call w%close_dataset(dset_id, GROUP//'/'//name)
     end subroutine append
 
-end submodule output_native_s
+    !> Append one snapshot's estimates: values(k, part) of field OUTPUT_ORDER(k), part 1 the
+    !> total, 2 the time part, 3 the space part. Buffered for SERIES_CHUNK snapshots and
+    !> written when the buffer is full and at every flush() (18 small writes per snapshot
+    !> would cost more than the estimate).
+    module procedure writer_append_estimate
+
+        call w%need_open('append_estimate()')
+        if (.not. allocated(w%estimates%ids)) call open_estimate(w)
+        call w%push(w%estimates, reshape(values, [size(values)]))
+    end procedure writer_append_estimate
+
+    !> The groups and their datasets: created by the first append of the file (a restart's
+    !> copy of the history included), kept open.
+    subroutine open_estimate(w)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=64) :: paths(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS))
+        integer :: k, part
+
+        call w%leave_swmr()   ! new groups: not in SWMR writing (output_file_s)
+        do part = 1, size(ESTIMATE_PARTS)
+            do k = 1, N_OUTPUT_FIELDS
+                paths(k, part) = estimate_path(part, k)
+            end do
+        end do
+        call w%start_buffered(w%estimates, size(paths), SERIES_CHUNK)
+        w%estimates%paths = [paths]
+        do part = 1, size(ESTIMATE_PARTS)
+            call w%make_group('/snapshots/'//trim(ESTIMATE_PARTS(part)))
+            do k = 1, N_OUTPUT_FIELDS
+                call w%create_extendible(trim(paths(k, part)), H5T_IEEE_F64LE, CHUNK, &
+                                         w%estimates%ids(k + N_OUTPUT_FIELDS * (part - 1)), &
+                                         'estimated relative L2 error of '// &
+                                         trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
+                                         ' at each snapshot '//trim(WHAT(part)), '1')
+            end do
+        end do
+    end subroutine open_estimate
+
+end submodule output_snapshot_s

@@ -10,7 +10,7 @@ module config_reader_m
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
     use config_m, only: config_t, initial_t
     use strings_m, only: lower, excerpt, quoted, int_str, format_real
-    use namelist_text_m, only: string_t, group_t, read_source, strip_comments, find_groups, read_group, &
+    use namelist_text_m, only: string_t, group_t, read_source, find_groups, read_group, &
                                parse_override, override_summary
     use material_m, only: check_material
     implicit none
@@ -33,6 +33,7 @@ contains
         type(string_t), intent(in), optional :: overrides(:)
         type(string_t), allocatable :: lines(:)
         type(group_t), allocatable :: groups(:), sets(:)
+        character(len=:), allocatable :: what
         integer :: k
         logical :: halt_on_overflow
 
@@ -50,9 +51,16 @@ contains
             cfg%overrides = override_summary(overrides)
         end if
         call read_source(source, lines)
-        call strip_comments(lines)
         call find_groups(lines, groups)
-        if (size(groups) == 0 .and. size(sets) == 0) call no_group(source)
+        ! no group (an empty file, empty standard input: a forgotten '< input.nml') and no --set:
+        ! stop rather than run every default silently
+        if (size(groups) == 0 .and. size(sets) == 0) then
+            what = 'standard input'
+            if (source /= '-') what = quoted(source)
+            call fatal(EXIT_INPUT, 'input', what // ' holds no namelist group (it is empty or only ' // &
+                       'comments); give an input file, or to run with every default value an empty ' // &
+                       "group: echo '&model /' | rodcontact")
+        end if
         call check_model_material(groups, sets)
         ! each override a group of one assignment, read like a group of the text
         groups = [groups, sets]
@@ -64,19 +72,6 @@ contains
         if (cfg%material%present) call check_material(cfg%material)
         call ieee_set_halting_mode(ieee_overflow, halt_on_overflow)
     end subroutine read_config
-
-    !> An input text without any namelist group (an empty file, empty standard input: a
-    !> forgotten '< input.nml') and no --set: stop rather than run every default silently.
-    subroutine no_group(source)
-        character(len=*), intent(in) :: source
-        character(len=:), allocatable :: what
-
-        what = 'standard input'
-        if (source /= '-') what = quoted(source)
-        call fatal(EXIT_INPUT, 'input', what // ' holds no namelist group (it is empty or only comments); ' // &
-                   'give an input file, or to run with every default value an empty group: ' // &
-                   "echo '&model /' | rodcontact")
-    end subroutine no_group
 
     !> &material and &model together are ambiguous, whether from the text or from --set.
     subroutine check_model_material(groups, sets)

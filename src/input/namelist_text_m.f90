@@ -16,19 +16,16 @@ module namelist_text_m
     implicit none
     private
     public :: string_t, group_t
-    public :: read_source, strip_comments, find_groups, read_group, parse_override, override_summary
+    public :: read_source, find_groups, read_group, parse_override, override_summary
 
     integer, parameter :: LEN_MSG = 512         !< iomsg buffers
 
-    !> A namelist group of the input text, or a --set override as a group of one assignment;
-    !> read_group finds its assignments, body(first(k):eq(k)-1) the lhs of the k-th.
+    !> A namelist group of the input text, or a --set override as a group of one assignment.
     type :: group_t
         character(len=LEN_NAME) :: name = ''      !< lower case, without '&'
         integer :: line = 0                       !< the line of its '&name' (0: none open)
         character(len=:), allocatable :: origin   !< '--set ' before group.variable in messages, or ''
         character(len=:), allocatable :: body     !< text between the name and the terminator
-        integer, allocatable :: first(:)          !< where the k-th left-hand side begins
-        integer, allocatable :: eq(:)             !< its '='
     end type group_t
 
     !> A line of text.
@@ -38,49 +35,33 @@ module namelist_text_m
 
 contains
 
-    !> All lines of the source, read into memory (standard input cannot be rewound); a
-    !> failure is an input error of `var` (default 'input': the namelist's source).
+    !> All lines of the source (a file path, or '-': standard input), read into memory, lines
+    !> of any length; a failure is an input error of `var` (default 'input': the namelist's source).
     subroutine read_source(source, lines, var)
         character(len=*), intent(in) :: source
         type(string_t), allocatable, intent(out) :: lines(:)
         character(len=*), intent(in), optional :: var
-        integer :: unit, ios
-        logical :: is_directory
+        type(string_t), allocatable :: grown(:)
+        character(len=4096) :: chunk
+        character(len=:), allocatable :: line, where, what
         character(len=LEN_MSG) :: msg
-        character(len=:), allocatable :: where
+        integer :: unit, n, ios, stat, n_read
+        logical :: is_directory
 
         where = 'input'
         if (present(var)) where = var
-        if (trim(source) == '-') then
-            call read_lines(input_unit, 'standard input', where, lines)
-        else
+        unit = input_unit
+        what = 'standard input'
+        if (trim(source) /= '-') then
+            what = "'" // trim(source) // "'"
             ! gfortran opens a directory without complaint and then reads nothing from it
             inquire (file=trim(source) // '/.', exist=is_directory)
-            if (is_directory) call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // &
-                                         "': it is a directory")
+            if (is_directory) call fatal(EXIT_INPUT, where, 'cannot open ' // what // ': it is a directory')
             msg = ''
             open (newunit=unit, file=trim(source), status='old', action='read', iostat=ios, iomsg=msg)
-            if (ios /= 0) &
-                call fatal(EXIT_INPUT, where, "cannot open '" // trim(source) // "': " // trim(msg))
-            call read_lines(unit, "'" // trim(source) // "'", where, lines)
-            ! the text is in memory: a failure to close a read-only file cannot lose anything
-            close (unit, iostat=ios)
+            if (ios /= 0) call fatal(EXIT_INPUT, where, 'cannot open ' // what // ': ' // trim(msg))
         end if
-    end subroutine read_source
-
-    !> Read `unit` to its end, line by line, lines of any length.
-    subroutine read_lines(unit, what, where, lines)
-        integer, intent(in) :: unit
-        character(len=*), intent(in) :: what, where
-        type(string_t), allocatable, intent(out) :: lines(:)
-        type(string_t), allocatable :: grown(:)
-        character(len=4096) :: chunk
-        character(len=:), allocatable :: line
-        character(len=LEN_MSG) :: msg
-        integer :: n, ios, n_read
-
-        allocate (lines(64), stat=ios, errmsg=msg)
-        call check_allocation(ios, msg, 'the lines of ' // what)
+        allocate (lines(0))
         n = 0
         do
             line = ''
@@ -94,9 +75,8 @@ contains
             end do
             if (ios == iostat_end .and. len(line) == 0) exit
             if (n == size(lines)) then
-                allocate (grown(2 * n), stat=ios, errmsg=msg)
-                call check_allocation(ios, msg, 'the lines of ' // what // ' (' // int_str(n) // &
-                                      ' lines so far)')
+                allocate (grown(max(64, 2 * n)), stat=stat, errmsg=msg)
+                call check_allocation(stat, msg, 'the lines of ' // what // ' (' // int_str(n) // ' lines so far)')
                 grown(:n) = lines
                 call move_alloc(grown, lines)
             end if
@@ -105,36 +85,15 @@ contains
             if (ios == iostat_end) exit
         end do
         lines = lines(:n)
-    end subroutine read_lines
+        ! the text is in memory: a failure to close a read-only file cannot lose anything
+        if (unit /= input_unit) close (unit, iostat=ios)
+    end subroutine read_source
 
-    !> Blank out '!' comments (outside quoted strings); tabs and carriage returns become blanks.
-    pure subroutine strip_comments(lines)
-        type(string_t), intent(inout) :: lines(:)
-        character :: quote
-        integer :: i, j
-
-        do i = 1, size(lines)
-            quote = ' '
-            associate (line => lines(i)%s)
-                do j = 1, len(line)
-                    if (line(j:j) == achar(9) .or. line(j:j) == achar(13)) line(j:j) = ' '
-                    if (quote /= ' ') then
-                        if (line(j:j) == quote) quote = ' '
-                    else if (line(j:j) == "'" .or. line(j:j) == '"') then
-                        quote = line(j:j)
-                    else if (line(j:j) == '!') then
-                        line(j:) = ''
-                        exit
-                    end if
-                end do
-            end associate
-        end do
-    end subroutine strip_comments
-
-    !> Locate the groups '&name ... /' (or '... &end'); any other text outside them, an
-    !> unknown group, a group given twice or a group left open is an input error.
+    !> Locate the groups '&name ... /' (or '... &end'), blanking '!' comments (outside quoted
+    !> strings), tabs and carriage returns; any other text outside the groups, an unknown
+    !> group, a group given twice or a group left open is an input error.
     subroutine find_groups(lines, groups)
-        type(string_t), intent(in) :: lines(:)
+        type(string_t), intent(inout) :: lines(:)
         type(group_t), allocatable, intent(out) :: groups(:)
         type(group_t) :: current
         character :: quote
@@ -149,7 +108,12 @@ contains
             j = 1
             do while (j <= len_trim(lines(i)%s))
                 associate (ch => lines(i)%s(j:j))
-                    if (current%line == 0) then
+                    if (ch == achar(9) .or. ch == achar(13)) ch = ' '
+                    if (quote /= ' ') then
+                        if (ch == quote) quote = ' '
+                    else if (ch == '!') then
+                        lines(i)%s(j:) = ''
+                    else if (current%line == 0) then
                         if (ch == '&') then
                             name = lower(identifier_at(lines(i)%s, j + 1))
                             call check_group_name(name, i, groups)
@@ -162,8 +126,6 @@ contains
                                        "starts with '&name' (name one of " // group_list() // &
                                        ") and ends with '/'")
                         end if
-                    else if (quote /= ' ') then
-                        if (ch == quote) quote = ' '
                     else if (ch == "'" .or. ch == '"') then
                         quote = ch
                     else if (ch == '/' .or. ch == '&') then
@@ -229,46 +191,47 @@ contains
     !> value names its variable, after what only the reader can check: a known variable
     !> name, given once, a value after '=', a string quoted.
     subroutine read_group(grp, cfg)
-        type(group_t), intent(inout) :: grp
+        type(group_t), intent(in) :: grp
         type(config_t), intent(inout) :: cfg
-        character(len=:), allocatable :: lhs, name, value, where
+        character(len=:), allocatable :: group, lhs, name, value, where
         character(len=LEN_MSG) :: msg
-        integer :: k, p, n, ios
+        character :: kind
+        integer, allocatable :: first(:), eq(:)
+        integer :: k, p, ios
 
-        call find_assignments(grp)
-        n = size(grp%eq)
-        p = len(grp%body) + 1
-        if (n > 0) p = grp%first(1)
-        if (verify(grp%body(:p - 1), ' ,') /= 0) call fatal(EXIT_INPUT, grp%origin // trim(grp%name), &
-            "expected 'variable = value' in &" // trim(grp%name) // ", got '" // excerpt(grp%body(:p - 1)) // &
-            "'; allowed variables: " // var_list(grp%name))
-        do k = 1, n
-            lhs = assignment_lhs(grp, k)
-            name = identifier_at(lhs, 1)
-            value = assignment_value(grp, k)
-            where = grp%origin // trim(grp%name) // '.' // lower(name)
-            if (len(name) == 0) call fatal(EXIT_INPUT, grp%origin // trim(grp%name), &
-                "'=' without a variable name in &" // trim(grp%name) // ": '" // &
-                excerpt(grp%body(grp%first(k):)) // "'; allowed variables: " // var_list(grp%name))
-            call require_known(where, grp%name, name)
-            do p = 1, k - 1
-                if (lower(squeeze(assignment_lhs(grp, p))) == lower(squeeze(lhs))) &
-                    call fatal(EXIT_INPUT, where, "'" // lhs // "' given twice in &" // trim(grp%name))
+        group = trim(grp%name)
+        call find_assignments(grp%body, first, eq)
+        associate (body => grp%body)
+            if (verify(body(:first(1) - 1), ' ,') /= 0) call fatal(EXIT_INPUT, grp%origin // group, &
+                "expected 'variable = value' in &" // group // ", got '" // excerpt(body(:first(1) - 1)) // &
+                "'; allowed variables: " // var_list(group))
+            do k = 1, size(eq)
+                lhs = trim(adjustl(body(first(k):eq(k) - 1)))
+                value = trim(adjustl(body(eq(k) + 1:first(k + 1) - 1)))
+                name = identifier_at(lhs, 1)
+                where = grp%origin // group // '.' // lower(name)
+                if (len(name) == 0) call fatal(EXIT_INPUT, grp%origin // group, "'=' without a variable " // &
+                    'name in &' // group // ": '" // excerpt(body(first(k):)) // "'; allowed variables: " // &
+                    var_list(group))
+                call require_known(where, group, name)
+                kind = var_kind(group, name)
+                do p = 1, k - 1
+                    if (lower(squeeze(body(first(p):eq(p) - 1))) == lower(squeeze(lhs))) &
+                        call fatal(EXIT_INPUT, where, "'" // lhs // "' given twice in &" // group)
+                end do
+                if (verify(value, ' ,') == 0) call fatal(EXIT_INPUT, where, "no value after '" // lhs // &
+                    " ='; must be " // kind_description(kind))
+                ! gfortran silently skips an unquoted string value: only the reader can catch it
+                if (kind == KIND_STRING .and. scan(value(1:1), '''"') == 0) call fatal(EXIT_INPUT, where, &
+                    'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // name // ' = ' // &
+                    quoted(excerpt(value)))
+                call read_namelist(cfg, group, '&' // group // ' ' // lhs // ' = ' // value // ' /', ios, msg)
+                if (len(lhs) > len(name)) value = lhs // ' = ' // value   ! subscripted: the whole assignment
+                if (ios /= 0) call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // &
+                    kind_description(kind) // ' (namelist read: ' // trim(msg) // ')')
             end do
-            if (verify(value, ' ,') == 0) call fatal(EXIT_INPUT, where, "no value after '" // lhs // &
-                " ='; must be " // kind_description(var_kind(grp%name, name)))
-            ! gfortran silently skips an unquoted string value: only the reader can catch it
-            if (var_kind(grp%name, name) == KIND_STRING .and. scan(value(1:1), '''"') == 0) &
-                call fatal(EXIT_INPUT, where, 'got ' // excerpt(value) // '; must be a quoted string, e.g. ' // &
-                           name // ' = ' // quoted(excerpt(value)))
-            call read_namelist(cfg, trim(grp%name), '&' // trim(grp%name) // ' ' // lhs // ' = ' // value // ' /', &
-                               ios, msg)
-            if (len(lhs) > len(name)) &
-                value = lhs // ' = ' // value   ! subscripted: show the whole assignment
-            if (ios /= 0) call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // &
-                kind_description(var_kind(grp%name, name)) // ' (namelist read: ' // trim(msg) // ')')
-        end do
-        if (grp%name == 'material') cfg%material%present = .true.
+        end associate
+        if (group == 'material') cfg%material%present = .true.
     end subroutine read_group
 
     !> The variable of left-hand side `lhs` ('name' or 'name(i)') must be one of `group`.
@@ -279,60 +242,38 @@ contains
             lhs // "' in &" // trim(group) // '; allowed: ' // var_list(group))
     end subroutine require_known
 
-    !> grp%first and grp%eq of the assignments in grp%body: each '=' outside quoted strings,
-    !> and where the variable name before it (and its subscript, if any) begins.
-    pure subroutine find_assignments(grp)
-        type(group_t), intent(inout) :: grp
+    !> The assignments 'lhs = value' of a group's body: eq(k) is the k-th '=' outside quoted
+    !> strings, body(first(k):eq(k)-1) its variable name (and subscript, if any), and its value
+    !> ends before first(k+1) (first has one more element: len(body) + 1).
+    pure subroutine find_assignments(body, first, eq)
+        character(len=*), intent(in) :: body
+        integer, allocatable, intent(out) :: first(:), eq(:)
         character :: quote
         integer :: j, p
 
-        grp%first = [integer ::]
-        grp%eq = [integer ::]
-        associate (body => grp%body)
-            quote = ' '
-            do j = 1, len(body)
-                if (quote /= ' ') then
-                    if (body(j:j) == quote) quote = ' '
-                else if (body(j:j) == "'" .or. body(j:j) == '"') then
-                    quote = body(j:j)
-                else if (body(j:j) == '=') then
-                    p = len_trim(body(:j - 1))
-                    if (p > 0) then   ! skip a subscript: name(2) = ...
-                        if (body(p:p) == ')') &
-                            p = len_trim(body(:max(0, index(body(:p), '(', back=.true.) - 1)))
-                    end if
-                    do while (p > 0)
-                        if (.not. is_name_char(body(p:p))) exit
-                        p = p - 1
-                    end do
-                    grp%first = [grp%first, p + 1]
-                    grp%eq = [grp%eq, j]
+        first = [integer ::]
+        eq = [integer ::]
+        quote = ' '
+        do j = 1, len(body)
+            if (quote /= ' ') then
+                if (body(j:j) == quote) quote = ' '
+            else if (body(j:j) == "'" .or. body(j:j) == '"') then
+                quote = body(j:j)
+            else if (body(j:j) == '=') then
+                p = len_trim(body(:j - 1))
+                if (p > 0) then   ! skip a subscript: name(2) = ...
+                    if (body(p:p) == ')') p = len_trim(body(:max(0, index(body(:p), '(', back=.true.) - 1)))
                 end if
-            end do
-        end associate
+                do while (p > 0)
+                    if (.not. is_name_char(body(p:p))) exit
+                    p = p - 1
+                end do
+                first = [first, p + 1]
+                eq = [eq, j]
+            end if
+        end do
+        first = [first, len(body) + 1]
     end subroutine find_assignments
-
-    !> The left-hand side 'name' or 'name(i)' of assignment k.
-    pure function assignment_lhs(grp, k) result(lhs)
-        type(group_t), intent(in) :: grp
-        integer, intent(in) :: k
-        character(len=:), allocatable :: lhs
-
-        lhs = trim(adjustl(grp%body(grp%first(k):grp%eq(k) - 1)))
-    end function assignment_lhs
-
-    !> The value text of assignment k (up to the next variable name).
-    pure function assignment_value(grp, k) result(value)
-        type(group_t), intent(in) :: grp
-        integer, intent(in) :: k
-        character(len=:), allocatable :: value
-
-        if (k < size(grp%eq)) then
-            value = trim(adjustl(grp%body(grp%eq(k) + 1:grp%first(k + 1) - 1)))
-        else
-            value = trim(adjustl(grp%body(grp%eq(k) + 1:)))
-        end if
-    end function assignment_value
 
     ! ---------------------------------------------------------------- --set
 
@@ -378,11 +319,8 @@ contains
         end if
         value = trim(adjustl(text(eq + 1:)))
         if (code == KIND_STRING) then
-            if (len(value) == 0) then
-                value = "''"
-            else if (scan(value(1:1), '''"') == 0) then
-                value = doubled_quotes(value, "'")   ! a namelist string: an inner ' doubled
-            end if
+            ! a namelist string, an inner ' doubled ('' when empty)
+            if (scan(value(1:min(1, len(value))), '''"') == 0) value = doubled_quotes(value, "'")
         else if (scan(value, '/&$=!''"') > 0) then
             ! any of these would end the assignment or the group early in the namelist text
             call fatal(EXIT_INPUT, where, 'got ' // quoted(excerpt(value)) // '; must be ' // &

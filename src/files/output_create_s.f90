@@ -43,11 +43,9 @@ contains
         w%checkpoint_note = ''
 
         dir = parent_dir(prefix)
-        if (len(dir) > 0) then
-            if (.not. dir_exists(dir)) then
-                call mkdir_p(dir, ok, message)
-                if (.not. ok) call w%fail(message)
-            end if
+        if (len(dir) > 0) then   ! (mkdir_p leaves the directories that exist as they are)
+            call mkdir_p(dir, ok, message)
+            if (.not. ok) call w%fail(message)
         end if
         ! finish() renames the .part file to <prefix>.h5, which fails on a directory: say so
         ! now, not after the whole run

@@ -18,14 +18,20 @@ program rodcontact
     type(config_t) :: cfg
     character(len=:), allocatable :: source, table
     type(string_t), allocatable :: overrides(:)
-    integer, allocatable :: summary_args(:)
+    integer :: source_arg, first_file
     logical :: check_only, resume, nondimensional
 
-    call parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
+    call parse_command_line(source_arg, overrides, first_file, check_only, resume, table, nondimensional)
     if (table /= '') then
-        call write_table(table, summary_args, nondimensional)
+        if (source_arg > 0 .or. size(overrides) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
+            table // ' takes only HDF5 files, no input file, --set or --check')
+        call write_table(table, first_file, nondimensional)
         stop
     end if
+    if (nondimensional) call fatal(EXIT_INPUT, 'command line', &
+        '--nondimensional is for --summary, --events and --summary-header')
+    source = '-'
+    if (source_arg > 0) source = argument(source_arg)
     call read_config(source, cfg, overrides)
     ! --resume: restart from the run's own .part, which the run then replaces (restart_m)
     if (resume) cfg%time%restart_from = trim(cfg%output%prefix)//'.h5.part'
@@ -37,18 +43,28 @@ program rodcontact
 
 contains
 
-    !> --summary, --events or --summary-header (table) of the files args, in their input's
-    !> units (file_in_si), or nondimensional. Every file is checked before any row is
-    !> written: a bad one, or one of the other unit system than the first, is an input error.
-    subroutine write_table(table, args, nondimensional)
+    !> --summary, --events or --summary-header (table) of the files that the arguments from
+    !> `first` on name (every one but --nondimensional), in their input's units (file_in_si),
+    !> or nondimensional. Every file is checked before any row is written: a bad one, or one
+    !> of the other unit system than the first, is an input error.
+    subroutine write_table(table, first, nondimensional)
         character(len=*), intent(in) :: table
-        integer, intent(in) :: args(:)
-        logical, intent(in) :: nondimensional
+        integer, intent(in) :: first
+        logical, intent(inout) :: nondimensional
         character(len=:), allocatable :: file, problem
         character(len=*), parameter :: SYSTEM(0:1) = ['nondimensional', 'SI            ']
-        logical :: si(size(args))
+        integer, allocatable :: args(:)
+        logical, allocatable :: si(:)
         integer :: k
 
+        allocate (args(0))
+        do k = first, command_argument_count()
+            if (argument(k) == '--nondimensional') nondimensional = .true.
+            if (argument(k) /= '--nondimensional') args = [args, k]
+        end do
+        if (size(args) == 0 .and. table /= '--summary-header') call fatal(EXIT_INPUT, 'command line', &
+            table // ' needs a file: rodcontact ' // table // ' <prefix>.h5 [more files ...]')
+        allocate (si(size(args)))
         do k = 1, size(args)
             file = argument(args(k))
             problem = summary_problem(file)
@@ -70,31 +86,30 @@ contains
         end do
     end subroutine write_table
 
-    !> The input source ('-' = standard input), the --set values (overrides), the arguments
-    !> that are files of --summary, --events or --summary-header (table: which; every argument
-    !> after it but --nondimensional; none without it), and whether --check and --resume were
-    !> given. --help and --version print and stop.
-    subroutine parse_command_line(source, overrides, summary_args, check_only, resume, table, nondimensional)
-        character(len=:), allocatable, intent(out) :: source
+    !> The argument that is the input source (0 if none: standard input), the --set values (overrides: --set X or
+    !> --set=X), --summary, --events or --summary-header (table: which, '' if none; its files
+    !> are the arguments from first_file on), and whether --nondimensional, --check and
+    !> --resume were given. --help and --version print and stop.
+    subroutine parse_command_line(source_arg, overrides, first_file, check_only, resume, table, nondimensional)
+        integer, intent(out) :: source_arg
         type(string_t), allocatable, intent(out) :: overrides(:)
-        integer, allocatable, intent(out) :: summary_args(:)
+        integer, intent(out) :: first_file
         logical, intent(out) :: check_only, resume
         character(len=:), allocatable, intent(out) :: table
         logical, intent(out) :: nondimensional
         character(len=:), allocatable :: arg
-        integer :: n_args, i, k
-        logical :: source_given
+        integer :: i
 
-        n_args = command_argument_count()
-        source = '-'
-        source_given = .false.
+        source_arg = 0
+        first_file = 0
         check_only = .false.
         resume = .false.
         table = ''
         nondimensional = .false.
-        allocate (overrides(0), summary_args(0))
-        i = 1
-        do while (i <= n_args)
+        allocate (overrides(0))
+        i = 0
+        do while (i < command_argument_count())
+            i = i + 1
             arg = argument(i)
             select case (arg)
             case ('-h', '--help')
@@ -104,15 +119,8 @@ contains
                 write (output_unit, '(a)') VERSION_LINE
                 stop
             case ('--summary', '--events', '--summary-header')
-                if (source_given .or. size(overrides) > 0 .or. check_only) call fatal(EXIT_INPUT, 'command line', &
-                    arg // ' takes only HDF5 files, no input file, --set or --check')
                 table = arg
-                do k = i + 1, n_args
-                    if (argument(k) == '--nondimensional') nondimensional = .true.
-                    if (argument(k) /= '--nondimensional') summary_args = [summary_args, k]
-                end do
-                if (size(summary_args) == 0 .and. arg /= '--summary-header') call fatal(EXIT_INPUT, &
-                    'command line', arg // ' needs a file: rodcontact ' // arg // ' <prefix>.h5 [more files ...]')
+                first_file = i + 1
                 exit
             case ('--nondimensional')
                 nondimensional = .true.
@@ -120,46 +128,28 @@ contains
                 check_only = .true.
             case ('--resume')
                 resume = .true.
+            case ('--set')
+                if (i == command_argument_count()) call fatal(EXIT_INPUT, 'command line', '--set needs an ' // &
+                    'argument group.variable=value, e.g. --set model.varpi=0.3')
+                i = i + 1
+                arg = argument(i)
+                overrides = [overrides, string_t(arg)]
             case default
-                call take_input(arg, i, source, source_given, overrides)
+                if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
+                    overrides = [overrides, string_t(arg(7:))]
+                else if (len(arg) > 1 .and. index(arg, '-') == 1) then
+                    call fatal(EXIT_INPUT, 'command line', "unknown option '" // arg // "'; allowed: --set " // &
+                        'group.variable=value, --summary file.h5, --summary-header, --events file.h5, ' // &
+                        '--nondimensional, --check, --resume, --help, --version, and one input file')
+                else if (source_arg > 0) then
+                    call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // "' after '" // &
+                        argument(source_arg) // "'; give one input file (or none: standard input)")
+                else
+                    source_arg = i
+                end if
             end select
-            i = i + 1
         end do
-        if (nondimensional .and. table == '') call fatal(EXIT_INPUT, 'command line', &
-            '--nondimensional is for --summary, --events and --summary-header')
     end subroutine parse_command_line
-
-    !> The input that argument i, `arg` (no other option), gives: a --set value (--set X,
-    !> whose X is the next argument, i then its index, or --set=X; appended to overrides),
-    !> or the input file (source; source_given: whether one was given before).
-    subroutine take_input(arg, i, source, source_given, overrides)
-        character(len=*), intent(in) :: arg
-        integer, intent(inout) :: i
-        character(len=:), allocatable, intent(inout) :: source
-        logical, intent(inout) :: source_given
-        type(string_t), allocatable, intent(inout) :: overrides(:)
-        character(len=:), allocatable :: value
-
-        if (arg == '--set') then
-            if (i == command_argument_count()) call fatal(EXIT_INPUT, 'command line', '--set needs an ' // &
-                'argument group.variable=value, e.g. --set model.varpi=0.3')
-            i = i + 1
-            value = argument(i)
-        else if (len(arg) > 6 .and. index(arg, '--set=') == 1) then
-            value = arg(7:)
-        else
-            if (len(arg) > 1 .and. index(arg, '-') == 1) call fatal(EXIT_INPUT, 'command line', &
-                "unknown option '" // arg // "'; allowed: --set group.variable=value, --summary file.h5, " // &
-                '--summary-header, --events file.h5, --nondimensional, --check, --resume, --help, --version, ' // &
-                'and one input file')
-            if (source_given) call fatal(EXIT_INPUT, 'command line', "a second input file '" // arg // &
-                "' after '" // source // "'; give one input file (or none: standard input)")
-            source = arg
-            source_given = .true.
-            return
-        end if
-        overrides = [overrides, string_t(value)]
-    end subroutine take_input
 
     function argument(i) result(arg)
         integer, intent(in) :: i
@@ -193,17 +183,12 @@ contains
         character(len=*), parameter :: SAFE = 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-+=.,/:@%'
         integer :: k
 
-        if (len(arg) > 0 .and. verify(arg, SAFE) == 0) then
-            word = arg
-            return
-        end if
+        word = arg
+        if (len(arg) > 0 .and. verify(arg, SAFE) == 0) return
         word = "'"
         do k = 1, len(arg)
-            if (arg(k:k) == "'") then
-                word = word // "'\''"
-            else
-                word = word // arg(k:k)
-            end if
+            word = word // arg(k:k)
+            if (arg(k:k) == "'") word = word // "\''"   ! ' ends the quoting, \' is a quote, ' resumes
         end do
         word = word // "'"
     end function shell_word

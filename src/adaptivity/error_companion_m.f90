@@ -49,7 +49,6 @@ module error_companion_m
     integer, parameter :: QUEUE_MAX = 3 * maxval(STEPS_PER_STEP)
     !> One companion solution on its own mesh, with its own steps.
     type :: companion_t
-        integer :: steps_per_step = 2      !< k: steps of the run per step of the companion
         type(state_t) :: state
         !> the level landed on the last snapshot (companions_land)
         type(state_t) :: ahead
@@ -112,10 +111,9 @@ contains
         coarse = cfg
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
-                c%steps_per_step = STEPS_PER_STEP(j)
                 k = ELEMENTS_PER_ELEMENT(j)
                 coarse%mesh%n_elements = cfg%mesh%n_elements / k
-                coarse%time%dt = real(c%steps_per_step, dp) * cfg%time%dt
+                coarse%time%dt = real(STEPS_PER_STEP(j), dp) * cfg%time%dt
                 if (present(keys)) then   ! its own mesh, nested in the run's (companion_mesh_m)
                     call companion_keys(keys, self%n_coarse, self%n_fine, k, c%k)
                     call initial_state(coarse, c%state, nodes_of_keys(c%k, self%n_fine))
@@ -150,9 +148,9 @@ contains
                 c%n_queued = c%n_queued + 1
                 c%queue_dt(c%n_queued) = state%dt_last
                 c%queue_t(c%n_queued) = state%t
-                if (c%n_queued == 3 * c%steps_per_step) then
-                    call step_over(self, j, c%state, 1, c%steps_per_step)
-                    call drop(c, c%steps_per_step)
+                if (c%n_queued == 3 * STEPS_PER_STEP(j)) then
+                    call step_over(self, j, c%state, 1, STEPS_PER_STEP(j))
+                    call drop(c, STEPS_PER_STEP(j))
                 end if
             end associate
         end do
@@ -171,7 +169,7 @@ contains
 
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
-                k = c%steps_per_step
+                k = STEPS_PER_STEP(j)
                 on_copy = .not. (c%n_queued >= 2 * k .and. self%n_since >= LAND_SPAN * k)
                 if (.not. on_copy) then
                     call land_level(c%state)

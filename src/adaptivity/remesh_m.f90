@@ -49,11 +49,7 @@ contains
 
         v = front_speed(cfg%model)
         n_fine = real(cfg%mesh%n_elements, dp) * 2.0_dp**cfg%mesh%max_level
-        if (cfg%time%adaptive) then
-            cfl = FRONT_CFL
-        else
-            cfl = v * cfg%time%dt * n_fine
-        end if
+        cfl = merge(FRONT_CFL, v * cfg%time%dt * n_fine, cfg%time%adaptive)
         buffer = 1 + ceiling(min(real(cfg%mesh%remesh_every, dp) * cfl, n_fine))
     end function front_buffer
 

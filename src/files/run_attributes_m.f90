@@ -6,7 +6,7 @@ module run_attributes_m
     use kinds_m, only: dp
     use config_m, only: config_t
     use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
-    use material_m, only: nondim_t, nondim_groups, si_scale_t, si_scales
+    use material_m, only: nondim_t, nondim_groups, NONDIM_NAMES, nondim_value, si_scale_t, si_scales
     use state_m, only: state_t
     use stepper_m, only: stepper_t
     use time_scheme_m, only: energy_law_t
@@ -85,16 +85,9 @@ contains
         integer :: k
 
         nd = nondim_groups(cfg%material)
-        call writer%attr('derived.beta1', nd%beta1)
-        call writer%attr('derived.beta2', nd%beta2)
-        call writer%attr('derived.omega', nd%omega)
-        call writer%attr('derived.delta', nd%delta)
-        call writer%attr('derived.varsigma', nd%varsigma)
-        call writer%attr('derived.zeta', nd%zeta)
-        call writer%attr('derived.a_check', nd%a_check)
-        call writer%attr('derived.alpha1', nd%alpha1)
-        call writer%attr('derived.alpha2', nd%alpha2)
-        call writer%attr('derived.alpha3', nd%alpha3)
+        do k = 1, size(NONDIM_NAMES)
+            call writer%attr('derived.'//trim(NONDIM_NAMES(k)), nondim_value(nd, k))
+        end do
         scales = si_scales(cfg%material)
         do k = 1, size(scales)
             call writer%attr('scale.'//trim(scales(k)%name), scales(k)%factor)

@@ -12,7 +12,7 @@ module material_m
     implicit none
     private
     public :: nondim_t, nondim_groups, model_from_material, check_material, nondimensionalise
-    public :: si_scale_t, si_scales, time_scale
+    public :: si_scale_t, si_scales, time_scale, NONDIM_NAMES, nondim_value
 
     !> Nondimensional groups of (2.10) computed from &material.
     type :: nondim_t
@@ -27,6 +27,12 @@ module material_m
         real(dp) :: alpha2 = 0.0_dp     !< (lambda + 2 mu) ell^2 / (D beta2^2 omega)
         real(dp) :: alpha3 = 0.0_dp     !< (lambda + 2 mu) varrho / beta2^2
     end type nondim_t
+
+    !> nondim_t's groups by name (the k-th: nondim_value(nd, k)), and their units ('': none)
+    character(len=*), parameter :: NONDIM_NAMES(10) = [character(len=8) :: 'beta1', 'beta2', 'omega', &
+        'delta', 'varsigma', 'zeta', 'a_check', 'alpha1', 'alpha2', 'alpha3']
+    character(len=*), parameter :: NONDIM_UNITS(10) = [character(len=17) :: 'kg/(m s^2 K)', 'm^2/s^2', &
+        's  (t = omega t*)', '', '', '', '', '', '', '']
 
     !> One scale of the nondimensional variables of (2.10): a quantity in SI units is
     !> `factor` times its nondimensional value (x = ell x*, t = omega t*, ...).
@@ -266,21 +272,15 @@ contains
     subroutine echo_material(cfg, nd)
         type(config_t), intent(in) :: cfg
         type(nondim_t), intent(in) :: nd
+        integer :: k
 
         write (output_unit, '(a)') 'rodcontact: &material (SI units) -> &model by (2.10)-(2.11)'
         write (output_unit, '(2x, a)') 'physical'
         call echo_group(cfg, 'material')
         write (output_unit, '(2x, a)') 'derived (2.10)'
-        call echo_row('beta1', nd%beta1, 'kg/(m s^2 K)')
-        call echo_row('beta2', nd%beta2, 'm^2/s^2')
-        call echo_row('omega', nd%omega, 's  (t = omega t*)')
-        call echo_row('delta', nd%delta, '')
-        call echo_row('varsigma', nd%varsigma, '')
-        call echo_row('zeta', nd%zeta, '')
-        call echo_row('a_check', nd%a_check, '')
-        call echo_row('alpha1', nd%alpha1, '')
-        call echo_row('alpha2', nd%alpha2, '')
-        call echo_row('alpha3', nd%alpha3, '')
+        do k = 1, size(NONDIM_NAMES)
+            call echo_row(trim(NONDIM_NAMES(k)), nondim_value(nd, k), trim(NONDIM_UNITS(k)))
+        end do
         write (output_unit, '(2x, a)') '&model (2.11)'
         call echo_group(cfg, 'model')
     end subroutine echo_material
@@ -298,6 +298,17 @@ contains
             call echo_row(trim(INPUT_VARS(k)%name), item%reals(1), trim(INPUT_VARS(k)%unit))
         end do
     end subroutine echo_group
+
+    !> The k-th group of nd (NONDIM_NAMES(k)).
+    pure real(dp) function nondim_value(nd, k)
+        type(nondim_t), intent(in) :: nd
+        integer, intent(in) :: k
+        real(dp) :: values(size(NONDIM_NAMES))
+
+        values = [nd%beta1, nd%beta2, nd%omega, nd%delta, nd%varsigma, nd%zeta, nd%a_check, nd%alpha1, &
+                  nd%alpha2, nd%alpha3]
+        nondim_value = values(k)
+    end function nondim_value
 
     subroutine echo_row(name, value, unit)
         character(len=*), intent(in) :: name, unit

@@ -41,8 +41,8 @@ contains
     !> How many elements around a large indicator are kept fine (adaptive_mesh_t's buffer):
     !> the finest elements the fastest front (front_speed) can cross in remesh_every steps,
     !> plus one. A step moves it v dt, so v dt n_fine of the finest elements with fixed
-    !> steps (&time dt), and at most FRONT_CFL elements with adaptive steps (step_driver_m limits
-    !> them so); 1 when there is no front (Fourier's and Fick's laws).
+    !> steps (&time dt; the buffer is 1 when there is no front: Fourier's and Fick's laws), and
+    !> FRONT_CFL elements with adaptive steps (step_driver_m limits them so), whatever the laws.
     integer function front_buffer(cfg) result(buffer)
         type(config_t), intent(in) :: cfg
         real(dp) :: v, cfl, n_fine

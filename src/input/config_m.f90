@@ -48,8 +48,6 @@ module config_m
         real(dp) :: g = 0.1_dp
         real(dp) :: eps = 0.01_dp
         character(len=LEN_NAME) :: law = 'penalty'
-        !> the velocity's mass: 'consistent' (P1) or 'redistributed' (the contact node massless,
-        !> docs/scheme.md)
         character(len=LEN_NAME) :: mass = 'consistent'
     end type contact_t
 
@@ -109,28 +107,19 @@ module config_m
         integer :: max_iter = 50
     end type solver_t
 
-    !> &output: HDF5 file <prefix>.h5 and what goes into it.
+    !> &output: HDF5 file <prefix>.h5 and what goes into it (each variable: docs/input.md;
+    !> compression's default: docs/performance.md, "Output: chunks and compression").
     type :: output_t
         character(len=LEN_PATH) :: prefix = 'out/run'
         integer :: snapshot_every = 100
-        real(dp) :: snapshot_dt = 0.0_dp   !< > 0: snapshots at t = k snapshot_dt (then snapshot_every is unused)
+        real(dp) :: snapshot_dt = 0.0_dp
         integer :: series_every = 1
-        !> > 0: series entries at t = k series_dt, from the scheme's interpolant between the
-        !> steps (then series_every is unused; steps are not shortened to land there)
         real(dp) :: series_dt = 0.0_dp
-        !> with snapshot_dt: steps end on the snapshot times (.false.: snapshots from the
-        !> scheme's interpolant, steps not shortened)
         logical :: snapshot_land = .true.
         integer :: checkpoint_every = 0
-        !> deflate level of the /snapshots fields, 0 (none) .. MAX_COMPRESSION; the default is
-        !> chosen by measurement (docs/performance.md, "Output: chunks and compression")
         integer :: compression = 0
         logical :: quiet = .false.
-        !> points of the fixed output grid /mesh/x of the snapshots (0: the coarsest mesh's
-        !> nodes, n_elements + 1)
         integer :: n_points = 0
-        !> per-field error estimates in /snapshots/error_estimate* (companion solutions,
-        !> docs/scheme.md); uniform meshes of an even number of elements
         logical :: error_estimate = .false.
     end type output_t
 

@@ -4,23 +4,14 @@
     python3 src/input/generate_input_vars.py src/input/config_m.f90 OUT_DIR
 
 The build runs it (CMakeLists.txt) whenever config_m.f90 changes. config_m's header says how
-its types are the groups and variables (and its trailing comments [unit] and 'not an
-input'); from them this writes, into OUT_DIR, two files that input_vars_m includes:
+its types are the groups and variables and which declarations are inputs (anything else in a
+group's type stops the generator with a message naming the line); from them this writes, into
+OUT_DIR, two files that input_vars_m includes:
 
   input_vars_table.inc   GROUP_NAMES and INPUT_VARS (group, name, kind, keyword, unit)
   input_vars_access.inc  get_value (an input's value into an item) and read_namelist: one
                          local per variable named as in the input, the namelist statement of
                          each group, the copies between each local and its component
-
-What a component's declaration says (one component per line):
-  real(dp) :: x = 1.0_dp                        KIND_REAL
-  real(dp) :: x(0:MAX_POLY_DEGREE) = 0.0_dp     KIND_COEFFS (polynomial coefficients)
-  real(dp) :: x(2) = 0.0_dp                     KIND_PAIR (amplitude, x_end)
-  integer :: n = 1                              KIND_INTEGER
-  logical :: flag = .false.                     KIND_LOGICAL
-  character(len=LEN_NAME) :: word = 'a'         KIND_STRING, a keyword (stored in lower case)
-  character(len=LEN_PATH) :: path = ''          KIND_STRING
-Anything else inside a group's type stops the generator with a message naming the line.
 """
 import collections
 import os
@@ -39,6 +30,7 @@ COMPONENT = re.compile(
     r"^\s*(?P<type>real\(dp\)|integer|logical|character\(len=(?P<len>\w+)\))\s*::\s*"
     r"(?P<name>\w+)\s*(?P<dims>\([^)]*\))?\s*(?:=\s*(?P<default>.*?))?\s*(?:!<\s*(?P<doc>.*))?$", re.I)
 UNIT = re.compile(r"\[([^\[\]]*)\]\s*$")
+NESTED = re.compile(r"\([^()]*\)|\[[^\[\]]*\]")   # an innermost (...) or [...]
 
 
 Var = collections.namedtuple("Var", "group name kind keyword unit local")
@@ -107,19 +99,10 @@ def variable(path, number, group, line):
 
 def top_level_comma(text):
     """Whether text has a comma outside quotes, parentheses and brackets."""
-    depth, quote = 0, None
-    for ch in text:
-        if quote:
-            quote = None if ch == quote else quote
-        elif ch in "'\"":
-            quote = ch
-        elif ch in "([":
-            depth += 1
-        elif ch in ")]":
-            depth -= 1
-        elif ch == "," and depth == 0:
-            return True
-    return False
+    text = re.sub(r"'[^']*'|\"[^\"]*\"", "", text)
+    while re.search(NESTED, text):
+        text = re.sub(NESTED, "", text)
+    return "," in text
 
 
 def read_variables(path):

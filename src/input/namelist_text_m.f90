@@ -98,13 +98,13 @@ contains
         type(group_t) :: current
         character :: quote
         character(len=:), allocatable :: name
-        integer :: i, j, k, body(2)
+        integer :: i, j, k, start
 
         name = ''
-        body = 0
         groups = [group_t ::]
         do i = 1, size(lines)
             quote = ' '
+            start = 1   ! of the part of line i in the current group's body
             j = 1
             do while (j <= len_trim(lines(i)%s))
                 associate (ch => lines(i)%s(j:j))
@@ -117,8 +117,8 @@ contains
                         if (ch == '&') then
                             name = lower(identifier_at(lines(i)%s, j + 1))
                             call check_group_name(name, i, groups)
-                            current = group_t(name=name, line=i, origin='')
-                            body = [i, j + 1 + len(name)]
+                            current = group_t(name=name, line=i, origin='', body='')
+                            start = j + 1 + len(name)
                             j = j + len(name)
                         else if (ch /= ' ') then
                             call fatal(EXIT_INPUT, 'input', 'text outside a namelist group at line ' // &
@@ -137,7 +137,7 @@ contains
                                 "closed: '&" // name // "' at line " // int_str(i) // " comes before its '/'")
                             k = j + 3
                         end if
-                        current%body = joined(lines, body, [i, j - 1])
+                        current%body = current%body // lines(i)%s(start:j - 1) // ' '
                         groups = [groups, current]
                         current%line = 0
                         j = k
@@ -145,6 +145,7 @@ contains
                 end associate
                 j = j + 1
             end do
+            if (current%line > 0) current%body = current%body // lines(i)%s(start:) // ' '
         end do
         if (current%line > 0) call fatal(EXIT_INPUT, trim(current%name), 'group &' // trim(current%name) // &
             ' (line ' // int_str(current%line) // ") is not closed: missing '/' at its end " // &
@@ -168,23 +169,6 @@ contains
         if (k > 0) call fatal(EXIT_INPUT, name, 'group &' // name // ' given twice (lines ' // &
             int_str(groups(k)%line) // ' and ' // int_str(line) // '); each group may appear at most once')
     end subroutine check_group_name
-
-    !> The text from position `from` to `to` (line, column) of lines, lines joined by a blank.
-    pure function joined(lines, from, to) result(body)
-        type(string_t), intent(in) :: lines(:)
-        integer, intent(in) :: from(2), to(2)
-        character(len=:), allocatable :: body
-        integer :: i, first_col, last_col
-
-        body = ''
-        do i = from(1), to(1)
-            first_col = 1
-            if (i == from(1)) first_col = from(2)
-            last_col = len(lines(i)%s)
-            if (i == to(1)) last_col = to(2)
-            body = body // lines(i)%s(first_col:last_col) // ' '
-        end do
-    end function joined
 
     !> Read group `grp` into its part of cfg, over the values already there: each assignment
     !> 'lhs = value' by a namelist read of its own ('&group lhs = value /'), so that a bad

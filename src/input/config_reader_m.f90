@@ -1,17 +1,15 @@
 !> The namelist reader: read_config reads the input text, then the --set overrides, group by
-!> group (namelist_text_m finds the groups and reads each assignment by a namelist read of its
-!> own, so that a bad value names its variable; the input variables and their kinds are those
-!> of input_vars_m), and the tables of &initial. Only what the reader alone can know is checked
-!> here (text, syntax, names, types, &material); value ranges are checked by validate_m.
+!> group (namelist_text_m), and the tables of &initial. Only what the reader alone can know is
+!> checked here (text, syntax, names, types, &material); value ranges are checked by validate_m.
 module config_reader_m
     use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_overflow
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
-    use config_m, only: config_t, initial_t
+    use config_m, only: config_t, initial_t, LEN_PATH
     use strings_m, only: lower, excerpt, quoted, int_str, format_real
     use namelist_text_m, only: string_t, group_t, read_source, find_groups, read_group, &
-                               parse_override, override_summary
+                               parse_override
     use material_m, only: check_material
     implicit none
     private
@@ -21,19 +19,16 @@ module config_reader_m
 
 contains
 
-    !> Read the run configuration from `source` (a file path, or '-' for standard input)
-    !> into cfg: every group present overrides the defaults of its type. Then each of
-    !> `overrides` ('group.variable=value', as after --set on the command line) is applied
-    !> in turn, as if it were the only assignment of a group '&group ... /' read after the
-    !> text (so a group the text does not have is fine, and an override of one array
-    !> element keeps the others).
+    !> Read the run configuration from `source` (a file path, or '-' for standard input) into
+    !> cfg over the defaults of its types, then each of `overrides` ('group.variable=value', as
+    !> after --set) as a group of that one assignment read after the text (docs/input.md).
     subroutine read_config(source, cfg, overrides)
         character(len=*), intent(in) :: source
         type(config_t), intent(out) :: cfg
         type(string_t), intent(in), optional :: overrides(:)
         type(string_t), allocatable :: lines(:)
         type(group_t), allocatable :: groups(:), sets(:)
-        character(len=:), allocatable :: what
+        character(len=:), allocatable :: what, all
         integer :: k
         logical :: halt_on_overflow
 
@@ -44,12 +39,15 @@ contains
         cfg%source = source
         ! the overrides are checked first: a misspelt --set fails before stdin is read
         sets = [group_t ::]
+        all = ''   ! '--set a=1 --set b=2', the record of the overrides
         if (present(overrides)) then
             do k = 1, size(overrides)
                 sets = [sets, parse_override(overrides(k)%s)]
+                all = all // ' --set ' // trim(adjustl(overrides(k)%s))
             end do
-            cfg%overrides = override_summary(overrides)
         end if
+        cfg%overrides = adjustl(all)
+        if (len_trim(adjustl(all)) > LEN_PATH) cfg%overrides(LEN_PATH - 2:) = '...'
         call read_source(source, lines)
         call find_groups(lines, groups)
         ! no group (an empty file, empty standard input: a forgotten '< input.nml') and no --set:

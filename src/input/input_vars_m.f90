@@ -1,7 +1,5 @@
 !> The input variables as one table, INPUT_VARS (group, name, kind, unit), and the two
 !> routines that know which component of config_t holds each (get_value, read_namelist).
-!> The table drives the reader's checks and messages, the namelist read of each assignment,
-!> the echo of &material and the record of the inputs in the output file (input_items).
 !> Both are generated from config_m's types (its header says how) into the two files
 !> included below: a namelist group is a static list of declared variables, so
 !> read_namelist declares each input variable as a local of its name and copies it from and

@@ -9,14 +9,14 @@
 module namelist_text_m
     use, intrinsic :: iso_fortran_env, only: input_unit, iostat_end, iostat_eor
     use errors_m, only: fatal, EXIT_INPUT, check_allocation
-    use config_m, only: config_t, LEN_NAME, LEN_PATH
+    use config_m, only: config_t, LEN_NAME
     use strings_m, only: lower, squeeze, excerpt, quoted, doubled_quotes, identifier_at, is_name_char, int_str
     use input_vars_m, only: GROUP_NAMES, KIND_COEFFS, KIND_PAIR, KIND_STRING, group_list, var_list, var_kind, &
                             kind_description, read_namelist
     implicit none
     private
     public :: string_t, group_t
-    public :: read_source, find_groups, read_group, parse_override, override_summary
+    public :: read_source, find_groups, read_group, parse_override
 
     integer, parameter :: LEN_MSG = 512         !< iomsg buffers
 
@@ -262,12 +262,8 @@ contains
     ! ---------------------------------------------------------------- --set
 
     !> The override `text` ('group.variable=value' or 'group.variable(i)=value') as a group of
-    !> that one assignment, after the checks that can be made before reading it: a known
-    !> group and variable, a subscript only on an array, a value that stays inside one
-    !> assignment. The value of a string variable is quoted here unless it is quoted already
-    !> (--set output.prefix=runs/a), so that the shell need not pass the quotes. A variable
-    !> given twice takes the later value (the overrides are read in order, as the text's
-    !> assignments are).
+    !> that one assignment, after the checks that can be made before reading it (the header's).
+    !> A string value is quoted here unless it is quoted already: the shell need not pass quotes.
     function parse_override(text) result(set)
         character(len=*), intent(in) :: text
         type(group_t) :: set
@@ -313,21 +309,5 @@ contains
         ! the body of '&group lhs = value /'
         set%body = ' ' // lhs // ' = ' // value // ' '
     end function parse_override
-
-    !> '--set a=1 --set b=2', the record of the overrides in cfg%overrides.
-    pure function override_summary(overrides) result(text)
-        type(string_t), intent(in) :: overrides(:)
-        character(len=LEN_PATH) :: text
-        character(len=:), allocatable :: all
-        integer :: k
-
-        all = ''
-        do k = 1, size(overrides)
-            all = all // ' --set ' // trim(adjustl(overrides(k)%s))
-        end do
-        all = trim(adjustl(all))
-        if (len(all) > LEN_PATH) all = all(:LEN_PATH - 3) // '...'
-        text = all
-    end function override_summary
 
 end module namelist_text_m

@@ -35,9 +35,7 @@ module validate_m
     real(dp), parameter :: MAX_FINE_ELEMENTS = 2.0_dp**30      !< n_elements 2^max_level (round-off of x_i)
     real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
     real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
-    !> The coefficients that divide (rho, alpha, c, r, hbar weigh the energy; 1/eps;
-    !> t_end/dt) are at least MIN_POSITIVE, every real input at most MAX_MAGNITUDE in
-    !> magnitude (validate_initial_m says why).
+    !> The coefficients that divide are at least MIN_POSITIVE (validate_initial_m says why).
     real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
     integer, parameter :: NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3   !< the bounds of require_real
 

@@ -247,24 +247,23 @@ contains
     end function value_text
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
-    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables.
+    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables, and the
+    !> native (adaptive mesh) snapshots and error estimates when the file has them.
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
         real(dp), intent(in) :: t_checkpoint
         real(dp), allocatable :: column(:), rows(:, :), snap_t(:), snap(:, :), snaps(:, :, :)
         real(dp) :: t_last
-        integer :: k, n, stat
+        character(len=64) :: estimates(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS))
+        integer :: j, k, n, stat
         character(len=256) :: message
 
         t_last = t_checkpoint * (1.0_dp + 1.0e-12_dp)
         call read_real_1d(file, '/series/'//trim(SERIES(S_T)%name), column)
         n = rows_to_copy(column, t_last)
-        allocate (rows(N_SERIES, n), stat=stat, errmsg=message)   ! one contiguous column per entry
-        call check_allocation(stat, message, 'the copied series')
-        do k = 1, N_SERIES   ! (an integer series read as float64, which holds it exactly)
-            rows(k, :) = leading(file, '/series/'//trim(SERIES(k)%name), n)
-        end do
+        ! (an integer series read as float64, which holds it exactly)
+        call read_rows(file, [character(len=64) :: ('/series/'//SERIES(k)%name, k = 1, N_SERIES)], n, rows)
         do k = 1, n
             call writer%append_series(rows(:, k))
         end do
@@ -283,49 +282,33 @@ contains
             call writer%append_snapshot(snap_t(k), snaps(:, :, k))
         end do
         if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
-        if (dataset_exists(file, estimate_path(1, 1))) call copy_estimate(writer, file, n)
+        if (.not. dataset_exists(file, estimate_path(1, 1))) return
+        do j = 1, size(ESTIMATE_PARTS)   ! (not an implied do: gfortran cuts each path to the first's length)
+            do k = 1, N_OUTPUT_FIELDS
+                estimates(k, j) = estimate_path(j, k)
+            end do
+        end do
+        call read_rows(file, reshape(estimates, [size(estimates)]), n, rows)
+        do k = 1, n
+            call writer%append_estimate(reshape(rows(:, k), [N_OUTPUT_FIELDS, size(ESTIMATE_PARTS)]))
+        end do
     end subroutine copy_history
 
     !> Every dataset copy_history copies is in `file` (a file of an older version lacks the
-    !> energy parts and sigma): checked before the new file is created.
+    !> energy parts and sigma): checked before the new file is created; the last missing named.
     subroutine require_history_datasets(file)
         character(len=*), intent(in) :: file
-        character(len=:), allocatable :: missing
+        character(len=64) :: paths(N_SERIES + N_SNAPSHOT_FIELDS)
         integer :: k
 
-        missing = ''
-        do k = 1, N_SERIES
-            if (.not. dataset_exists(file, '/series/'//trim(SERIES(k)%name))) &
-                missing = '/series/'//trim(SERIES(k)%name)
+        paths = [character(len=64) :: ('/series/'//SERIES(k)%name, k = 1, N_SERIES), &
+                 ('/snapshots/'//SNAPSHOTS(k)%name, k = 1, N_SNAPSHOT_FIELDS)]
+        do k = size(paths), 1, -1
+            if (.not. dataset_exists(file, trim(paths(k)))) call fatal(EXIT_INPUT, WHERE, "'"//file//"' has no "// &
+                trim(paths(k))//': it was written by an older version of rodcontact, whose checkpoints this '// &
+                'version cannot continue')
         end do
-        do k = 1, N_SNAPSHOT_FIELDS
-            if (.not. dataset_exists(file, '/snapshots/'//trim(SNAPSHOTS(k)%name))) &
-                missing = '/snapshots/'//trim(SNAPSHOTS(k)%name)
-        end do
-        if (missing /= '') call fatal(EXIT_INPUT, WHERE, "'"//file//"' has no "//missing//': it was written by '// &
-                                      'an older version of rodcontact, whose checkpoints this version cannot continue')
     end subroutine require_history_datasets
-
-    !> The first n snapshots' error estimates (/snapshots/error_estimate*) of `file` into writer.
-    subroutine copy_estimate(writer, file, n)
-        type(h5_writer_t), intent(inout) :: writer
-        character(len=*), intent(in) :: file
-        integer, intent(in) :: n
-        real(dp), allocatable :: values(:, :, :)
-        integer :: j, k, part, stat
-        character(len=256) :: message
-
-        allocate (values(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS), n), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the copied error estimates')
-        do part = 1, size(ESTIMATE_PARTS)
-            do k = 1, N_OUTPUT_FIELDS
-                values(k, part, :) = leading(file, estimate_path(part, k), n)
-            end do
-        end do
-        do j = 1, n
-            call writer%append_estimate(values(:, :, j))
-        end do
-    end subroutine copy_estimate
 
     !> The first n snapshots of /snapshots/native (adaptive mesh) of `file` into writer.
     subroutine copy_native(writer, file, n)
@@ -334,24 +317,36 @@ contains
         integer, intent(in) :: n
         integer :: offset(n), count(n)
         real(dp), allocatable :: x(:), values(:, :)
-        integer :: j, k, stat
-        character(len=256) :: message
+        integer :: j, k
 
         offset = nint(leading(file, '/snapshots/native/offset', n))
         count = nint(leading(file, '/snapshots/native/count', n))
         call read_real_1d(file, '/snapshots/native/x', x)
-        allocate (values(size(x), N_SNAPSHOT_FIELDS), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the copied native snapshots')
-        do k = 1, N_SNAPSHOT_FIELDS
-            values(:, k) = leading(file, '/snapshots/native/'//trim(SNAPSHOTS(k)%name), size(x))
-        end do
+        call read_rows(file, [character(len=64) :: ('/snapshots/native/'//SNAPSHOTS(k)%name, &
+                                                    k = 1, N_SNAPSHOT_FIELDS)], size(x), values)
         do j = 1, n
             associate (first => offset(j) + 1, last => offset(j) + count(j))
                 call require_rows(file, '/snapshots/native/x', size(x), last)
-                call writer%append_native(x(first:last), values(first:last, :))
+                call writer%append_native(x(first:last), transpose(values(:, first:last)))
             end associate
         end do
     end subroutine copy_native
+
+    !> rows(k, :): the first n values of the 1D dataset paths(k) of `file` (leading), so that
+    !> rows(:, j) is the j-th row of them all, contiguous as the writer appends it.
+    subroutine read_rows(file, paths, n, rows)
+        character(len=*), intent(in) :: file, paths(:)
+        integer, intent(in) :: n
+        real(dp), allocatable, intent(out) :: rows(:, :)
+        integer :: k, stat
+        character(len=256) :: message
+
+        allocate (rows(size(paths), n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the copied history')
+        do k = 1, size(paths)
+            rows(k, :) = leading(file, trim(paths(k)), n)
+        end do
+    end subroutine read_rows
 
     !> The first n values of the 1D dataset `dset` of `file` (require_rows).
     function leading(file, dset, n) result(values)

@@ -247,8 +247,7 @@ contains
     end function value_text
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
-    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables, and the
-    !> native (adaptive mesh) snapshots and error estimates when the file has them.
+    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables.
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
@@ -283,19 +282,20 @@ contains
         end do
         if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
         if (.not. dataset_exists(file, estimate_path(1, 1))) return
-        do j = 1, size(ESTIMATE_PARTS)   ! (not an implied do: gfortran cuts each path to the first's length)
+        ! a loop: gfortran cuts an implied do's paths to the first one's length
+        do j = 1, size(ESTIMATE_PARTS)
             do k = 1, N_OUTPUT_FIELDS
                 estimates(k, j) = estimate_path(j, k)
             end do
         end do
         call read_rows(file, reshape(estimates, [size(estimates)]), n, rows)
         do k = 1, n
-            call writer%append_estimate(reshape(rows(:, k), [N_OUTPUT_FIELDS, size(ESTIMATE_PARTS)]))
+            call writer%append_estimate(reshape(rows(:, k), shape(estimates)))
         end do
     end subroutine copy_history
 
     !> Every dataset copy_history copies is in `file` (a file of an older version lacks the
-    !> energy parts and sigma): checked before the new file is created; the last missing named.
+    !> energy parts and sigma): checked before the new file is created.
     subroutine require_history_datasets(file)
         character(len=*), intent(in) :: file
         character(len=64) :: paths(N_SERIES + N_SNAPSHOT_FIELDS)
@@ -304,9 +304,9 @@ contains
         paths = [character(len=64) :: ('/series/'//SERIES(k)%name, k = 1, N_SERIES), &
                  ('/snapshots/'//SNAPSHOTS(k)%name, k = 1, N_SNAPSHOT_FIELDS)]
         do k = size(paths), 1, -1
-            if (.not. dataset_exists(file, trim(paths(k)))) call fatal(EXIT_INPUT, WHERE, "'"//file//"' has no "// &
-                trim(paths(k))//': it was written by an older version of rodcontact, whose checkpoints this '// &
-                'version cannot continue')
+            if (dataset_exists(file, trim(paths(k)))) cycle
+            call fatal(EXIT_INPUT, WHERE, "'"//file//"' has no "//trim(paths(k))//': it was written by an '// &
+                       'older version of rodcontact, whose checkpoints this version cannot continue')
         end do
     end subroutine require_history_datasets
 
@@ -323,7 +323,7 @@ contains
         count = nint(leading(file, '/snapshots/native/count', n))
         call read_real_1d(file, '/snapshots/native/x', x)
         call read_rows(file, [character(len=64) :: ('/snapshots/native/'//SNAPSHOTS(k)%name, &
-                                                    k = 1, N_SNAPSHOT_FIELDS)], size(x), values)
+                              k = 1, N_SNAPSHOT_FIELDS)], size(x), values)
         do j = 1, n
             associate (first => offset(j) + 1, last => offset(j) + count(j))
                 call require_rows(file, '/snapshots/native/x', size(x), last)
@@ -332,8 +332,7 @@ contains
         end do
     end subroutine copy_native
 
-    !> rows(k, :): the first n values of the 1D dataset paths(k) of `file` (leading), so that
-    !> rows(:, j) is the j-th row of them all, contiguous as the writer appends it.
+    !> rows(k, :): the first n values of dataset paths(k) of `file`; rows(:, j) is contiguous.
     subroutine read_rows(file, paths, n, rows)
         character(len=*), intent(in) :: file, paths(:)
         integer, intent(in) :: n

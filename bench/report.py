@@ -637,3 +637,7 @@ def kept_impact_section(doc):
         return []
     head = text.rfind("\n## ", 0, a)
     return [""] + text[head + 1:].rstrip("\n").split("\n")
+
+
+if __name__ == "__main__":
+    main()

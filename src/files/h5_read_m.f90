@@ -23,7 +23,7 @@ module h5_read_m
     implicit none
     private
     public :: h5_library_init
-    public :: read_real_1d, read_real_2d, read_int_1d
+    public :: read_real_1d, read_real_2d
     public :: read_attr_str, read_attr_real, read_attr_int, read_attr_real_1d
     public :: dataset_exists, attr_exists, is_hdf5_file, open_file
 
@@ -96,18 +96,6 @@ contains
         call read_real_1d(file, dset, flat, dims)
         values = reshape(flat, dims)
     end subroutine read_real_2d
-
-    !> Whole 1D integer dataset (e.g. '/series/iterations'), converted to default integer
-    !> (read as float64, which holds every int32 exactly).
-    subroutine read_int_1d(file, dset, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
-        integer, allocatable, intent(out) :: values(:)
-        real(dp), allocatable :: flat(:)
-
-        call read_real_1d(file, dset, flat)
-        values = nint(flat)
-    end subroutine read_int_1d
 
     !> True when `file` exists, can be read and is an HDF5 file (h5fis_hdf5_f): the test to
     !> make before any other routine here, which stop with exit 2 on a file they cannot open.

@@ -18,7 +18,7 @@ module restart_m
     use checkpoint_read_m, only: read_entries
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
     use fsys_m, only: file_exists, same_file, rename_file, remove_file
-    use h5_read_m, only: read_real_1d, read_real_2d, read_int_1d, read_attr_int, &
+    use h5_read_m, only: read_real_1d, read_real_2d, read_attr_int, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists, is_hdf5_file
     use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX, ESTIMATE_PARTS, estimate_path
     implicit none
@@ -136,12 +136,12 @@ contains
     !> (also after a kill while the first was written: output_checkpoint_s).
     integer function current_slot(file) result(slot)
         character(len=*), intent(in) :: file
-        integer, allocatable :: current(:)
+        real(dp), allocatable :: current(:)
 
         slot = -1
         if (.not. dataset_exists(file, '/checkpoint/current')) return
-        call read_int_1d(file, '/checkpoint/current', current)
-        slot = current(1)
+        call read_real_1d(file, '/checkpoint/current', current)
+        slot = nint(current(1))
     end function current_slot
 
     !> Every input variable that changes the computed history (input_vars_m's

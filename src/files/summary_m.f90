@@ -7,7 +7,7 @@ module summary_m
     use, intrinsic :: iso_fortran_env, only: int64
     use kinds_m, only: dp
     use strings_m, only: format_real, doubled_quotes, int_str
-    use h5_read_m, only: read_real_1d, read_int_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
+    use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
                          dataset_exists
     use fsys_m, only: file_exists
     implicit none
@@ -203,8 +203,7 @@ contains
     subroutine read_events(file, s)
         character(len=*), intent(in) :: file
         type(summary_t), intent(inout) :: s
-        real(dp), allocatable :: t(:)
-        integer, allocatable :: kind(:)
+        real(dp), allocatable :: t(:), kind(:)
         integer :: n
 
         allocate (s%event_t(0), s%onset(0))
@@ -212,7 +211,7 @@ contains
         if (.not. dataset_exists(file, '/events/kind')) return
         s%has_events = .true.
         call read_real_1d(file, '/events/t', t)
-        call read_int_1d(file, '/events/kind', kind)
+        call read_real_1d(file, '/events/kind', kind)
         n = min(size(t), size(kind))
         s%event_t = t(1:n)
         s%onset = kind(1:n) > 0

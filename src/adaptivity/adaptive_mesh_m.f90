@@ -95,15 +95,12 @@ contains
         real(dp), allocatable :: scale(:)
         integer(int64), allocatable :: keys(:)
 
-        if (ckpt%reading) then
-            call ckpt%get('adaptive_mesh/scale', scale)
-            call ckpt%get('adaptive_mesh/keys', keys)
-            self%scale = scale
-            call self%set_keys(keys)
-        else
-            call ckpt%put('adaptive_mesh/scale', self%scale)
-            call ckpt%put('adaptive_mesh/keys', self%k)
-        end if
+        allocate (scale, source=self%scale)
+        keys = self%k
+        call ckpt%sync('adaptive_mesh/scale', scale)
+        call ckpt%sync('adaptive_mesh/keys', keys)
+        self%scale = scale
+        if (ckpt%reading) call self%set_keys(keys)
     end subroutine mesh_checkpoint
 
     !> Number of elements.

@@ -325,9 +325,10 @@ contains
         integer :: j
 
         if (allocated(self%k_run) .and. ckpt%reading) then   ! the companions' meshes for the run's
-            call ckpt%get('adaptive_mesh/keys', keys)
+            call ckpt%sync('adaptive_mesh/keys', keys)
             call companions_remesh(self, keys)
         end if
+        allocate (queue(QUEUE_MAX))
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 p = 'error_companions/'//NAMES(j:j)
@@ -336,15 +337,12 @@ contains
                     'the checkpoint''s error-estimate companion '//NAMES(j:j)//' does not fit its mesh')
                 call ckpt%sync(p//'/n_solves', c%stepper%n_solves)
                 call ckpt%sync(p//'/n_queued', c%n_queued)
-                if (ckpt%reading) then
-                    call ckpt%get(p//'/queue_dt', queue)
-                    c%queue_dt = queue
-                    call ckpt%get(p//'/queue_t', queue)
-                    c%queue_t = queue
-                else
-                    call ckpt%put(p//'/queue_dt', c%queue_dt)
-                    call ckpt%put(p//'/queue_t', c%queue_t)
-                end if
+                queue = c%queue_dt
+                call ckpt%sync(p//'/queue_dt', queue)
+                c%queue_dt = queue
+                queue = c%queue_t
+                call ckpt%sync(p//'/queue_t', queue)
+                c%queue_t = queue
             end associate
         end do
         call ckpt%sync('error_companions/failed', self%failed)

@@ -226,26 +226,24 @@ contains
         character(len=256) :: message
 
         width = 1 + N_FIELDS
-        if (ckpt%reading) then
-            call ckpt%get('error_estimator/levels', levels)
-            call ckpt%get('error_estimator/steps', steps)
-            call self%resize(size(levels, 1) - 1)
-            call self%reset()
-            do j = size(steps), 1, -1
-                call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), &
-                               steps(j))
+        if (.not. ckpt%reading) then
+            allocate (levels(size(self%levels, 1), width * MAX_LEVELS), steps(self%n_levels), source=0.0_dp, &
+                      stat=stat, errmsg=message)
+            call check_allocation(stat, message, 'the checkpoint of the error estimator')
+            do j = 1, self%n_levels
+                steps(j) = self%step(j)
+                levels(:, (j - 1) * width + 1:j * width) = self%levels(:, :, self%slot(j))
             end do
-            return
         end if
-        allocate (levels(size(self%levels, 1), width * MAX_LEVELS), steps(self%n_levels), source=0.0_dp, &
-                  stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the checkpoint of the error estimator')
-        do j = 1, self%n_levels
-            steps(j) = self%step(j)
-            levels(:, (j - 1) * width + 1:j * width) = self%levels(:, :, self%slot(j))
+        call ckpt%sync('error_estimator/levels', levels)
+        call ckpt%sync('error_estimator/steps', steps)
+        if (.not. ckpt%reading) return
+        call self%resize(size(levels, 1) - 1)
+        call self%reset()
+        do j = size(steps), 1, -1
+            call self%push(levels(:, (j - 1) * width + 1), levels(:, (j - 1) * width + 2:j * width), &
+                           steps(j))
         end do
-        call ckpt%put('error_estimator/levels', levels)
-        call ckpt%put('error_estimator/steps', steps)
     end subroutine estimator_checkpoint
 
 end module error_estimator_m

@@ -77,17 +77,17 @@ contains
     subroutine log_checkpoint(self, ckpt)
         class(event_log_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
+        real(dp), allocatable :: t(:)
         integer(int64), allocatable :: kind(:)
 
-        if (ckpt%reading) then
-            call ckpt%get('events/t', self%t)
-            call ckpt%get('events/kind', kind)
-            self%kind = int(kind)
-            self%n = size(self%t)
-        else
-            call ckpt%put('events/t', self%times())
-            call ckpt%put('events/kind', int(self%kinds(), int64))
-        end if
+        allocate (t, source=self%times())
+        allocate (kind, source=int(self%kinds(), int64))
+        call ckpt%sync('events/t', t)
+        call ckpt%sync('events/kind', kind)
+        if (.not. ckpt%reading) return
+        self%t = t
+        self%kind = int(kind)
+        self%n = size(t)
     end subroutine log_checkpoint
 
     !> The time in [t_start, t_start + dt] at which the contact state of a step changes: the

@@ -81,17 +81,17 @@ contains
     subroutine require_fit(file, cfg, ckpt)
         character(len=*), intent(in) :: file
         type(config_t), intent(in) :: cfg
-        type(checkpoint_t), intent(in) :: ckpt
+        type(checkpoint_t), intent(inout) :: ckpt
         real(dp), allocatable :: level(:, :)
         integer(int64), allocatable :: keys(:)
         integer :: s
 
         s = cfg%mesh%n_elements
         if (cfg%mesh%adaptive) then
-            call ckpt%get('adaptive_mesh/keys', keys)
+            call ckpt%sync('adaptive_mesh/keys', keys)
             s = size(keys) - 1
         end if
-        call ckpt%get('state/level', level)
+        call ckpt%sync('state/level', level)
         if (any(shape(level) /= [s + 1, 1 + N_FIELDS])) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "': its checkpoint's state/level does not fit the mesh")
         if (cfg%output%error_estimate .and. .not. ckpt%has('error_companions/failed_flag')) &

@@ -1,9 +1,7 @@
 !> A checkpoint in memory: everything a run needs to continue exactly (&output
 !> checkpoint_every, &time restart_from), as named entries. It is a record, not an owner:
-!> each type puts its own entries 'owner/name' and gets them back (docs/output.md,
-!> "Checkpoints", lists them), best in one routine of sync calls. An entry is
-!> reals or integers (int64), a scalar or an array of rank 1 or 2; a logical is the integer
-!> 0 or 1 under a name ending in _flag. The files layer maps the record to the file's
+!> each type syncs its own entries 'owner/name' in one routine (docs/output.md,
+!> "Checkpoints", lists them). The files layer maps the record to the file's
 !> /checkpoint/slotN/<owner>/ and back.
 module checkpoint_m
     use kinds_m, only: dp
@@ -30,10 +28,9 @@ module checkpoint_m
         character(len=:), allocatable :: source   !< the file it was read from, for messages
         type(entry_t), allocatable :: entries(:)
     contains
-        generic :: put => put_reals, put_real2, put_ints
-        generic :: get => get_reals, get_real2, get_ints
-        procedure :: add, has, find, sync
-        procedure, private :: put_reals, put_real2, put_ints, get_reals, get_real2, get_ints
+        generic :: sync => sync_scalar, sync_reals, sync_real2, sync_ints
+        procedure :: add, has, find
+        procedure, private :: sync_scalar, sync_reals, sync_real2, sync_ints
     end type checkpoint_t
 
 contains
@@ -92,11 +89,11 @@ contains
         call fatal(EXIT_INPUT, 'time.restart_from', file//' has no '//name)
     end function find
 
-    !> An owner's one checkpoint routine names each scalar entry once: sync puts value into a
-    !> checkpoint being saved and gets it back from one being read (reading), so that saving
-    !> and restoring cannot disagree. value: real(dp), integer, integer(int64) or logical (the
-    !> integer 0 or 1 under name//'_flag'); an entry is one 64-bit word (entry_t).
-    subroutine sync(self, name, value)
+    !> An owner's checkpoint routine names each entry once, so that saving and restoring
+    !> cannot disagree: sync puts value into a checkpoint being saved, gets it back from one read.
+    !> value: real(dp), integer, integer(int64), logical (0 or 1 under name//'_flag'), or an
+    !> array below (unallocated: size 0).
+    subroutine sync_scalar(self, name, value)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
         class(*), intent(inout) :: value
@@ -115,11 +112,7 @@ contains
             entry%name = name//'_flag'
             entry%values = merge(1_int64, 0_int64, value)
         end select
-        if (.not. self%reading) then
-            call self%add(entry)
-            return
-        end if
-        entry = self%find(entry%name, entry%is_integer, 0)
+        call sync_entry(self, entry)
         select type (value)
         type is (real(dp))
             value = transfer(entry%values(1), value)
@@ -130,61 +123,56 @@ contains
         type is (logical)
             value = entry%values(1) /= 0
         end select
-    end subroutine sync
+    end subroutine sync_scalar
 
-    subroutine put_reals(self, name, values)
+    subroutine sync_reals(self, name, values)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
-        real(dp), intent(in) :: values(:)
+        real(dp), allocatable, intent(inout) :: values(:)
+        type(entry_t) :: entry
 
-        call self%add(entry_t(name, .false., 1, [size(values), 1], &
-                              transfer(values, 0_int64, size(values))))
-    end subroutine put_reals
+        if (.not. allocated(values)) allocate (values(0))
+        entry = entry_t(name, .false., 1, [size(values), 1], &
+                        transfer(values, [0_int64]))
+        call sync_entry(self, entry)
+        values = transfer(entry%values, [0.0_dp])
+    end subroutine sync_reals
 
-    subroutine put_real2(self, name, values)
+    subroutine sync_real2(self, name, values)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
-        real(dp), intent(in) :: values(:, :)
+        real(dp), allocatable, intent(inout) :: values(:, :)
+        type(entry_t) :: entry
 
-        call self%add(entry_t(name, .false., 2, shape(values), transfer(values, 0_int64, size(values))))
-    end subroutine put_real2
+        if (.not. allocated(values)) allocate (values(0, 0))
+        entry = entry_t(name, .false., 2, shape(values), &
+                        transfer(values, [0_int64]))
+        call sync_entry(self, entry)
+        values = reshape(transfer(entry%values, [0.0_dp]), entry%dims)
+    end subroutine sync_real2
 
-    subroutine put_ints(self, name, values)
+    subroutine sync_ints(self, name, values)
         class(checkpoint_t), intent(inout) :: self
         character(len=*), intent(in) :: name
-        integer(int64), intent(in) :: values(:)
-
-        call self%add(entry_t(name, .true., 1, [size(values), 1], values))
-    end subroutine put_ints
-
-    subroutine get_reals(self, name, values)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        real(dp), allocatable, intent(out) :: values(:)
+        integer(int64), allocatable, intent(inout) :: values(:)
         type(entry_t) :: entry
 
-        entry = self%find(name, .false., 1)
-        values = transfer(entry%values, 0.0_dp, size(entry%values))
-    end subroutine get_reals
-
-    subroutine get_real2(self, name, values)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        real(dp), allocatable, intent(out) :: values(:, :)
-        type(entry_t) :: entry
-
-        entry = self%find(name, .false., 2)
-        values = reshape(transfer(entry%values, 0.0_dp, size(entry%values)), entry%dims)
-    end subroutine get_real2
-
-    subroutine get_ints(self, name, values)
-        class(checkpoint_t), intent(in) :: self
-        character(len=*), intent(in) :: name
-        integer(int64), allocatable, intent(out) :: values(:)
-        type(entry_t) :: entry
-
-        entry = self%find(name, .true., 1)
+        if (.not. allocated(values)) allocate (values(0))
+        entry = entry_t(name, .true., 1, [size(values), 1], values)
+        call sync_entry(self, entry)
         values = entry%values
-    end subroutine get_ints
+    end subroutine sync_ints
+
+    !> Put entry, or (reading) get the one of its name.
+    subroutine sync_entry(self, entry)
+        type(checkpoint_t), intent(inout) :: self
+        type(entry_t), intent(inout) :: entry
+
+        if (self%reading) then
+            entry = self%find(entry%name, entry%is_integer, entry%rank)
+        else
+            call self%add(entry)
+        end if
+    end subroutine sync_entry
 
 end module checkpoint_m

@@ -199,28 +199,24 @@ contains
         class(state_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
         character(len=*), intent(in) :: owner
-        real(dp), allocatable :: level(:, :)
+        real(dp), allocatable :: level(:, :), prev(:, :)
 
+        allocate (prev(0, 1 + N_FIELDS))
+        if (.not. ckpt%reading) then
+            level = reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS])
+            if (allocated(self%u_prev)) prev = reshape([self%u_prev, self%w_prev], shape(level))
+        end if
+        call ckpt%sync(owner//'/level', level)
+        if (.not. ckpt%reading .or. ckpt%has(owner//'/previous')) &
+            call ckpt%sync(owner//'/previous', prev)
         if (ckpt%reading) then
-            call ckpt%get(owner//'/level', level)
             self%s = size(level, 1) - 1
             call keep_copy(level(:, 1), level(:, 2:), self%u, self%w, 'the state')
-            if (ckpt%has(owner//'/previous')) then
-                call ckpt%get(owner//'/previous', level)
-                if (all(size(level, 1) /= [0, self%s + 1])) &
-                    call fatal(EXIT_INPUT, 'time.restart_from', &
-                               'the checkpoint''s '//owner//' levels differ in size')
-                if (size(level, 1) > 0) &
-                    call keep_copy(level(:, 1), level(:, 2:), self%u_prev, self%w_prev, 'the previous level')
-            end if
-        else
-            call ckpt%put(owner//'/level', reshape([self%u, self%w], [self%s + 1, 1 + N_FIELDS]))
-            if (allocated(self%u_prev)) then
-                call ckpt%put(owner//'/previous', &
-                              reshape([self%u_prev, self%w_prev], [self%s + 1, 1 + N_FIELDS]))
-            else
-                call ckpt%put(owner//'/previous', reshape([real(dp) ::], [0, 1 + N_FIELDS]))
-            end if
+            if (all(size(prev, 1) /= [0, self%s + 1])) &
+                call fatal(EXIT_INPUT, 'time.restart_from', &
+                           'the checkpoint''s '//owner//' levels differ in size')
+            if (size(prev, 1) > 0) &
+                call keep_copy(prev(:, 1), prev(:, 2:), self%u_prev, self%w_prev, 'the previous level')
         end if
         call ckpt%sync(owner//'/step', self%step)
         call ckpt%sync(owner//'/t', self%t)

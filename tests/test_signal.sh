@@ -23,15 +23,20 @@ make_input() {   # make_input <file> <prefix> <t_end> [extra &time text]: exp1 o
         -e "s|prefix='out/exp1'|prefix='$2' quiet=.true.|" "$src/input/exp1.nml" > "$1"
 }
 
+# pending_term <args>: run rodcontact <args> with SIGTERM blocked and already pending
+pending_term() {
+    "$py" -c "
+import os, signal, sys
+signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
+os.kill(os.getpid(), signal.SIGTERM)
+os.execv(sys.argv[1], sys.argv[1:])" "$exe" "$@"
+}
+
 # start <sig> <name>: run <name>.nml in the background and send SIG<sig> in its time loop;
 # with <sig> = PENDING_TERM, start it with SIGTERM blocked and already pending
 start() {
     if [ "$1" = PENDING_TERM ]; then
-        "$py" -c "
-import os, signal, sys
-signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
-os.kill(os.getpid(), signal.SIGTERM)
-os.execv(sys.argv[1], sys.argv[1:])" "$exe" $2.nml
+        pending_term $2.nml
         return
     fi
     "$exe" $2.nml & pid=$!
@@ -81,6 +86,17 @@ try:
 except Exception:
     print(-1)" "$1"
 }
+# Stopped before its first step, at a step that checkpoint_every divides (0 here, or where a
+# resumed run begins): the file has no checkpoint of that step yet, so the stop writes one; the
+# resumed run's file, which replaces the .part, too (the test above once lost it so).
+make_input pend.nml pend 1000.0 && sed -i 's/quiet=.true./quiet=.true. checkpoint_every=250/' pend.nml
+pending_term pend.nml 2> /dev/null; status=$?
+[ $status -eq 5 ] && [ "$(ckstep pend.h5.part)" = 0 ] ||
+    fail "stopped at step 0 with checkpoint_every = 250: exit $status, checkpoint step $(ckstep pend.h5.part)"
+pending_term pend.nml --resume 2> /dev/null; status=$?
+[ $status -eq 5 ] && [ "$(ckstep pend.h5.part)" = 0 ] &&
+    echo "PASS stopped before the first step (fresh and resumed, checkpoint_every = 250): checkpoint kept" ||
+    fail "resumed and stopped before its first step: exit $status, checkpoint step $(ckstep pend.h5.part)"
 leftovers() { ls "$1".* 2> /dev/null | grep -v -x -F -e "$1.nml" -e "$1.err" -e "$1.h5" | tr '\n' ' '; }
 make_input inplace.nml inplace 1000.0 "" && sed -i 's/quiet=.true./quiet=.true. checkpoint_every=250/' inplace.nml
 start TERM inplace; status=$?

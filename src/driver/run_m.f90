@@ -48,6 +48,7 @@ module run_m
         integer :: n_series_next = 0           !< with series_dt: the next series entry is at n series_dt
         integer :: n_elements_max = 0
         integer :: last_written = 0            !< the last step whose output was written
+        integer :: checkpointed = -1           !< step of the file's last checkpoint
         integer(int64) :: clock_start = 0, clock_rate = 1
         real(dp) :: wall_before = 0.0_dp       !< a restart's: the wall seconds up to its checkpoint
         logical :: in_place = .false.          !< resuming its own <prefix>.h5.part (restart_m)
@@ -213,9 +214,9 @@ contains
 
         if (interrupted /= '') then
             ! not the series/snapshot rows a failure adds: a restart copies the rows up to the
-            ! checkpoint, so the file must hold exactly those an uninterrupted run has
-            if (cfg%output%checkpoint_every == 0 .or. &
-                mod(run%state%step, max(cfg%output%checkpoint_every, 1)) /= 0) call checkpoint(run, cfg)
+            ! checkpoint, so the file must hold exactly those an uninterrupted run has; the
+            ! checkpoint unless the file has one of the step (none before a restart's first)
+            if (run%checkpointed /= run%state%step) call checkpoint(run, cfg)
         end if
         if (failure /= '' .and. run%last_written > 0 .and. run%last_written == run%state%step) then
             ! the last good step was skipped by series_every or the snapshots: keep it in the failed file
@@ -328,6 +329,7 @@ contains
         wall = wall_seconds(run)
         call ckpt%sync('run/wall_seconds', wall)
         call run%writer%write_checkpoint(ckpt, run%driver%step_label(run%state%step, run%state%t, ''))
+        run%checkpointed = run%state%step
     end subroutine checkpoint
 
     !> The run's wall seconds so far, with those before the checkpoint it restarted from.

@@ -1,10 +1,10 @@
 !> Creating the writer's file (output_m's create), /events at the end of the run, the groups
-!> and datasets of the other parts (make_group, create_extendible), and their self-description
+!> and datasets of the other parts (make_group, create_dataset), and their self-description
 !> (docs/output.md, "Datasets" and "netCDF"): CF-style long_name and units, with &material the
 !> factor to SI units, and the HDF5 dimension scales. A submodule of output_m, so that it sets
 !> up the writer's private state.
 submodule (output_m) output_create_s
-    use hdf5, only: h5lcreate_hard_f
+    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
@@ -59,7 +59,7 @@ contains
         w%opened = .true.
         call writer_open_file(w, create=.true.)
 
-        call create_datasets(w, x)
+        call create_layout(w, x)
         call w%attr('status', 'incomplete')
         w%creating = .false.
     end procedure writer_create
@@ -74,61 +74,62 @@ contains
     !> /snapshots/t 1D, the fields (s+1, n_snap) growing by one row per snapshot, one row per
     !> chunk, so that each append writes whole chunks (see h5pset_cache_f). Their dimension
     !> scales: docs/output.md, "netCDF" (which says why /snapshots/x is a link to /mesh/x).
-    subroutine create_datasets(w, x)
+    subroutine create_layout(w, x)
         class(h5_writer_t), intent(inout) :: w
         real(dp), intent(in) :: x(0:)
         integer(hid_t) :: x_id
         integer :: hdferr, k
 
         call w%make_group('/mesh')
-        call create_fixed(w, '/mesh/x', H5T_IEEE_F64LE, x, x_id, &
-                          'position x along the rod (nondimensional, scale: position)', &
-                          '1', si='position', scale='x')
+        call w%create_dataset('/mesh/x', H5T_IEEE_F64LE, CHUNK, x_id, &
+                              'position x along the rod (nondimensional, scale: position)', &
+                              '1', si='position', scale='x', values=x)
         call w%make_group('/series')
         call w%start_buffered(w%series, N_SERIES, SERIES_BUFFER_SIZE)
         w%series%paths = '/series/'//SERIES%name
         w%series%whole = SERIES%is_integer
         associate (t => SERIES(S_T), ids => w%series%ids)
-            call w%create_extendible(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, CHUNK, &
-                                     ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
-                                     scale='t')
+            call w%create_dataset(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, CHUNK, &
+                                  ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
+                                  scale='t')
             call w%make_group('/snapshots')
-            call w%create_extendible('/snapshots/t', H5T_IEEE_F64LE, CHUNK, &
-                                     w%snap_t_id, described(t%long_name, t%scale), &
-                                     t%units, si=t%scale, scale='t')
+            call w%create_dataset('/snapshots/t', H5T_IEEE_F64LE, CHUNK, &
+                                  w%snap_t_id, described(t%long_name, t%scale), &
+                                  t%units, si=t%scale, scale='t')
         end associate
         do k = 1, N_SERIES
             if (k == S_T) cycle
             associate (f => SERIES(k), ids => w%series%ids)
-                call w%create_extendible(trim(w%series%paths(k)), &
-                                         merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
-                                         CHUNK, ids(k), described(f%long_name, f%scale), &
-                                         f%units, si=f%scale, coords=[ids(S_T)])
+                call w%create_dataset(trim(w%series%paths(k)), &
+                                      merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
+                                      CHUNK, ids(k), described(f%long_name, f%scale), &
+                                      f%units, si=f%scale, coords=[ids(S_T)])
             end associate
         end do
         do k = 1, N_SNAPSHOT_FIELDS
             associate (f => SNAPSHOTS(k))
-                call w%create_extendible('/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
-                                         [int(w%n_nodes, hsize_t), 1_hsize_t], w%snap_field_ids(k), &
-                                         described(f%long_name, f%scale), f%units, si=f%scale, &
-                                         coords=[w%snap_t_id, x_id], compress=.true.)
+                call w%create_dataset('/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
+                                      [int(w%n_nodes, hsize_t), 1_hsize_t], w%snap_field_ids(k), &
+                                      described(f%long_name, f%scale), f%units, si=f%scale, &
+                                      coords=[w%snap_t_id, x_id], compress=.true.)
             end associate
         end do
         call h5lcreate_hard_f(w%file_id, '/mesh/x', w%file_id, '/snapshots/x', hdferr)
         call w%check(hdferr, 'h5lcreate_hard_f /snapshots/x')
         call w%close_dataset(x_id, '/mesh/x')
-    end subroutine create_datasets
+    end subroutine create_layout
 
-    !> Create an empty dataset at `path` of chunks of shape `chunk`, whose last dimension is
-    !> unlimited (and 0), the others those of the chunk, and label it (label()). With compress and
+    !> Create a dataset at `path` and label it (label()): with `values`, 1D, written once and
+    !> whole (float64, or int32 from whole numbers); else empty, of chunks of shape `chunk`, its
+    !> last dimension unlimited (and 0), the others those of the chunk. With compress and
     !> compression > 0: shuffle and deflate, for datasets whose chunks are written once, whole
     !> (the snapshot fields: docs/output.md, "Chunks and compression", says why only they).
     !> Arguments (w, path, file_type, chunk, dset_id, long_name, units, si, scale, coords,
-    !> compress): output_m's interface.
-    module procedure writer_create_extendible
+    !> compress, values): output_m's interface.
+    module procedure writer_create_dataset
         logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
-        integer(hsize_t) :: dims(size(chunk)), maxdims(size(chunk))
+        integer(hsize_t) :: dims(size(chunk)), maxdims(size(chunk)), n(1)
         integer :: hdferr, rank
 
         rank = size(chunk)
@@ -136,12 +137,20 @@ contains
         dims(rank) = 0
         maxdims = chunk
         maxdims(rank) = H5S_UNLIMITED_F
-        call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
+        dcpl_id = H5P_DEFAULT_F
+        if (present(values)) then
+            n = int(size(values), hsize_t)
+            call h5screate_simple_f(1, n, space_id, hdferr)
+        else
+            call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
+        end if
         call w%check(hdferr, 'h5screate_simple_f '//path)
-        call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
-        call w%check(hdferr, 'h5pcreate_f (dataset creation) '//path)
-        call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
-        call w%check(hdferr, 'h5pset_chunk_f '//path)
+        if (.not. present(values)) then
+            call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
+            call w%check(hdferr, 'h5pcreate_f (dataset creation) '//path)
+            call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
+            call w%check(hdferr, 'h5pset_chunk_f '//path)
+        end if
         filtered = .false.
         if (present(compress)) filtered = compress .and. w%compression > 0
         if (filtered) then
@@ -154,11 +163,20 @@ contains
         end if
         call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
         call w%check(hdferr, 'h5dcreate_f '//path)
-        call h5pclose_f(dcpl_id, hdferr)
-        call w%check(hdferr, 'h5pclose_f (dataset creation) '//path)
+        if (present(values)) then
+            if (file_type == H5T_STD_I32LE .and. n(1) > 0) then   ! no conversion buffer (append_rows)
+                call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, nint(values), n, hdferr)
+            else if (n(1) > 0) then
+                call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values, n, hdferr)
+            end if
+            call w%check(hdferr, 'h5dwrite_f '//path)
+        else
+            call h5pclose_f(dcpl_id, hdferr)
+            call w%check(hdferr, 'h5pclose_f (dataset creation) '//path)
+        end if
         call close_spaces(w, path, space_id)
         call label(w, dset_id, path, long_name, units, si, scale, coords)
-    end procedure writer_create_extendible
+    end procedure writer_create_dataset
 
     !> Grow extendible dataset dset_id (`what`) along its last dimension from `offset` to
     !> offset + block(rank), and write values, block's elements in Fortran order, there; with
@@ -225,36 +243,6 @@ contains
         call w%check(hdferr, 'h5gclose_f '//path)
     end procedure writer_make_group
 
-    !> A 1D dataset at `path` of type file_type (float64, or int32 from whole numbers),
-    !> written once and whole, and labelled (label()): dset_id, open.
-    subroutine create_fixed(w, path, file_type, values, dset_id, long_name, units, si, &
-                            scale, coords)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: path, long_name, units
-        integer(hid_t), intent(in) :: file_type
-        real(dp), intent(in) :: values(:)
-        integer(hid_t), intent(out) :: dset_id
-        character(len=*), intent(in), optional :: si, scale
-        integer(hid_t), intent(in), optional :: coords(:)
-        integer(hid_t) :: space_id
-        integer :: hdferr
-
-        call h5screate_simple_f(1, [int(size(values), hsize_t)], space_id, hdferr)
-        call w%check(hdferr, 'h5screate_simple_f '//path)
-        call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr)
-        call w%check(hdferr, 'h5dcreate_f '//path)
-        if (size(values) > 0) then
-            if (file_type == H5T_STD_I32LE) then   ! no conversion buffer (append_rows)
-                call h5dwrite_f(dset_id, H5T_NATIVE_INTEGER, nint(values), [int(size(values), hsize_t)], hdferr)
-            else
-                call h5dwrite_f(dset_id, H5T_NATIVE_DOUBLE, values, [int(size(values), hsize_t)], hdferr)
-            end if
-            call w%check(hdferr, 'h5dwrite_f '//path)
-        end if
-        call close_spaces(w, path, space_id)
-        call label(w, dset_id, path, long_name, units, si, scale, coords)
-    end subroutine create_fixed
-
     !> /events/t (float64) and /events/kind (int32, +1 onset, -1 release), n_events long
     !> (possibly 0), written once at the end of the run; t is the coordinate of kind
     !> (docs/output.md, "netCDF").
@@ -265,14 +253,14 @@ contains
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call w%make_group('/events')
         associate (time => SERIES(S_T))
-            call create_fixed(w, '/events/t', H5T_IEEE_F64LE, t, t_id, &
-                              described(trim(time%long_name)//' of a change of the contact '// &
-                                        'state (interpolated in the step that crosses it)', &
-                                        time%scale), time%units, si=time%scale, scale='t')
+            call w%create_dataset('/events/t', H5T_IEEE_F64LE, CHUNK, t_id, &
+                                  described(trim(time%long_name)//' of a change of the contact '// &
+                                            'state (interpolated in the step that crosses it)', &
+                                            time%scale), time%units, si=time%scale, scale='t', values=t)
         end associate
-        call create_fixed(w, '/events/kind', H5T_STD_I32LE, real(kind, dp), kind_id, &
-                          'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
-                          '1', si='', coords=[t_id])
+        call w%create_dataset('/events/kind', H5T_STD_I32LE, CHUNK, kind_id, &
+                              'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
+                              '1', si='', coords=[t_id], values=real(kind, dp))
         call w%close_dataset(kind_id, '/events/kind')
         call w%close_dataset(t_id, '/events/t')
     end procedure writer_write_events

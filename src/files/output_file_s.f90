@@ -215,15 +215,6 @@ contains
         end if
     end procedure writer_fail
 
-    !> Close dataset dset_id (`what`, for the message) and mark it closed (-1).
-    module procedure writer_close_dataset
-        integer :: hdferr
-
-        call h5dclose_f(dset_id, hdferr)
-        call w%check(hdferr, 'h5dclose_f '//what)
-        dset_id = -1
-    end procedure writer_close_dataset
-
     !> Remove what SWMR writing made the run create in advance and it never used, so that
     !> the finished file holds what it held before SWMR: the second checkpoint slot of a run
     !> with one checkpoint, /snapshots/native of an adaptive mesh that never left the output

@@ -119,7 +119,7 @@ module output_m
         procedure, private :: start_buffered => writer_start_buffered
         procedure, private :: push => writer_push
         procedure, private :: write_buffer => writer_write_buffer
-        procedure, private :: create_extendible => writer_create_extendible
+        procedure, private :: create_dataset => writer_create_dataset
         procedure, private :: append_rows => writer_append_rows
         procedure, private :: close_dataset => writer_close_dataset
         procedure, private :: leave_swmr => writer_leave_swmr
@@ -165,12 +165,6 @@ module output_m
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_abandon
 
-        module subroutine writer_close_dataset(w, dset_id, what)
-            class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(inout) :: dset_id
-            character(len=*), intent(in) :: what
-        end subroutine writer_close_dataset
-
         module subroutine writer_create_native(w)
             class(h5_writer_t), intent(inout) :: w
         end subroutine writer_create_native
@@ -189,8 +183,8 @@ module output_m
             character(len=*), intent(in) :: path
         end subroutine writer_make_group
 
-        module subroutine writer_create_extendible(w, path, file_type, chunk, dset_id, long_name, &
-                                                   units, si, scale, coords, compress)
+        module subroutine writer_create_dataset(w, path, file_type, chunk, dset_id, long_name, &
+                                                units, si, scale, coords, compress, values)
             class(h5_writer_t), intent(inout) :: w
             character(len=*), intent(in) :: path, long_name, units
             integer(hid_t), intent(in) :: file_type
@@ -199,7 +193,8 @@ module output_m
             character(len=*), intent(in), optional :: si, scale
             integer(hid_t), intent(in), optional :: coords(:)
             logical, intent(in), optional :: compress
-        end subroutine writer_create_extendible
+            real(dp), intent(in), optional :: values(:)
+        end subroutine writer_create_dataset
 
         module subroutine writer_write_events(w, t, kind)
             class(h5_writer_t), intent(inout) :: w
@@ -374,6 +369,18 @@ contains
         if (hdferr >= 0) return
         call w%fail(what//' failed')
     end subroutine writer_check
+
+    !> Close dataset dset_id (`what`, for the message) and mark it closed (-1).
+    subroutine writer_close_dataset(w, dset_id, what)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(inout) :: dset_id
+        character(len=*), intent(in) :: what
+        integer :: hdferr
+
+        call h5dclose_f(dset_id, hdferr)
+        call w%check(hdferr, 'h5dclose_f '//what)
+        dset_id = -1
+    end subroutine writer_close_dataset
 
     !> Stop (exit 4) when the writer is not open: `what` came out of order.
     subroutine writer_need_open(w, what)

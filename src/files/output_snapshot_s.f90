@@ -48,15 +48,15 @@ contains
         call w%leave_swmr()
         call w%make_group(GROUP)
         w%native_created = .true.
-        call w%create_extendible(GROUP//'/x', H5T_IEEE_F64LE, VALUES_CHUNK, x_id, &
-                                 'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
-                                 '1', si='position', scale='x')
+        call w%create_dataset(GROUP//'/x', H5T_IEEE_F64LE, VALUES_CHUNK, x_id, &
+                              'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
+                              '1', si='position', scale='x')
         do k = 1, N_SNAPSHOT_FIELDS
             associate (f => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
-                call w%create_extendible(path, H5T_IEEE_F64LE, VALUES_CHUNK, dset_id, &
-                                         described(trim(f%long_name)//' at the nodes of its own '// &
-                                                   'mesh (native/x)', f%scale), &
-                                         f%units, si=f%scale, coords=[x_id])
+                call w%create_dataset(path, H5T_IEEE_F64LE, VALUES_CHUNK, dset_id, &
+                                      described(trim(f%long_name)//' at the nodes of its own '// &
+                                                'mesh (native/x)', f%scale), &
+                                      f%units, si=f%scale, coords=[x_id])
                 call w%close_dataset(dset_id, path)
             end associate
         end do
@@ -71,8 +71,8 @@ contains
         character(len=*), intent(in) :: name, long_name
         integer(hid_t) :: dset_id
 
-        call w%create_extendible(GROUP//'/'//name, H5T_STD_I64LE, CHUNK, dset_id, &
-                                 long_name, '1', si='', coords=[w%snap_t_id])
+        call w%create_dataset(GROUP//'/'//name, H5T_STD_I64LE, CHUNK, dset_id, &
+                              long_name, '1', si='', coords=[w%snap_t_id])
         call w%close_dataset(dset_id, GROUP//'/'//name)
     end subroutine create_index
 
@@ -120,11 +120,11 @@ contains
         do part = 1, size(ESTIMATE_PARTS)
             call w%make_group('/snapshots/'//trim(ESTIMATE_PARTS(part)))
             do k = 1, N_OUTPUT_FIELDS
-                call w%create_extendible(trim(paths(k, part)), H5T_IEEE_F64LE, CHUNK, &
-                                         w%estimates%ids(k + N_OUTPUT_FIELDS * (part - 1)), &
-                                         'estimated relative L2 error of '// &
-                                         trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
-                                         ' at each snapshot '//trim(WHAT(part)), '1')
+                call w%create_dataset(trim(paths(k, part)), H5T_IEEE_F64LE, CHUNK, &
+                                      w%estimates%ids(k + N_OUTPUT_FIELDS * (part - 1)), &
+                                      'estimated relative L2 error of '// &
+                                      trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
+                                      ' at each snapshot '//trim(WHAT(part)), '1')
             end do
         end do
     end subroutine open_estimate

@@ -21,8 +21,8 @@ module run_m
     use run_output_m, only: output_grid, write_series, write_dense_series, write_snapshot, write_dense_snapshots, &
                             write_error_estimate
     use error_companion_m, only: error_companions_t
-    use run_attributes_m, only: record_inputs, dataset_scales, record_scales, record_results
-    use provenance_m, only: record_provenance
+    use run_attributes_m, only: record_inputs, dataset_scales, record_scales, record_results, &
+                                record_provenance
     use progress_m, only: progress_t
     use version_m, only: PROGRAM_VERSION, SOURCE_VERSION
     implicit none

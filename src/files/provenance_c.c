@@ -1,4 +1,4 @@
-/* Provenance for provenance_m: the current time in UTC as ISO 8601 and the host name.
+/* Provenance for run_attributes_m: the current time in UTC as ISO 8601 and the host name.
  * In C because Fortran has neither gmtime nor gethostname. */
 #include <string.h>
 #include <time.h>

@@ -1,5 +1,7 @@
-!> The root attributes of a run besides its provenance (provenance_m): every input value
-!> at the start, the SI scales of &material, and at the end what the run did (steps,
+!> The root attributes of a run: every input value at the start, the SI scales of
+!> &material, where the file came from (docs/output.md, "Root attributes": when, on which
+!> host, by which command, from which source, with which HDF5 library and compiler; the time
+!> and host name from src/files/provenance_c.c), and at the end what the run did (steps,
 !> energy law, solver, step control and mesh counts, the error estimate) with its contact
 !> events.
 module run_attributes_m
@@ -17,13 +19,31 @@ module run_attributes_m
     use error_companion_m, only: error_companions_t
     use fields_m, only: FIELDS, N_OUTPUT_FIELDS, OUTPUT_ORDER
     use output_m, only: h5_writer_t, ESTIMATE_PARTS
+    use iso_c_binding, only: c_char, c_int
+    use iso_fortran_env, only: compiler_version
+    use hdf5, only: h5get_libversion_f
+    use strings_m, only: int_str, from_c_chars
     implicit none
     private
-    public :: record_inputs, dataset_scales, record_scales, record_results, ERROR_ESTIMATE_NONE
+    public :: record_inputs, dataset_scales, record_scales, record_results, record_provenance, ERROR_ESTIMATE_NONE
 
     !> The root attribute error_estimate of a run without &output error_estimate.
     character(len=*), parameter :: ERROR_ESTIMATE_NONE = &
         'none: set &output error_estimate=.true. or run scripts/converge.sh'
+
+    abstract interface
+        !> A helper of provenance_c.c: writes a NUL-terminated string of at most n characters
+        !> into buf, returns 0 (non-zero: it failed).
+        function c_helper(buf, n) bind(C) result(rc)
+            import :: c_char, c_int
+            character(kind=c_char), intent(out) :: buf(*)
+            integer(c_int), value :: n
+            integer(c_int) :: rc
+        end function c_helper
+    end interface
+
+    procedure(c_helper), bind(C, name='rc_utc_now') :: c_utc_now
+    procedure(c_helper), bind(C, name='rc_hostname') :: c_hostname
 
 contains
 
@@ -179,5 +199,53 @@ contains
             end do
         end do
     end subroutine record_error_estimate
+
+    !> The root attributes version (program_version) and the provenance: created (the UTC
+    !> time, ISO 8601: '2026-11-23T07:30:00Z'), source_version, host (gethostname(2)),
+    !> command_line, hdf5_version, compiler_version; 'unknown' for any it cannot get.
+    subroutine record_provenance(writer, program_version, source_version)
+        type(h5_writer_t), intent(inout) :: writer
+        character(len=*), intent(in) :: program_version, source_version
+
+        call writer%attr('version', program_version)
+        call writer%attr('created', c_text(c_utc_now))
+        call writer%attr('source_version', source_version)
+        call writer%attr('host', c_text(c_hostname))
+        call writer%attr('command_line', command_line())
+        call writer%attr('hdf5_version', hdf5_version())
+        call writer%attr('compiler_version', compiler_version())
+    end subroutine record_provenance
+
+    !> What the C helper `helper` writes, or 'unknown' when it fails.
+    function c_text(helper) result(text)
+        procedure(c_helper) :: helper
+        character(len=:), allocatable :: text
+        character(kind=c_char) :: buf(256)
+
+        text = 'unknown'
+        if (helper(buf, size(buf, kind=c_int)) == 0) text = from_c_chars(buf)
+    end function c_text
+
+    !> The command that started this run, as the shell passed it (arguments joined by ' ').
+    function command_line() result(text)
+        character(len=:), allocatable :: text
+        integer :: length, stat
+
+        text = 'unknown'
+        call get_command(length=length, status=stat)
+        if (stat > 0 .or. length == 0) return
+        text = repeat(' ', length)
+        call get_command(text)
+    end function command_line
+
+    !> 'major.minor.release' of the HDF5 library this program runs with.
+    function hdf5_version() result(text)
+        character(len=:), allocatable :: text
+        integer :: major, minor, release, hdferr
+
+        call h5get_libversion_f(major, minor, release, hdferr)
+        text = 'unknown'
+        if (hdferr >= 0) text = int_str(major)//'.'//int_str(minor)//'.'//int_str(release)
+    end function hdf5_version
 
 end module run_attributes_m

@@ -1,14 +1,22 @@
 !> Creating the writer's file (output_m's create), /events at the end of the run, the groups
 !> and datasets of the other parts (make_group, create_dataset), and their self-description
 !> (docs/output.md, "Datasets" and "netCDF"): CF-style long_name and units, with &material the
-!> factor to SI units, and the HDF5 dimension scales. A submodule of output_m, so that it sets
-!> up the writer's private state.
+!> factor to SI units, and the HDF5 dimension scales. And what a snapshot adds beyond the
+!> output grid: on an adaptive mesh the snapshot on its own mesh (/snapshots/native; every
+!> append opens, extends, writes and closes its datasets), and with &output error_estimate
+!> the estimates (/snapshots/error_estimate*; error_companion_m computes them), created by the
+!> first append, kept open until finish() and buffered as the series are. A submodule of
+!> output_m, so that it sets up the writer's private state.
 submodule (output_m) output_create_s
-    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F
+    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F, h5dopen_f, H5T_STD_I64LE
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
     integer(hsize_t), parameter :: CHUNK(1) = [int(SERIES_CHUNK, hsize_t)]
+    character(len=*), parameter :: GROUP = '/snapshots/native'
+    integer(hsize_t), parameter :: VALUES_CHUNK(1) = [4096_hsize_t]   !< float64 entries (32 KiB)
+    character(len=*), parameter :: WHAT(3) = [character(len=40) :: '(time and space)', &
+                                              '(time part)', '(space part)']
 
 contains
 
@@ -81,37 +89,37 @@ contains
         integer :: hdferr, k
 
         call w%make_group('/mesh')
-        call w%create_dataset('/mesh/x', H5T_IEEE_F64LE, CHUNK, x_id, &
-                              'position x along the rod (nondimensional, scale: position)', &
-                              '1', si='position', scale='x', values=x)
+        call create_dataset(w, '/mesh/x', H5T_IEEE_F64LE, CHUNK, x_id, &
+                            'position x along the rod (nondimensional, scale: position)', &
+                            '1', si='position', scale='x', values=x)
         call w%make_group('/series')
         call w%start_buffered(w%series, N_SERIES, SERIES_BUFFER_SIZE)
         w%series%paths = '/series/'//SERIES%name
         w%series%whole = SERIES%is_integer
         associate (t => SERIES(S_T), ids => w%series%ids)
-            call w%create_dataset(trim(w%series%paths(S_T)), H5T_IEEE_F64LE, CHUNK, &
-                                  ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
-                                  scale='t')
+            call create_dataset(w, trim(w%series%paths(S_T)), H5T_IEEE_F64LE, CHUNK, &
+                                ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
+                                scale='t')
             call w%make_group('/snapshots')
-            call w%create_dataset('/snapshots/t', H5T_IEEE_F64LE, CHUNK, &
-                                  w%snap_t_id, described(t%long_name, t%scale), &
-                                  t%units, si=t%scale, scale='t')
+            call create_dataset(w, '/snapshots/t', H5T_IEEE_F64LE, CHUNK, &
+                                w%snap_t_id, described(t%long_name, t%scale), &
+                                t%units, si=t%scale, scale='t')
         end associate
         do k = 1, N_SERIES
             if (k == S_T) cycle
             associate (f => SERIES(k), ids => w%series%ids)
-                call w%create_dataset(trim(w%series%paths(k)), &
-                                      merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
-                                      CHUNK, ids(k), described(f%long_name, f%scale), &
-                                      f%units, si=f%scale, coords=[ids(S_T)])
+                call create_dataset(w, trim(w%series%paths(k)), &
+                                    merge(H5T_STD_I32LE, H5T_IEEE_F64LE, f%is_integer), &
+                                    CHUNK, ids(k), described(f%long_name, f%scale), &
+                                    f%units, si=f%scale, coords=[ids(S_T)])
             end associate
         end do
         do k = 1, N_SNAPSHOT_FIELDS
             associate (f => SNAPSHOTS(k))
-                call w%create_dataset('/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
-                                      [int(w%n_nodes, hsize_t), 1_hsize_t], w%snap_field_ids(k), &
-                                      described(f%long_name, f%scale), f%units, si=f%scale, &
-                                      coords=[w%snap_t_id, x_id], compress=.true.)
+                call create_dataset(w, '/snapshots/'//trim(f%name), H5T_IEEE_F64LE, &
+                                    [int(w%n_nodes, hsize_t), 1_hsize_t], w%snap_field_ids(k), &
+                                    described(f%long_name, f%scale), f%units, si=f%scale, &
+                                    coords=[w%snap_t_id, x_id], compress=.true.)
             end associate
         end do
         call h5lcreate_hard_f(w%file_id, '/mesh/x', w%file_id, '/snapshots/x', hdferr)
@@ -124,31 +132,38 @@ contains
     !> last dimension unlimited (and 0), the others those of the chunk. With compress and
     !> compression > 0: shuffle and deflate, for datasets whose chunks are written once, whole
     !> (the snapshot fields: docs/output.md, "Chunks and compression", says why only they).
-    !> Arguments (w, path, file_type, chunk, dset_id, long_name, units, si, scale, coords,
-    !> compress, values): output_m's interface.
-    module procedure writer_create_dataset
+    subroutine create_dataset(w, path, file_type, chunk, dset_id, long_name, units, si, scale, coords, &
+                              compress, values)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: path, long_name, units
+        integer(hid_t), intent(in) :: file_type
+        integer(hsize_t), intent(in) :: chunk(:)
+        integer(hid_t), intent(out) :: dset_id
+        character(len=*), intent(in), optional :: si, scale
+        integer(hid_t), intent(in), optional :: coords(:)
+        logical, intent(in), optional :: compress
+        real(dp), intent(in), optional :: values(:)
         logical :: filtered
         integer(hid_t) :: space_id, dcpl_id
         integer(hsize_t) :: dims(size(chunk)), maxdims(size(chunk)), n(1)
-        integer :: hdferr, rank
+        integer :: hdferr
 
-        rank = size(chunk)
         dims = chunk
-        dims(rank) = 0
+        dims(size(chunk)) = 0
         maxdims = chunk
-        maxdims(rank) = H5S_UNLIMITED_F
+        maxdims(size(chunk)) = H5S_UNLIMITED_F
         dcpl_id = H5P_DEFAULT_F
         if (present(values)) then
             n = int(size(values), hsize_t)
             call h5screate_simple_f(1, n, space_id, hdferr)
         else
-            call h5screate_simple_f(rank, dims, space_id, hdferr, maxdims)
+            call h5screate_simple_f(size(chunk), dims, space_id, hdferr, maxdims)
         end if
         call w%check(hdferr, 'h5screate_simple_f '//path)
         if (.not. present(values)) then
             call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl_id, hdferr)
             call w%check(hdferr, 'h5pcreate_f (dataset creation) '//path)
-            call h5pset_chunk_f(dcpl_id, rank, chunk, hdferr)
+            call h5pset_chunk_f(dcpl_id, size(chunk), chunk, hdferr)
             call w%check(hdferr, 'h5pset_chunk_f '//path)
         end if
         filtered = .false.
@@ -176,7 +191,7 @@ contains
         end if
         call close_spaces(w, path, space_id)
         call label(w, dset_id, path, long_name, units, si, scale, coords)
-    end procedure writer_create_dataset
+    end subroutine create_dataset
 
     !> Grow extendible dataset dset_id (`what`) along its last dimension from `offset` to
     !> offset + block(rank), and write values, block's elements in Fortran order, there; with
@@ -253,25 +268,27 @@ contains
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
         call w%make_group('/events')
         associate (time => SERIES(S_T))
-            call w%create_dataset('/events/t', H5T_IEEE_F64LE, CHUNK, t_id, &
-                                  described(trim(time%long_name)//' of a change of the contact '// &
-                                            'state (interpolated in the step that crosses it)', &
-                                            time%scale), time%units, si=time%scale, scale='t', values=t)
+            call create_dataset(w, '/events/t', H5T_IEEE_F64LE, CHUNK, t_id, &
+                                described(trim(time%long_name)//' of a change of the contact '// &
+                                          'state (interpolated in the step that crosses it)', &
+                                          time%scale), time%units, si=time%scale, scale='t', values=t)
         end associate
-        call w%create_dataset('/events/kind', H5T_STD_I32LE, CHUNK, kind_id, &
-                              'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
-                              '1', si='', coords=[t_id], values=real(kind, dp))
+        call create_dataset(w, '/events/kind', H5T_STD_I32LE, CHUNK, kind_id, &
+                            'contact event: +1 onset (the rod end reaches the obstacle), -1 release', &
+                            '1', si='', coords=[t_id], values=real(kind, dp))
         call w%close_dataset(kind_id, '/events/kind')
         call w%close_dataset(t_id, '/events/t')
     end procedure writer_write_events
 
     !> A dataset's long_name: the table's, and for a nondimensional quantity the scale of
     !> (2.10) it is measured in (root attribute scale.<scale> with &material).
-    module procedure described
+    pure function described(long_name, scale) result(text)
+        character(len=*), intent(in) :: long_name, scale
+        character(len=:), allocatable :: text
 
         text = trim(long_name)
         if (scale /= '') text = text//' (nondimensional, scale: '//trim(scale)//')'
-    end procedure described
+    end function described
 
     !> The CF-style attributes of dataset dset_id (`path`): long_name and units ('1':
     !> nondimensional), and when its quantity has fields_m's scale `si`, one of create()'s
@@ -307,5 +324,119 @@ contains
             call w%check(hdferr, 'h5dsattach_scale_f '//path)
         end do
     end subroutine label
+
+    !> Append one snapshot on its own mesh: nodes x(0:s), values(0:s, k) of the field
+    !> fields_m's SNAPSHOTS(k).
+    module procedure writer_append_native
+        integer(hsize_t) :: n, at
+        integer :: k
+
+        call w%need_open('append_native()')
+        if (size(values, 1) /= size(x) .or. size(values, 2) /= N_SNAPSHOT_FIELDS) &
+            call w%fail('internal error: append_native() given fields that do not match the nodes')
+        if (.not. w%native_created) call writer_create_native(w)
+        n = int(size(x), hsize_t)
+        at = int(w%n_native_values, hsize_t)
+        call append(w, 'x', at, x)
+        do k = 1, N_SNAPSHOT_FIELDS
+            call append(w, trim(SNAPSHOTS(k)%name), at, values(:, k))
+        end do
+        ! int64, written from a double (exact below 2^53)
+        call append(w, 'offset', w%n_native_snap, [real(w%n_native_values, dp)])
+        call append(w, 'count', w%n_native_snap, [real(n, dp)])
+        w%n_native_values = w%n_native_values + int(n, int64)
+        w%n_native_snap = w%n_native_snap + 1
+    end procedure writer_append_native
+
+    !> The group and its empty datasets with their dimension scales (docs/output.md, "netCDF").
+    !> Created by the first append, or by the first checkpoint of an adaptive mesh
+    !> (write_checkpoint), so that SWMR writing need not end for it later (output_file_s).
+    module procedure writer_create_native
+        integer(hid_t) :: dset_id, x_id
+        integer :: k
+
+        call w%leave_swmr()
+        call w%make_group(GROUP)
+        w%native_created = .true.
+        call create_dataset(w, GROUP//'/x', H5T_IEEE_F64LE, VALUES_CHUNK, x_id, &
+                            'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
+                            '1', si='position', scale='x')
+        do k = 1, N_SNAPSHOT_FIELDS
+            associate (f => SNAPSHOTS(k), path => GROUP//'/'//trim(SNAPSHOTS(k)%name))
+                call create_dataset(w, path, H5T_IEEE_F64LE, VALUES_CHUNK, dset_id, &
+                                    described(trim(f%long_name)//' at the nodes of its own '// &
+                                              'mesh (native/x)', f%scale), &
+                                    f%units, si=f%scale, coords=[x_id])
+                call w%close_dataset(dset_id, path)
+            end associate
+        end do
+        call w%close_dataset(x_id, GROUP//'/x')
+        call create_index(w, 'offset', 'first entry of each snapshot in native/x and the fields')
+        call create_index(w, 'count', 'number of nodes of each snapshot''s mesh')
+    end procedure writer_create_native
+
+    !> GROUP/name, int64, one entry per snapshot: its coordinate is /snapshots/t.
+    subroutine create_index(w, name, long_name)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name, long_name
+        integer(hid_t) :: dset_id
+
+        call create_dataset(w, GROUP//'/'//name, H5T_STD_I64LE, CHUNK, dset_id, &
+                            long_name, '1', si='', coords=[w%snap_t_id])
+        call w%close_dataset(dset_id, GROUP//'/'//name)
+    end subroutine create_index
+
+    !> Append values to GROUP/name from entry `at` (every append opens and closes it).
+    subroutine append(w, name, at, values)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=*), intent(in) :: name
+        integer(hsize_t), intent(in) :: at
+        real(dp), intent(in) :: values(:)
+        integer(hid_t) :: dset_id
+        integer :: hdferr
+
+        call h5dopen_f(w%file_id, GROUP//'/'//name, dset_id, hdferr)
+        call w%check(hdferr, 'h5dopen_f '//GROUP//'/'//name)
+        call w%append_rows(dset_id, GROUP//'/'//name, at, [int(size(values), hsize_t)], values)
+        call w%close_dataset(dset_id, GROUP//'/'//name)
+    end subroutine append
+
+    !> Append one snapshot's estimates: values(k, part) of field OUTPUT_ORDER(k), part 1 the
+    !> total, 2 the time part, 3 the space part. Buffered for SERIES_CHUNK snapshots and
+    !> written when the buffer is full and at every flush() (18 small writes per snapshot
+    !> would cost more than the estimate).
+    module procedure writer_append_estimate
+
+        call w%need_open('append_estimate()')
+        if (.not. allocated(w%estimates%ids)) call open_estimate(w)
+        call w%push(w%estimates, reshape(values, [size(values)]))
+    end procedure writer_append_estimate
+
+    !> The groups and their datasets: created by the first append of the file (a restart's
+    !> copy of the history included), kept open.
+    subroutine open_estimate(w)
+        class(h5_writer_t), intent(inout) :: w
+        character(len=64) :: paths(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS))
+        integer :: k, part
+
+        call w%leave_swmr()   ! new groups: not in SWMR writing (output_file_s)
+        do part = 1, size(ESTIMATE_PARTS)
+            do k = 1, N_OUTPUT_FIELDS
+                paths(k, part) = estimate_path(part, k)
+            end do
+        end do
+        call w%start_buffered(w%estimates, size(paths), SERIES_CHUNK)
+        w%estimates%paths = [paths]
+        do part = 1, size(ESTIMATE_PARTS)
+            call w%make_group('/snapshots/'//trim(ESTIMATE_PARTS(part)))
+            do k = 1, N_OUTPUT_FIELDS
+                call create_dataset(w, trim(paths(k, part)), H5T_IEEE_F64LE, CHUNK, &
+                                    w%estimates%ids(k + N_OUTPUT_FIELDS * (part - 1)), &
+                                    'estimated relative L2 error of '// &
+                                    trim(FIELDS(OUTPUT_ORDER(k))%long_name)// &
+                                    ' at each snapshot '//trim(WHAT(part)), '1')
+            end do
+        end do
+    end subroutine open_estimate
 
 end submodule output_create_s

@@ -85,11 +85,11 @@ module output_m
         integer(hsize_t) :: n_native_snap = 0      !< snapshots in /snapshots/native (adaptive mesh)
         integer(int64) :: n_native_values = 0      !< entries of /snapshots/native/x
         type(si_scale_t), allocatable :: si(:)     !< the datasets' SI scales (create(), &material)
-        !> /snapshots/error_estimate*/<field> (estimate_path), from the first append (output_snapshot_s)
+        !> /snapshots/error_estimate*/<field> (estimate_path), from the first append (output_create_s)
         type(buffered_t) :: estimates
         logical :: swmr = .false.                  !< the file is in SWMR write mode (output_file_s)
         logical :: closing = .false.               !< inside finish(): flush() leaves SWMR mode off
-        logical :: native_created = .false.        !< /snapshots/native exists (output_snapshot_s)
+        logical :: native_created = .false.        !< /snapshots/native exists (output_create_s)
         integer :: n_checkpoints = 0               !< checkpoints written
         !> the checkpoint's datasets, open from the first checkpoint (output_checkpoint_s),
         !> each known by its first entry
@@ -119,7 +119,6 @@ module output_m
         procedure, private :: start_buffered => writer_start_buffered
         procedure, private :: push => writer_push
         procedure, private :: write_buffer => writer_write_buffer
-        procedure, private :: create_dataset => writer_create_dataset
         procedure, private :: append_rows => writer_append_rows
         procedure, private :: close_dataset => writer_close_dataset
         procedure, private :: leave_swmr => writer_leave_swmr
@@ -183,19 +182,6 @@ module output_m
             character(len=*), intent(in) :: path
         end subroutine writer_make_group
 
-        module subroutine writer_create_dataset(w, path, file_type, chunk, dset_id, long_name, &
-                                                units, si, scale, coords, compress, values)
-            class(h5_writer_t), intent(inout) :: w
-            character(len=*), intent(in) :: path, long_name, units
-            integer(hid_t), intent(in) :: file_type
-            integer(hsize_t), intent(in) :: chunk(:)
-            integer(hid_t), intent(out) :: dset_id
-            character(len=*), intent(in), optional :: si, scale
-            integer(hid_t), intent(in), optional :: coords(:)
-            logical, intent(in), optional :: compress
-            real(dp), intent(in), optional :: values(:)
-        end subroutine writer_create_dataset
-
         module subroutine writer_write_events(w, t, kind)
             class(h5_writer_t), intent(inout) :: w
             real(dp), intent(in) :: t(:)
@@ -218,11 +204,6 @@ module output_m
             type(checkpoint_t), intent(in) :: ckpt
             character(len=*), intent(in) :: note
         end subroutine writer_write_checkpoint
-
-        pure module function described(long_name, scale) result(text)
-            character(len=*), intent(in) :: long_name, scale
-            character(len=:), allocatable :: text
-        end function described
     end interface
 
 contains

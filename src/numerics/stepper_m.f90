@@ -267,14 +267,10 @@ contains
                 self%u_star = (plan%a * state%u - plan%b * state%u_prev) / plan%d
                 self%w_star = (plan%a * state%w - plan%b * state%w_prev) / plan%d
                 call start_rhs(self, self%step_model, plan%dt_eff, t_source, self%u_star, self%w_star)
-                call advance_monolithic(self, self%cache%systems(k), state, .true., result)
-            else if (plan%midpoint) then
-                call start_rhs(self, self%step_model, plan%dt_eff, t_source, state%u, state%w)
-                call advance_midpoint(self, self%cache%systems(k), state, result)
             else
                 call start_rhs(self, self%step_model, plan%dt_eff, t_source, state%u, state%w)
-                call advance_monolithic(self, self%cache%systems(k), state, .false., result)
             end if
+            call advance_monolithic(self, self%cache%systems(k), state, plan, result)
         end select
         if (.not. result%ok) return
         call accept_step(state, step_size, t_new)
@@ -299,37 +295,57 @@ contains
         call scatter_fields(self%slots, self%b, self%x)
     end subroutine start_rhs
 
-    !> One monolithic step from the state itself (from_star = .false.) or from the level
-    !> u_star, w_star (from_star = .true., multistep schemes); the right-hand side is in x.
-    subroutine advance_monolithic(self, sys, state, from_star, result)
+    !> One step of plan (time_scheme_m), its right-hand side in x. Euler (6.1): from the
+    !> state, or from u_star, w_star (from_history: multistep schemes). Midpoint: the half
+    !> level Y = X^{n-1/2} is the Euler step of size dt/2 from X^{n-1} with the
+    !> discrete-gradient force (contact_law_m's midpoint_impulse); X^n = 2 Y - X^{n-1}, but
+    !> X^n = Y for the algebraic fields, and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new
+    !> (its columns of fields outside the system stay zero from set-up).
+    subroutine advance_monolithic(self, sys, state, plan, result)
         type(stepper_t), intent(inout) :: self
         type(monolithic_system_t), intent(in) :: sys
         type(state_t), intent(inout) :: state
-        logical, intent(in) :: from_star
+        type(step_plan_t), intent(in) :: plan
         type(step_result_t), intent(inout) :: result
-        real(dp) :: gap, impulse, u_end_from
+        real(dp) :: impulse, u_end_from
+        integer :: f
 
         call sys%solve(self%x)   ! the solution without contact force
         result%iterations = 1
+        u_end_from = state%u(self%s)
+        if (plan%from_history) u_end_from = self%u_star(self%s)
         ! The trial gap without contact force decides the contact state; the contact row
         ! carries dt*lambda, so x = y - dt*lambda*z (contact_law_m's implicit_impulse).
-        if (from_star) then
-            u_end_from = self%u_star(self%s)
-        else
-            u_end_from = state%u(self%s)
-        end if
-        associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof))
-            gap = u_end_from + dt * self%x(sys%contact_dof) - self%law%g
-            impulse = self%law%implicit_impulse(gap, dt, z_s)
+        associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), y_s => self%x(sys%contact_dof))
+            if (plan%midpoint) then
+                impulse = self%law%midpoint_impulse(u_end_from + dt * y_s, u_end_from, dt, z_s)
+                result%trial_gap = u_end_from + 2.0_dp * dt * y_s - self%law%g
+            else
+                result%trial_gap = u_end_from + dt * y_s - self%law%g
+                impulse = self%law%implicit_impulse(result%trial_gap, dt, z_s)
+            end if
         end associate
-        result%trial_gap = gap
         call apply_contact(self, sys, impulse, result)
         if (.not. result%ok) return
+        if (plan%midpoint) then
+            call gather_fields(self%slots, self%x, self%w_new)
+            do f = 1, N_FIELDS
+                if (self%algebraic(f)) then
+                    state%w(:, f) = self%w_new(:, f)
+                else
+                    state%w(:, f) = 2.0_dp * self%w_new(:, f) - state%w(:, f)
+                end if
+            end do
+            state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
+            call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, &
+                            state%u, state%w(:, F_V), self%w_new(self%s, F_V))
+            return
+        end if
         ! multistep schemes: X^{n-1} is kept before the step overwrites it
         if (self%scheme%row%keeps_previous_level) &
             call keep_copy(state%u, state%w, state%u_prev, state%w_prev, 'the previous level')
         call gather_fields(self%slots, self%x, state%w)
-        if (from_star) then
+        if (plan%from_history) then
             state%u = self%u_star + sys%dt_eff * state%w(:, F_V)
         else
             state%u = state%u + sys%dt_eff * state%w(:, F_V)
@@ -337,40 +353,6 @@ contains
         call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, &
                         state%u)
     end subroutine advance_monolithic
-
-    !> One step of the midpoint rule (time_scheme_m): the half level Y = X^{n-1/2} is the
-    !> Euler step of size dt_eff = dt/2 from X^{n-1} with the discrete-gradient contact
-    !> force (contact_law_m's midpoint_impulse); then X^n = 2 Y - X^{n-1}, except for the
-    !> algebraic fields (X^n = Y), and u^n = u^{n-1} + dt v^{n-1/2}. Y stays in w_new (whose
-    !> columns of fields left out of the system stay zero from set-up).
-    subroutine advance_midpoint(self, sys, state, result)
-        type(stepper_t), intent(inout) :: self
-        type(monolithic_system_t), intent(in) :: sys
-        type(state_t), intent(inout) :: state
-        type(step_result_t), intent(inout) :: result
-        real(dp) :: impulse
-        integer :: f
-
-        call sys%solve(self%x)   ! the solution without contact force
-        result%iterations = 1
-        associate (dt => sys%dt_eff, z_s => sys%z(sys%contact_dof), u_old => state%u(self%s))
-            impulse = self%law%midpoint_impulse(u_old + dt * self%x(sys%contact_dof), u_old, dt, z_s)
-            result%trial_gap = u_old + 2.0_dp * dt * self%x(sys%contact_dof) - self%law%g
-        end associate
-        call apply_contact(self, sys, impulse, result)
-        if (.not. result%ok) return
-        call gather_fields(self%slots, self%x, self%w_new)
-        do f = 1, N_FIELDS
-            if (self%algebraic(f)) then
-                state%w(:, f) = self%w_new(:, f)
-            else
-                state%w(:, f) = 2.0_dp * self%w_new(:, f) - state%w(:, f)
-            end if
-        end do
-        state%u = state%u + 2.0_dp * sys%dt_eff * self%w_new(:, F_V)
-        call settle_end(self%step_model, self%law, self%mesh%h(self%s), result%contact_force > 0.0_dp, state%u, &
-                        state%w(:, F_V), self%w_new(self%s, F_V))
-    end subroutine advance_midpoint
 
     !> x = y - (dt lambda) z: the contact row carries dt lambda (impulse); lambda is reported.
     !> A non-finite solution fails the step (unless check_finite is off).

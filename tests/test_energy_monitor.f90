@@ -7,8 +7,8 @@
 !>  2. BDF2: the law's energy is the G-energy (E_lin(X^n) + E_lin(2 X^n - X^{n-1}))/2 +
 !>     penalty(u^n); no rise is recorded before the first level with a previous level; a rise
 !>     at a step of another size (step_changed) goes to max_rise_step_change, not max_rise;
-!>  3. a remesh (remeshed) gives the rise of the law energy across it, which the mesh's
-!>     record_remesh keeps as max_rise_remesh and counts (as remesh_m does), apart from max_rise.
+!>  3. a remesh (remeshed) gives the rise of the law energy across it, which the monitor
+!>     keeps as max_rise_remesh and counts, apart from max_rise, also through a checkpoint.
 !>  4. energy_m's discrete_energy (E_lin without a contact law), summed by nodes on a uniform
 !>     mesh, against E_lin written out here and against its own sum by elements on the same
 !>     nodes as a graded mesh, to round-off, on a smooth and on a sawtooth level (where the
@@ -79,11 +79,12 @@ contains
     end subroutine euler_checks
 
     subroutine bdf2_checks()
-        type(energy_monitor_t) :: monitor
+        type(energy_monitor_t) :: monitor, monitor2
         type(state_t) :: x1, x2, x3, x4
         type(checkpoint_t) :: ckpt
         real(dp) :: law_energy
         real(dp) :: rise, max_rise, max_rise_step_change, rise_remesh
+        integer :: n_remeshes
 
         call monitor%init(MODEL, MODEL, law, time_scheme('bdf2'), x0)
         x1 = with_previous(level(0.9_dp, 0.04_dp), x0)
@@ -108,15 +109,24 @@ contains
         call check_close('BDF2: a rise at a changed step is not in max_rise', rise, max_rise, TOL)
         call check_close('BDF2: a rise at a changed step is in max_rise_step_change', &
                          (g_energy(x3, x2) - g_energy(x2, x1)) / g_energy(x2, x1), max_rise_step_change, TOL)
-        ! a remesh as remesh_m records it: the monitor measures the rise, the mesh keeps it
+        ! a remesh as step_driver_m records it: the monitor measures the rise and keeps it
         x4 = with_previous(level(2.0_dp, 0.11_dp), x3)
-        call monitor%remeshed(x4, rise_remesh)
-        call x4%mesh%record_remesh(rise_remesh)
-        call monitor%rises(max_rise, max_rise_step_change)
-        call check_true('BDF2: a remesh is counted', x4%mesh%n_remeshes() == 1)
+        call monitor%remeshed(x4)
+        call monitor%rises(max_rise, max_rise_step_change, rise_remesh, n_remeshes)
+        call check_true('BDF2: a remesh is counted', n_remeshes == 1)
         call check_close('BDF2: max_rise_remesh', (g_energy(x4, x3) - g_energy(x3, x2)) / g_energy(x3, x2), &
-                         x4%mesh%max_rise_remesh(), TOL)
+                         rise_remesh, TOL)
         call check_close('BDF2: a remesh leaves max_rise', rise, max_rise, TOL)
+        ! the remesh record through a checkpoint, on a new monitor
+        ckpt = checkpoint_t()
+        call monitor%checkpoint(ckpt)
+        ckpt%reading = .true.
+        call monitor2%init(MODEL, MODEL, law, time_scheme('bdf2'), x0)
+        call monitor2%checkpoint(ckpt)
+        call monitor2%rises(max_rise, max_rise_step_change, rise_remesh, n_remeshes)
+        call check_true('BDF2: a checkpoint keeps the remesh count', n_remeshes == 1)
+        call check_close('BDF2: a checkpoint keeps max_rise_remesh', &
+                         (g_energy(x4, x3) - g_energy(x3, x2)) / g_energy(x3, x2), rise_remesh, TOL)
     end subroutine bdf2_checks
 
     !> A level on the uniform mesh of n elements (S if absent): every field a different smooth

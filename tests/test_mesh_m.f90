@@ -1,14 +1,12 @@
 !> The mesh type (mesh_m): the uniform mesh is the graded mesh with h_e = 1/s exactly; its
 !> mass and stiffness products (written-out kernel for the uniform mesh, per-element sizes
-!> for a graded one) against the dense matrices assembled from fe_m's element matrices; the
-!> remesh counters survive new nodes, copies and checkpoints; a copy takes the nodes of its source also
-!> when both have the same number of elements.
+!> for a graded one) against the dense matrices assembled from fe_m's element matrices; a copy
+!> takes the nodes of its source also when both have the same number of elements.
 program test_mesh_m
     use kinds_m, only: dp
     use fe_m, only: mesh_nodes, element_mass, element_stiffness
     use mesh_m, only: mesh_t, copy_mesh
     use meshes_m, only: uniform_mesh, graded_mesh
-    use checkpoint_m, only: checkpoint_t
     use testing_m, only: check_close, check_true, test_summary
     implicit none
     real(dp), parameter :: X_GRADED(0:4) = [0.0_dp, 0.125_dp, 0.25_dp, 0.5_dp, 1.0_dp]
@@ -26,7 +24,7 @@ program test_mesh_m
                      maxval(abs(graded%h - [0.125_dp, 0.125_dp, 0.25_dp, 0.5_dp])), 0.0_dp)
     call check_products(uniform, 'uniform')
     call check_products(graded, 'graded')
-    call check_counters()
+    call check_copies()
     call test_summary('test_mesh_m')
 
 contains
@@ -52,38 +50,23 @@ contains
         call check_close(name//': |K f - dense K f|', 0.0_dp, maxval(abs(y - matmul(k, f))), 1.0e-13_dp)
     end subroutine check_products
 
-    !> record_remesh counts and keeps the largest rise; set_nodes and copy_mesh keep both.
-    subroutine check_counters()
+    !> copy_mesh between a graded and a uniform mesh of the same size.
+    subroutine check_copies()
         type(mesh_t) :: mesh
-        type(checkpoint_t) :: ckpt
 
         mesh = uniform_mesh(4)
-        call mesh%record_remesh(0.0_dp)
         call mesh%set_nodes(X_GRADED)
-        call mesh%record_remesh(1.0e-14_dp)
-        call mesh%record_remesh(-1.0e-3_dp)
-        call check_true('3 remeshes counted', mesh%n_remeshes() == 3)
-        call check_close('largest rise across a remesh', 1.0e-14_dp, mesh%max_rise_remesh(), 0.0_dp)
         ! a copy onto a uniform mesh of the same size takes the graded nodes, and back
         copy = uniform_mesh(4)
         call copy_mesh(mesh, copy)
-        call check_true('copy of a graded mesh: graded, its counters', &
-                        .not. copy%is_uniform() .and. copy%n_remeshes() == 3)
+        call check_true('copy of a graded mesh: graded', .not. copy%is_uniform())
         call check_close('copy of a graded mesh: its nodes', 0.0_dp, maxval(abs(copy%x - X_GRADED)), 0.0_dp)
         call check_close('copy of a graded mesh: its sizes', 0.0_dp, maxval(abs(copy%h - mesh%h)), 0.0_dp)
-        call check_close('copy of a graded mesh: its largest rise', 1.0e-14_dp, copy%max_rise_remesh(), 0.0_dp)
         call copy_mesh(uniform_mesh(4), copy)
-        call check_true('copy of a uniform mesh onto a graded one: uniform, no remesh', &
-                        copy%is_uniform() .and. copy%n_remeshes() == 0)
+        call check_true('copy of a uniform mesh onto a graded one: uniform', copy%is_uniform())
         call check_close('copy of a uniform mesh onto a graded one of the same size: uniform nodes', 0.0_dp, &
                          maxval(abs(copy%x - mesh_nodes(4))), 0.0_dp)
         call check_close('... and sizes', 0.0_dp, maxval(abs(copy%h - 0.25_dp)), 0.0_dp)
-        ! the counters through a checkpoint
-        call mesh%checkpoint(ckpt)
-        ckpt%reading = .true.
-        call copy%checkpoint(ckpt)
-        call check_true('a checkpoint keeps the remesh count', copy%n_remeshes() == 3)
-        call check_close('a checkpoint keeps the largest rise', 1.0e-14_dp, copy%max_rise_remesh(), 0.0_dp)
-    end subroutine check_counters
+    end subroutine check_copies
 
 end program test_mesh_m

@@ -214,7 +214,7 @@ contains
     !> Adapt the mesh to the level in state and, if it changed, move every time level the
     !> run holds onto it (the state, the level before of a multistep scheme, the estimator's
     !> levels: transfer_m), hand it to the stepper, let the monitor measure the law energy
-    !> across the move and count the remesh on the state's mesh (mesh_m).
+    !> across the move and count the remesh (energy_m).
     subroutine driver_remesh(self, mesh, state, stepper, monitor, changed)
         class(step_driver_t), intent(inout) :: self
         type(adaptive_mesh_t), intent(inout) :: mesh
@@ -224,7 +224,6 @@ contains
         logical, intent(out) :: changed
         integer(int64), allocatable :: k_old(:)
         real(dp), allocatable :: levels_old(:, :, :)
-        real(dp) :: rise
         integer :: j, stat
         character(len=256) :: message
 
@@ -240,8 +239,7 @@ contains
             call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), self%estimator%levels(:, :, j), &
                                 stepper%model)
         end do
-        call monitor%remeshed(state, rise)
-        call state%mesh%record_remesh(rise)
+        call monitor%remeshed(state)
     end subroutine driver_remesh
 
     !> 'step n (t = ...): reason' for a failure message, the status attribute and a

@@ -296,7 +296,7 @@ contains
 
     !> /checkpoint: every type that the run continues from saves itself (checkpoint_m's sync)
     !> and the checkpoint is written; or, given `from` (read from a file: restart_m), each gets
-    !> itself back from it, the state and its mesh first, then the adaptive mesh (which resizes
+    !> itself back from it, the state first, then the adaptive mesh (which resizes
     !> the stepper and the monitor to the state's mesh) before the others. So a restart
     !> continues exactly, and the save and the restore name the same entries.
     subroutine checkpoint(run, cfg, from)
@@ -308,7 +308,6 @@ contains
 
         if (present(from)) ckpt = from
         call run%state%checkpoint(ckpt, 'state')
-        call run%state%mesh%checkpoint(ckpt)
         if (cfg%mesh%adaptive) then
             call run%mesh%checkpoint(ckpt)
             call ckpt%sync('run/n_elements_max', run%n_elements_max)

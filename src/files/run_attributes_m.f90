@@ -132,14 +132,15 @@ contains
         integer, intent(in) :: n_elements_max
         type(event_log_t) :: events
         type(energy_law_t) :: scheme_law
-        real(dp) :: max_rise, max_rise_step_change
+        real(dp) :: max_rise, max_rise_step_change, max_rise_remesh
+        integer :: n_remeshes
 
         events = driver%events_log()
         call writer%write_events(events%times(), events%kinds())
         call writer%attr('steps', state%step)
         call writer%attr('t_final', state%t)
         call writer%attr('wall_seconds', wall_seconds)
-        call monitor%rises(max_rise, max_rise_step_change)
+        call monitor%rises(max_rise, max_rise_step_change, max_rise_remesh, n_remeshes)
         call writer%attr('energy_max_relative_rise', max_rise)
         scheme_law = stepper%scheme%row%law
         if (scheme_law%constant_steps .and. (cfg%time%adaptive .or. cfg%output%snapshot_dt > 0.0_dp)) &
@@ -151,9 +152,9 @@ contains
         if (cfg%time%adaptive) call record_step_control(writer, driver%controller())
         call record_error_estimate(writer, companions)
         if (cfg%mesh%adaptive) then
-            call writer%attr('mesh.remeshes', state%mesh%n_remeshes())
+            call writer%attr('mesh.remeshes', n_remeshes)
             call writer%attr('mesh.n_elements_max', n_elements_max)
-            call writer%attr('energy_max_relative_rise_remesh', state%mesh%max_rise_remesh())
+            call writer%attr('energy_max_relative_rise_remesh', max_rise_remesh)
         end if
     end subroutine record_results
 

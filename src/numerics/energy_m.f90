@@ -43,6 +43,9 @@ module energy_m
         !> whose size differs from the step before (w /= 1), where the law is not stated (not
         !> in max_rise)
         real(dp) :: max_rise_step_change = 0.0_dp
+        !> remeshes, the largest relative rise across one (transfer_m's: round-off only)
+        integer :: n_remeshes = 0
+        real(dp) :: max_rise_remesh = 0.0_dp
         logical :: have_law = .false.
         real(dp), allocatable :: u_work(:), w_work(:, :)
         !> the terms of E^n of the level observed last (step parts_step, time parts_t,
@@ -238,7 +241,7 @@ contains
         real(dp) :: rise
         logical :: changed
 
-        call self%remeshed(state, rise)
+        call measure_rise(self, state, rise)
         changed = .false.
         if (present(step_changed)) changed = step_changed .and. self%scheme_law%constant_steps
         if (changed) then
@@ -269,11 +272,9 @@ contains
                          self%law_energy)
     end subroutine measure
 
-    !> The energies of the level (observe's new level, or the level moved to a new mesh by
-    !> transfer_m) and the relative rise of the law energy since the level measured before
-    !> (0 where the law energy is not defined before and after; mesh_m's record_remesh keeps
-    !> the largest rise across a remesh).
-    subroutine monitor_remeshed(self, state, rise)
+    !> The energies of the level and the relative rise of the law energy since the level
+    !> measured before (0 where the law energy is not defined before and after).
+    subroutine measure_rise(self, state, rise)
         class(energy_monitor_t), intent(inout) :: self
         type(state_t), intent(in) :: state
         real(dp), intent(out) :: rise
@@ -285,6 +286,17 @@ contains
         call measure(self, state)
         rise = 0.0_dp
         if (had_law .and. self%have_law) rise = (self%law_energy - law_old) / max(law_old, tiny(1.0_dp))
+    end subroutine measure_rise
+
+    !> The level has moved to a new mesh (transfer_m): measured, the remesh counted.
+    subroutine monitor_remeshed(self, state)
+        class(energy_monitor_t), intent(inout) :: self
+        type(state_t), intent(in) :: state
+        real(dp) :: rise
+
+        call measure_rise(self, state, rise)
+        self%n_remeshes = self%n_remeshes + 1
+        self%max_rise_remesh = max(self%max_rise_remesh, rise)
     end subroutine monitor_remeshed
 
     !> The work arrays shaped as the state's level (after a remesh).
@@ -309,15 +321,19 @@ contains
     end function monitor_current_energy
 
     !> The largest relative rises of the law energy so far (the root attributes
-    !> energy_max_relative_rise*): at steps of the step size before, and at steps of another
-    !> size (a law stated for constant steps only: BDF2). The rise across remeshes is kept
-    !> by the mesh (mesh_m).
-    pure subroutine monitor_rises(self, max_rise, max_rise_step_change)
+    !> energy_max_relative_rise*): at steps of the step size before, at steps of another
+    !> size (a law stated for constant steps only: BDF2), and across remeshes (and their count).
+    pure subroutine monitor_rises(self, max_rise, max_rise_step_change, max_rise_remesh, &
+                                  n_remeshes)
         class(energy_monitor_t), intent(in) :: self
         real(dp), intent(out) :: max_rise, max_rise_step_change
+        real(dp), intent(out), optional :: max_rise_remesh
+        integer, intent(out), optional :: n_remeshes
 
         max_rise = self%max_rise
         max_rise_step_change = self%max_rise_step_change
+        if (present(max_rise_remesh)) max_rise_remesh = self%max_rise_remesh
+        if (present(n_remeshes)) n_remeshes = self%n_remeshes
     end subroutine monitor_rises
 
     !> The terms of E^n (discrete_energy's parts, PART_*) of the level in state, with the
@@ -338,7 +354,7 @@ contains
     end function monitor_parts
 
     !> The energies and the largest rises so far in a checkpoint (checkpoint_m's sync; restored
-    !> on a monitor initialised for this run).
+    !> on a monitor initialised for this run); the remeshes under their old owner, mesh.
     subroutine monitor_checkpoint(self, ckpt)
         class(energy_monitor_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
@@ -348,6 +364,8 @@ contains
         call ckpt%sync('energy_monitor/have_law', self%have_law)
         call ckpt%sync('energy_monitor/max_rise', self%max_rise)
         call ckpt%sync('energy_monitor/max_rise_step_change', self%max_rise_step_change)
+        call ckpt%sync('mesh/n_remeshes', self%n_remeshes)
+        call ckpt%sync('mesh/max_rise_remesh', self%max_rise_remesh)
         if (ckpt%reading) self%have_parts = .false.
     end subroutine monitor_checkpoint
 

@@ -8,12 +8,9 @@
 !> are kept with it (stepper_m: the LAPACK inverse of the block LU's pivot blocks; output_m:
 !> no native snapshots). A mesh of the adaptive refinement (adaptivity/adaptive_mesh_m: node
 !> keys, indicator) is graded even where its elements happen to be equal.
-!>
-!> The remesh counters of an adaptive run live here as well (set_nodes keeps them).
 module mesh_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation
-    use checkpoint_m, only: checkpoint_t
     use fe_m, only: mesh_nodes, element_mass, element_stiffness, apply_assembled, apply_mass_graded, &
                     apply_stiffness_graded
     implicit none
@@ -24,10 +21,6 @@ module mesh_m
         real(dp), allocatable :: x(:)   !< the nodes x_i, i = 0..s (written by mesh_m only)
         real(dp), allocatable :: h(:)   !< element sizes h_e, e = 1..s (uniform: 1/s; mesh_m only)
         logical, private :: uniform = .true.          !< built by set_uniform
-        integer, private :: remeshes = 0              !< remeshes of the run so far
-        !> the largest relative rise of the law energy across a remesh (energy_m's monitor
-        !> measures it; transfer_m's projections cannot raise it: round-off only)
-        real(dp), private :: rise_remesh = 0.0_dp
     contains
         procedure :: s => mesh_elements
         procedure :: is_uniform => mesh_is_uniform
@@ -35,10 +28,6 @@ module mesh_m
         procedure :: set_nodes => mesh_set_nodes
         procedure :: apply_mass => mesh_apply_mass
         procedure :: apply_stiffness => mesh_apply_stiffness
-        procedure :: record_remesh => mesh_record_remesh
-        procedure :: checkpoint => mesh_checkpoint
-        procedure :: n_remeshes => mesh_n_remeshes
-        procedure :: max_rise_remesh => mesh_max_rise_remesh
     end type mesh_t
 
 contains
@@ -57,7 +46,7 @@ contains
         mesh_is_uniform = self%uniform
     end function mesh_is_uniform
 
-    !> The uniform mesh of s elements: x_i = i/s, h_e = 1/s (the remesh counters are kept).
+    !> The uniform mesh of s elements: x_i = i/s, h_e = 1/s.
     subroutine mesh_set_uniform(self, s)
         class(mesh_t), intent(inout) :: self
         integer, intent(in) :: s
@@ -68,7 +57,7 @@ contains
         self%uniform = .true.
     end subroutine mesh_set_uniform
 
-    !> The graded mesh with nodes x(0:s), increasing from 0 to 1 (the remesh counters are kept).
+    !> The graded mesh with nodes x(0:s), increasing from 0 to 1.
     subroutine mesh_set_nodes(self, x)
         class(mesh_t), intent(inout) :: self
         real(dp), intent(in) :: x(0:)
@@ -113,8 +102,6 @@ contains
             copy%h = mesh%h
         end if
         copy%uniform = mesh%uniform
-        copy%remeshes = mesh%remeshes
-        copy%rise_remesh = mesh%rise_remesh
     end subroutine copy_mesh
 
     !> y = M x, M the P1 mass matrix of the mesh (int phi_i phi_j dx); x, y have bounds 0..s.
@@ -143,38 +130,5 @@ contains
             call apply_stiffness_graded(self%h, x, y)
         end if
     end subroutine mesh_apply_stiffness
-
-    !> The run has remeshed onto this mesh; the law energy rose by `rise` (relative) across it.
-    subroutine mesh_record_remesh(self, rise)
-        class(mesh_t), intent(inout) :: self
-        real(dp), intent(in) :: rise
-
-        self%remeshes = self%remeshes + 1
-        self%rise_remesh = max(self%rise_remesh, rise)
-    end subroutine mesh_record_remesh
-
-    !> The remesh counters in a checkpoint (checkpoint_m's sync: saved, or restored; the nodes
-    !> are adaptive_mesh_m's keys, set apart: set_nodes keeps the counters).
-    subroutine mesh_checkpoint(self, ckpt)
-        class(mesh_t), intent(inout) :: self
-        type(checkpoint_t), intent(inout) :: ckpt
-
-        call ckpt%sync('mesh/n_remeshes', self%remeshes)
-        call ckpt%sync('mesh/max_rise_remesh', self%rise_remesh)
-    end subroutine mesh_checkpoint
-
-    !> Remeshes of the run so far.
-    pure integer function mesh_n_remeshes(self)
-        class(mesh_t), intent(in) :: self
-
-        mesh_n_remeshes = self%remeshes
-    end function mesh_n_remeshes
-
-    !> The largest relative rise of the law energy across a remesh so far.
-    pure real(dp) function mesh_max_rise_remesh(self)
-        class(mesh_t), intent(in) :: self
-
-        mesh_max_rise_remesh = self%rise_remesh
-    end function mesh_max_rise_remesh
 
 end module mesh_m

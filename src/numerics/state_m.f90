@@ -68,8 +68,7 @@ contains
         call zero_dirichlet(state%w)
     end subroutine initial_state
 
-    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched; the
-    !> mesh's remesh counters are kept).
+    !> The state lives on the graded mesh with nodes x(0:s) (its arrays are not touched).
     subroutine set_mesh(state, x)
         type(state_t), intent(inout) :: state
         real(dp), intent(in) :: x(0:)

@@ -66,43 +66,30 @@ contains
     !> Create directory `path` and any missing parents with mode 0755, like `mkdir -p`.
     !> An existing directory is success; ok=.false. and a message naming the directory
     !> and the system's reason otherwise.
-    subroutine mkdir_p(path, ok, message)
+    recursive subroutine mkdir_p(path, ok, message)
         character(len=*), intent(in) :: path
         logical, intent(out) :: ok
         character(len=:), allocatable, intent(out) :: message
-
         character(len=:), allocatable :: p
-        integer :: i, err
+        integer :: err
 
-        ok = .false.
         p = trim(path)
-        if (len(p) == 0) then
-            message = 'cannot create a directory with an empty name'
-            return
-        end if
-        ! walk every prefix that ends just before a '/', then the whole path
-        do i = 1, len(p) + 1
-            if (i <= len(p)) then
-                if (p(i:i) /= '/') cycle
-            end if
-            if (i == 1) cycle                 ! the root '/'
-            if (p(i-1:i-1) == '/') cycle      ! 'a//b': the prefix 'a/' is 'a', already done
-            if (dir_exists(p(1:i-1))) cycle
-            err = c_path_op(OP_MKDIR, p(1:i-1)//c_null_char, c_null_char)
-            if (err /= 0) then
-                ! another process may have created it between the test and mkdir
-                if (dir_exists(p(1:i-1))) cycle
-                if (file_exists(p(1:i-1))) then
-                    ! EEXIST's 'File exists' would not say what is wrong
-                    message = "'"//p(1:i-1)//"' exists and is not a directory"
-                else
-                    message = "cannot create directory '"//p(1:i-1)//"': "//strerror(err)
-                end if
-                return
-            end if
-        end do
-        ok = .true.
+        ok = .false.
+        message = 'cannot create a directory with an empty name'
+        if (len(p) == 0) return
+        ok = dir_exists(p)
         message = ''
+        if (ok) return
+        if (len(parent_dir(p)) > 0) call mkdir_p(parent_dir(p), ok, message)
+        if (len(message) > 0) return
+        err = c_path_op(OP_MKDIR, p//c_null_char, c_null_char)
+        ok = err == 0
+        ! another process may have created it between the test and mkdir
+        if (.not. ok) ok = dir_exists(p)
+        if (ok) return
+        message = "cannot create directory '"//p//"': "//strerror(err)
+        ! EEXIST's 'File exists' would not say what is wrong
+        if (file_exists(p)) message = "'"//p//"' exists and is not a directory"
     end subroutine mkdir_p
 
     !> Rename `from` to `to` (C rename: atomic, replaces an existing `to` on the same filesystem).

@@ -3,6 +3,7 @@
 !> profile those of its finite element space, (2.13) and (2.15), and u0(1) <= g; evaluated by
 !> initial_data_m's profile, the function that initialises the nodes. validate_m calls it in
 !> its order of the groups; the first failure stops with EXIT_INPUT, naming the variable.
+!> require_real is the one check of a real input's range, validate_m's too.
 module validate_initial_m
     use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
@@ -12,18 +13,21 @@ module validate_initial_m
     use initial_data_m, only: profile
     implicit none
     private
-    public :: validate_initial
+    public :: validate_initial, require_real
 
     !> Boundary values of the initial data must vanish to this tolerance times (1 + sum |coef|).
     real(dp), parameter :: BOUNDARY_TOL = 1.0e-12_dp
     !> Every real input has magnitude at most MAX_MAGNITUDE, and the coefficients that
     !> divide (rho, alpha, c, r, hbar weigh the energy; 1/eps; t_end/dt) are at least
-    !> validate_m's MIN_POSITIVE. Why: with every input in this range no intermediate quantity of the
+    !> MIN_POSITIVE. Why: with every input in this range no intermediate quantity of the
     !> scheme can overflow. The initial energy is at most ~1e93, the matrix entries
     !> (largest dt**2 alpha / h) at most ~1e97, and the scheme never lets the energy grow
     !> (Corollary 6.2), so every field stays far below the double-precision limit ~1.8e308.
     !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
     real(dp), parameter, public :: MAX_MAGNITUDE = 1.0e30_dp
+    real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
+    !> The bounds of require_real
+    integer, parameter, public :: DATUM = 0, NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3
 
 contains
 
@@ -62,8 +66,8 @@ contains
         integer :: k
 
         do k = 0, ubound(poly, 1)
-            call require_datum(poly(k), 'initial.' // name // '_poly', &
-                format_real(poly(k)) // ' as coefficient of x**' // int_str(k), 'every coefficient must')
+            call require_real(poly(k), 'initial.' // name // '_poly', DATUM, what=format_real(poly(k)) // &
+                              ' as coefficient of x**' // int_str(k) // '; every coefficient')
         end do
         if (present(step)) then
             call require_step(step, 'initial.' // name // '_step', length)
@@ -88,32 +92,48 @@ contains
         real(dp), intent(in) :: step(2), length
         character(len=*), intent(in) :: where
 
-        call require_datum(step(1), where, 'amplitude ' // format_real(step(1)), 'must')
-        if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, 'got x_end ' // format_real(step(2)) // &
-                                                      '; must be a finite real number')
+        call require_real(step(1), where, DATUM, what='amplitude ' // format_real(step(1)) // ';')
+        if (.not. ieee_is_finite(step(2))) call fatal(EXIT_INPUT, where, &
+            'got x_end ' // format_real(step(2)) // '; must be a finite real number')
         if (.not. (step(2) >= 0.0_dp .and. step(2) <= length)) call fatal(EXIT_INPUT, where, 'got x_end ' // &
             format_real(step(2)) // '; the step (amplitude, x_end) adds amplitude on [0, x_end]: ' // &
             'need 0 <= x_end <= ' // format_real(length) // ' (the rod''s length: 1, or material.ell in m)')
     end subroutine require_step
 
-    !> An initial datum x, given as `what`, finite and at most MAX_MAGNITUDE in magnitude;
-    !> `must`: the subject of the message ('must', 'every coefficient must').
-    subroutine require_datum(x, where, what, must)
+    !> x finite, at most MAX_MAGNITUDE in magnitude and within bound: DATUM (no other), NONNEGATIVE
+    !> (>= 0), POSITIVE (> 0), DIVISOR (>= MIN_POSITIVE: the energy or the scheme divides by it).
+    !> The message: 'got <what> must be ...<note>' (what: 'x;' if not given).
+    subroutine require_real(x, where, bound, note, what)
         real(dp), intent(in) :: x
-        character(len=*), intent(in) :: where, what, must
-        character(len=:), allocatable :: bound
+        character(len=*), intent(in) :: where
+        integer, intent(in) :: bound
+        character(len=*), intent(in), optional :: note, what
+        character(len=:), allocatable :: limit, got
 
         ! no comparison of a NaN: it raises the invalid exception that a Debug build traps
         if (.not. ieee_is_finite(x)) then
-            bound = 'a finite real number'
-        else if (abs(x) > MAX_MAGNITUDE) then
-            bound = 'at most ' // format_real(MAX_MAGNITUDE) // &
+            limit = 'a finite real number'
+        else if (abs(x) > MAX_MAGNITUDE .and. bound == DATUM) then
+            limit = 'at most ' // format_real(MAX_MAGNITUDE) // &
                     ' in magnitude (larger initial data overflow double precision in the energy)'
+        else if (abs(x) > MAX_MAGNITUDE) then
+            limit = 'at most ' // format_real(MAX_MAGNITUDE) // &
+                    ' in magnitude (larger values overflow double precision inside the scheme)'
+        else if (bound == NONNEGATIVE .and. .not. x >= 0.0_dp) then
+            limit = '>= 0'
+        else if (bound >= POSITIVE .and. .not. x > 0.0_dp) then
+            limit = '> 0'
+        else if (bound == DIVISOR .and. x < MIN_POSITIVE) then
+            limit = '>= ' // format_real(MIN_POSITIVE) // ' (the energy or the scheme divides by it; ' // &
+                    'smaller values can make the fields overflow double precision)'
         else
             return
         end if
-        call fatal(EXIT_INPUT, where, 'got ' // what // '; ' // must // ' be ' // bound)
-    end subroutine require_datum
+        got = format_real(x) // ';'
+        if (present(what)) got = what
+        if (present(note)) limit = limit // note
+        call fatal(EXIT_INPUT, where, 'got ' // got // ' must be ' // limit)
+    end subroutine require_real
 
     !> A table (if given) covers the rod [0, length] (to round-off), its values finite and at
     !> most MAX_MAGNITUDE in magnitude.
@@ -130,8 +150,8 @@ contains
             format_real(table(n, 1)) // " in '" // trim(file) // "'; the table must cover the rod: first " // &
             'position <= 0, last >= ' // format_real(length) // ' (1, or material.ell in m)')
         do k = 1, n
-            call require_datum(table(k, 2), where, format_real(table(k, 2)) // ' at position ' // &
-                               format_real(table(k, 1)) // " in '" // trim(file) // "'", 'every value must')
+            call require_real(table(k, 2), where, DATUM, what=format_real(table(k, 2)) // ' at position ' // &
+                              format_real(table(k, 1)) // " in '" // trim(file) // "'; every value")
         end do
     end subroutine require_table
 

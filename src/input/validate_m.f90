@@ -4,14 +4,13 @@
 !> group.variable, the value given and what is allowed.
 module validate_m
     use, intrinsic :: iso_fortran_env, only: error_unit
-    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     use kinds_m, only: dp
     use fields_m, only: N_FIELDS, N_SNAPSHOT_FIELDS, N_SERIES
     use errors_m, only: fatal, EXIT_INPUT
     use config_m, only: config_t, model_t, contact_t, mesh_t, time_t, solver_t, output_t, &
                         number_of_steps, MAX_COMPRESSION, LEN_NAME
     use strings_m, only: format_real, int_str
-    use validate_initial_m, only: validate_initial, MAX_MAGNITUDE
+    use validate_initial_m, only: validate_initial, require_real, NONNEGATIVE, POSITIVE, DIVISOR
     use contact_laws_m, only: law_names, constraint_law
     use material_m, only: model_from_material
     implicit none
@@ -35,9 +34,6 @@ module validate_m
     real(dp), parameter :: MAX_FINE_ELEMENTS = 2.0_dp**30      !< n_elements 2^max_level (round-off of x_i)
     real(dp), parameter :: OUTPUT_WARN = 1.0_dp * GIB         !< warn above this output size
     real(dp), parameter :: OUTPUT_LIMIT = 64.0_dp * GIB       !< refuse output above this size
-    !> The coefficients that divide are at least MIN_POSITIVE (validate_initial_m says why).
-    real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
-    integer, parameter :: NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3   !< the bounds of require_real
 
 contains
 
@@ -101,7 +97,8 @@ contains
         call require_real(m%tau0, 'model.tau0', NONNEGATIVE, note)
         call require_real(m%tau, 'model.tau', NONNEGATIVE, note)
         if (.not. m%c * m%r - m%d**2 > 0.0_dp) call fatal(EXIT_INPUT, 'model.d', 'got d = ' // &
-            format_real(m%d) // ' with c = ' // format_real(m%c) // ', r = ' // format_real(m%r) // ': c*r - d**2 = ' // &
+            format_real(m%d) // ' with c = ' // format_real(m%c) // ', r = ' // format_real(m%r) // &
+            ': c*r - d**2 = ' // &
             format_real(m%c * m%r - m%d**2) // '; condition (2.16) needs c*r - d**2 > 0' // note)
     end subroutine validate_model
 
@@ -131,7 +128,8 @@ contains
             int_str(int(min(real(mesh%n_elements, dp) * 2.0_dp**mesh%max_level, 2.0e9_dp))) // &
             ' long; n_elements * 2**max_level must be at most ' // int_str(int(MAX_FINE_ELEMENTS)))
         bytes = 8.0_dp * REALS_PER_NODE * (real(mesh%n_elements, dp) + 1.0_dp)
-        if (bytes > MEMORY_LIMIT) call fatal(EXIT_INPUT, 'mesh.n_elements', 'got ' // int_str(mesh%n_elements) // &
+        if (bytes > MEMORY_LIMIT) call fatal(EXIT_INPUT, 'mesh.n_elements', &
+            'got ' // int_str(mesh%n_elements) // &
             '; the arrays would need about ' // gib_str(bytes) // ' GiB, more than the ' // &
             gib_str(MEMORY_LIMIT) // ' GiB allowed; must be at most ' // &
             int_str(int(MEMORY_LIMIT / (8.0_dp * REALS_PER_NODE)) - 1))
@@ -151,7 +149,8 @@ contains
         ! the step counter is a default integer
         if (time%t_end / time%dt > real(huge(0), dp) - 1.0_dp) call fatal(EXIT_INPUT, 'time.dt', 'got ' // &
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
-            format_real(time%t_end / time%dt) // ' steps; must be at most ' // int_str(huge(0) - 1) // ' steps')
+            format_real(time%t_end / time%dt) // ' steps; must be at most ' // &
+            int_str(huge(0) - 1) // ' steps')
         n_steps = real(number_of_steps(time%dt, time%t_end), dp)
         names = schemes%name   ! contiguous: no array temporary at the call (-fcheck=all warns of one)
         call require_one_of(time%scheme, names, 'time.scheme')
@@ -219,8 +218,9 @@ contains
         call require_at_least(output%snapshot_every, 1, 'output.snapshot_every')
         call require_at_least(output%series_every, 1, 'output.series_every')
         call require_at_least(output%checkpoint_every, 0, 'output.checkpoint_every')
-        if (output%n_points < 0 .or. output%n_points == 1) call fatal(EXIT_INPUT, 'output.n_points', 'got ' // &
-            int_str(output%n_points) // '; must be 0 (the nodes of the coarsest mesh, n_elements + 1) or at ' // &
+        if (output%n_points < 0 .or. output%n_points == 1) call fatal(EXIT_INPUT, 'output.n_points', &
+            'got ' // int_str(output%n_points) // &
+            '; must be 0 (the nodes of the coarsest mesh, n_elements + 1) or at ' // &
             'least 2 (points of the snapshot grid /mesh/x)')
         call require_real(output%snapshot_dt, 'output.snapshot_dt', NONNEGATIVE, &
                           ' (0: snapshots every snapshot_every steps)')
@@ -229,18 +229,11 @@ contains
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
             'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
-        ! the initial state, every k-th step, and the last step
         nodes = real(n_elements, dp) + 1.0_dp
         if (output%n_points > 0) nodes = real(output%n_points, dp)
-        if (output%snapshot_dt > 0.0_dp) then
-            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * &
-                             (aint(min(t_end / output%snapshot_dt, 1.0e12_dp)) + 2.0_dp)
-        else
-            snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * (aint(n_steps / output%snapshot_every) + 2.0_dp)
-        end if
-        series_bytes = 8.0_dp * N_SERIES * (aint(n_steps / output%series_every) + 2.0_dp)
-        if (output%series_dt > 0.0_dp) &
-            series_bytes = 8.0_dp * N_SERIES * (aint(min(t_end / output%series_dt, 1.0e12_dp)) + 2.0_dp)
+        snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * &
+                         entries(output%snapshot_every, output%snapshot_dt)
+        series_bytes = 8.0_dp * N_SERIES * entries(output%series_every, output%series_dt)
         total = snapshot_bytes + series_bytes + 8.0_dp * nodes
         where = 'output.snapshot_every'
         if (output%snapshot_dt > 0.0_dp) where = 'output.snapshot_dt'
@@ -252,10 +245,20 @@ contains
             ' GiB allowed; raise ' // where)
         if (total > OUTPUT_WARN) then
             write (error_unit, '(a)') 'rodcontact: warning: ' // trim(output%prefix) // '.h5 will be about ' // &
-                gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots); raise ' // where // &
-                ' for a smaller file'
+                gib_str(total) // ' GiB (' // gib_str(snapshot_bytes) // ' GiB of snapshots); raise ' // &
+                where // ' for a smaller file'
             flush (error_unit)
         end if
+    contains
+        !> The entries written: the initial state, one every `every` steps (or every dt, if
+        !> dt > 0), and the last step.
+        pure real(dp) function entries(every, dt)
+            integer, intent(in) :: every
+            real(dp), intent(in) :: dt
+
+            entries = aint(n_steps / every) + 2.0_dp
+            if (dt > 0.0_dp) entries = aint(min(t_end / dt, 1.0e12_dp)) + 2.0_dp
+        end function entries
     end subroutine validate_output
 
     !> The prefix must name a file: printable characters only (a NUL would cut the name
@@ -281,41 +284,13 @@ contains
         if (len(last) == 0 .or. last == '.' .or. last == '..') then
             example = p // '/run'
             if (p(n:n) == '/') example = p // 'run'
-            call fatal(EXIT_INPUT, 'output.prefix', "got '" // p // "', which names a directory; must end in a " // &
-                       "file name, e.g. '" // example // "' (the file is " // example // '.h5)')
+            call fatal(EXIT_INPUT, 'output.prefix', "got '" // p // "', which names a directory; " // &
+                       "must end in a file name, e.g. '" // example // "' (the file is " // &
+                       example // '.h5)')
         end if
     end subroutine require_file_prefix
 
     ! ---------------------------------------------------------------- small checks
-
-    !> x finite and at most MAX_MAGNITUDE in magnitude, and within `bound`: NONNEGATIVE
-    !> (>= 0), POSITIVE (> 0) or DIVISOR (> 0 and >= MIN_POSITIVE: the energy or the scheme
-    !> divides by it). note, if given, ends every message.
-    subroutine require_real(x, where, bound, note)
-        real(dp), intent(in) :: x
-        character(len=*), intent(in) :: where
-        integer, intent(in) :: bound
-        character(len=*), intent(in), optional :: note
-        character(len=:), allocatable :: must
-
-        if (.not. ieee_is_finite(x)) then
-            must = 'a finite real number'
-        else if (abs(x) > MAX_MAGNITUDE) then
-            must = 'at most ' // format_real(MAX_MAGNITUDE) // &
-                   ' in magnitude (larger values overflow double precision inside the scheme)'
-        else if (bound == NONNEGATIVE .and. .not. x >= 0.0_dp) then
-            must = '>= 0'
-        else if (bound /= NONNEGATIVE .and. .not. x > 0.0_dp) then
-            must = '> 0'
-        else if (bound == DIVISOR .and. x < MIN_POSITIVE) then
-            must = '>= ' // format_real(MIN_POSITIVE) // ' (the energy or the scheme divides by it; ' // &
-                   'smaller values can make the fields overflow double precision)'
-        else
-            return
-        end if
-        if (present(note)) must = must // note
-        call fatal(EXIT_INPUT, where, 'got ' // format_real(x) // '; must be ' // must)
-    end subroutine require_real
 
     subroutine require_at_least(n, n_min, where)
         integer, intent(in) :: n, n_min

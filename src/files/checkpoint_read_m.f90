@@ -1,8 +1,8 @@
-!> Reading a checkpoint slot of a file (restart_m): every dataset under a group, whatever
-!> its owner, into a checkpoint_t record as entry '<path below the group>', and each member
-!> of a compound (an owner's scalars) as '<its group's path>/<member>'; integers as
-!> integers. What the entries mean is their owners' business (checkpoint_m). A file that
-!> cannot be read stops the run with exit 2 (EXIT_INPUT), as h5_read_m does.
+!> Reading a checkpoint slot of a file, or the history (/series, /snapshots) restart_m
+!> copies: every dataset under a group into a checkpoint_t record as entry '<path below the
+!> group>', and each member of a compound (an owner's scalars) as '<its group's
+!> path>/<member>'; integers as integers. What the entries mean is their owners' business
+!> (checkpoint_m). A file that cannot be read stops the run with exit 2 (EXIT_INPUT).
 module checkpoint_read_m
     use iso_c_binding, only: c_loc, c_ptr
     use iso_fortran_env, only: int64
@@ -64,15 +64,15 @@ contains
             if (obj_type == H5I_GROUP_F) then
                 call read_below(file, file_id, group, path//'/'//trim(name), ckpt)
             else
-                call read_dataset(file, group_id, here//'/'//trim(name), path(2:)//'/', ckpt)
+                call read_dataset(file, group_id, here//'/'//trim(name), path//'/', ckpt)
             end if
         end do
         call h5gclose_f(group_id, hdferr)
     end subroutine read_below
 
-    !> The dataset `where` (in group_id: its last part) as entry prefix//<its name>; a
+    !> The dataset `where` (in group_id: its last part) as entry prefix(2:)//<its name>; a
     !> compound (an owner's scalars: every member 8 bytes, int64 or float64) read whole, as
-    !> output_checkpoint_s writes it, into the scalar entries prefix//<member>, one a member.
+    !> output_checkpoint_s writes it, into the scalar entries prefix(2:)//<member>, one a member.
     subroutine read_dataset(file, group_id, where, prefix, ckpt)
         character(len=*), intent(in) :: file, where, prefix
         integer(hid_t), intent(in) :: group_id
@@ -112,12 +112,12 @@ contains
         if (type_class == H5T_COMPOUND_F) then
             do m = 0, n - 1
                 call h5tget_member_class_f(type_id, m, type_class, hdferr)
-                call ckpt%add(entry_t(prefix//member_name(type_id, m), type_class == H5T_INTEGER_F, 0, [1, 1], &
+                call ckpt%add(entry_t(prefix(2:)//member_name(type_id, m), type_class == H5T_INTEGER_F, 0, [1, 1], &
                                       entry%values(m + 1:m + 1)))
             end do
             call h5tclose_f(mem_type, hdferr)
         else
-            entry%name = prefix//where(index(where, '/', back=.true.) + 1:)
+            entry%name = prefix(2:)//where(index(where, '/', back=.true.) + 1:)
             entry%dims = int(dims)
             entry%is_integer = type_class == H5T_INTEGER_F
             call ckpt%add(entry)

@@ -5,8 +5,8 @@
 !> restart from, a file to summarise): a file it cannot read stops the run with exit 2
 !> (EXIT_INPUT), naming the file and what is missing.
 !>
-!> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) comes back as
-!> values(s+1, n_snap), i.e. values(:, k) is snapshot k.
+!> Shapes are Fortran's: a snapshot field that h5py shows as (n_snap, s+1) has dims
+!> (s+1, n_snap); reshaped to them, values(:, k) is snapshot k.
 module h5_read_m
     use iso_c_binding, only: c_ptr, c_char, c_loc
     use kinds_m, only: dp
@@ -23,7 +23,7 @@ module h5_read_m
     implicit none
     private
     public :: h5_library_init
-    public :: read_real_1d, read_real_2d
+    public :: read_real_1d
     public :: read_attr_str, read_attr_real, read_attr_int, read_attr_real_1d
     public :: dataset_exists, attr_exists, is_hdf5_file, open_file
 
@@ -84,18 +84,6 @@ contains
         if (hdferr < 0) call fail(file, dset, 'h5ltread_dataset_double_f failed')
         call close_file(file, dset, file_id)
     end subroutine read_real_1d
-
-    !> Whole 2D float dataset: values(s+1, n_snap) for what h5py shows as (n_snap, s+1).
-    subroutine read_real_2d(file, dset, values)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: dset
-        real(dp), allocatable, intent(out) :: values(:, :)
-        real(dp), allocatable :: flat(:)
-        integer(hsize_t) :: dims(2)
-
-        call read_real_1d(file, dset, flat, dims)
-        values = reshape(flat, dims)
-    end subroutine read_real_2d
 
     !> True when `file` exists, can be read and is an HDF5 file (h5fis_hdf5_f): the test to
     !> make before any other routine here, which stop with exit 2 on a file they cannot open.

@@ -14,13 +14,13 @@ module restart_m
     use strings_m, only: format_real, int_str
     use errors_m, only: fatal, EXIT_INPUT, EXIT_OUTPUT, check_allocation
     use reals_m, only: equal
-    use checkpoint_m, only: checkpoint_t
+    use checkpoint_m, only: checkpoint_t, entry_t
     use checkpoint_read_m, only: read_entries
-    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES, S_T
+    use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES
     use fsys_m, only: file_exists, same_file, rename_file, remove_file
-    use h5_read_m, only: read_real_1d, read_real_2d, read_attr_int, &
+    use h5_read_m, only: read_real_1d, read_attr_int, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists, is_hdf5_file
-    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX, ESTIMATE_PARTS, estimate_path
+    use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX, ESTIMATE_PARTS
     implicit none
     private
     public :: read_checkpoint, copy_history
@@ -48,7 +48,7 @@ contains
             "': no such file, nothing to resume (a run stopped by a signal leaves it); without --resume the run "// &
             'starts at t = 0')
         if (.not. file_exists(file)) call fatal(EXIT_INPUT, WHERE, "got '"//file// &
-                                                "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
+            "': no such file; must be the output (.h5 or .h5.part) of a run with checkpoints")
         if (any([same_file(file, prefix//'.h5'), same_file(file, prefix//RESUMED_SUFFIX)])) call fatal(EXIT_INPUT, &
             WHERE, "'"//file//"' is a file this run writes (output.prefix = '"//prefix//"' writes '"//prefix// &
             ".h5' at the end, and replaces '"//prefix//RESUMED_SUFFIX//"'): it would overwrite the checkpoint it "// &
@@ -57,7 +57,7 @@ contains
         if (in_place) call take_over_resumed(prefix//RESUMED_SUFFIX, file)
         slot = current_slot(file)
         if (slot < 0) call fatal(EXIT_INPUT, WHERE, "'"//file//"' holds no complete checkpoint; the run must "// &
-                                 'have &output checkpoint_every > 0 and reach a checkpoint')
+            'have &output checkpoint_every > 0 and reach a checkpoint')
         if (.not. attr_exists(file, 'layout', '/checkpoint')) call fatal(EXIT_INPUT, WHERE, "'"//file// &
             "': its checkpoint is in the positional layout of earlier versions of rodcontact (/checkpoint/slotN/"// &
             'counters, control, mesh, ...: arrays of reals); this version reads only its own layout ('// &
@@ -247,50 +247,56 @@ contains
     end function value_text
 
     !> Append to writer the series entries and snapshots of `file` up to time t_checkpoint
-    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables.
+    !> (see rows_to_copy): every dataset of fields_m's SERIES and SNAPSHOTS tables, the
+    !> native snapshots and the estimates; /series and /snapshots each read in one pass.
     subroutine copy_history(writer, file, t_checkpoint)
         type(h5_writer_t), intent(inout) :: writer
         character(len=*), intent(in) :: file
         real(dp), intent(in) :: t_checkpoint
-        real(dp), allocatable :: column(:), rows(:, :), snap_t(:), snap(:, :), snaps(:, :, :)
+        character(len=*), parameter :: NATIVE = '/snapshots/native/'
+        type(checkpoint_t) :: ser, snaps
+        real(dp), allocatable :: t(:, :, :), values(:, :, :), x(:, :, :), at(:, :, :), parts(:, :, :)
         real(dp) :: t_last
-        character(len=64) :: estimates(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS))
         integer :: j, k, n, stat
         character(len=256) :: message
 
         t_last = t_checkpoint * (1.0_dp + 1.0e-12_dp)
-        call read_real_1d(file, '/series/'//trim(SERIES(S_T)%name), column)
-        n = rows_to_copy(column, t_last)
-        ! (an integer series read as float64, which holds it exactly)
-        call read_rows(file, [character(len=64) :: ('/series/'//SERIES(k)%name, k = 1, N_SERIES)], n, rows)
+        call read_entries(file, '/series', ser)
+        call read_rows(ser, '/series/', ['t'], -1, t)
+        n = rows_to_copy(t(1, 1, :), t_last)
+        call read_rows(ser, '/series/', SERIES%name, n, values)
         do k = 1, n
-            call writer%append_series(rows(:, k))
+            call writer%append_series(values(1, :, k))
         end do
-        call read_real_1d(file, '/snapshots/t', snap_t)
-        n = rows_to_copy(snap_t, t_last)
-        do k = 1, N_SNAPSHOT_FIELDS
-            call read_real_2d(file, '/snapshots/'//trim(SNAPSHOTS(k)%name), snap)
-            call require_rows(file, '/snapshots/'//trim(SNAPSHOTS(k)%name), size(snap, 2), n)
-            if (.not. allocated(snaps)) then
-                allocate (snaps(size(snap, 1), N_SNAPSHOT_FIELDS, n), stat=stat, errmsg=message)
-                call check_allocation(stat, message, 'the copied snapshots')
-            end if
-            snaps(:, k, :) = snap(:, 1:n)
-        end do
+        call read_entries(file, '/snapshots', snaps)
+        call read_rows(snaps, '/snapshots/', ['t'], -1, t)
+        n = rows_to_copy(t(1, 1, :), t_last)
+        call read_rows(snaps, '/snapshots/', SNAPSHOTS%name, n, values)
         do k = 1, n
-            call writer%append_snapshot(snap_t(k), snaps(:, :, k))
+            call writer%append_snapshot(t(1, 1, k), values(:, :, k))
         end do
-        if (dataset_exists(file, '/snapshots/native/offset')) call copy_native(writer, file, n)
-        if (.not. dataset_exists(file, estimate_path(1, 1))) return
-        ! a loop: gfortran cuts an implied do's paths to the first one's length
-        do j = 1, size(ESTIMATE_PARTS)
-            do k = 1, N_OUTPUT_FIELDS
-                estimates(k, j) = estimate_path(j, k)
+        if (snaps%has('native/offset')) then
+            ! snapshot k: x and the fields from entry offset + 1 to offset + count
+            call read_rows(snaps, NATIVE, ['offset', 'count '], n, at)
+            call read_rows(snaps, NATIVE, ['x'], nint(sum(at(1, :, max(n, 1):n))), x)
+            call read_rows(snaps, NATIVE, SNAPSHOTS%name, size(x, 3), values)
+            do k = 1, n
+                associate (first => nint(at(1, 1, k)) + 1, last => nint(at(1, 1, k) + at(1, 2, k)))
+                    call writer%append_native(x(1, 1, first:last), transpose(values(1, :, first:last)))
+                end associate
             end do
+        end if
+        if (.not. snaps%has(trim(ESTIMATE_PARTS(1))//'/'//SNAPSHOTS(1)%name)) return
+        allocate (parts(N_OUTPUT_FIELDS, size(ESTIMATE_PARTS), n), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the copied history')
+        do j = 1, size(ESTIMATE_PARTS)
+            ! /snapshots/<part>/<field>: the fields of SNAPSHOTS(:N_OUTPUT_FIELDS)
+            call read_rows(snaps, '/snapshots/'//trim(ESTIMATE_PARTS(j))//'/', SNAPSHOTS(:N_OUTPUT_FIELDS)%name, &
+                           n, values)
+            parts(:, j, :) = values(1, :, :)
         end do
-        call read_rows(file, reshape(estimates, [size(estimates)]), n, rows)
         do k = 1, n
-            call writer%append_estimate(reshape(rows(:, k), shape(estimates)))
+            call writer%append_estimate(parts(:, :, k))
         end do
     end subroutine copy_history
 
@@ -310,63 +316,37 @@ contains
         end do
     end subroutine require_history_datasets
 
-    !> The first n snapshots of /snapshots/native (adaptive mesh) of `file` into writer.
-    subroutine copy_native(writer, file, n)
-        type(h5_writer_t), intent(inout) :: writer
-        character(len=*), intent(in) :: file
+    !> values(:, k, j): row j (j <= n, or every row with n < 0) of the dataset group//names(k),
+    !> read into set; a row is the dataset's values at one time (its last Fortran index),
+    !> float64 (an integer dataset's too, which it holds exactly).
+    subroutine read_rows(set, group, names, n, values)
+        type(checkpoint_t), intent(in) :: set
+        character(len=*), intent(in) :: group, names(:)
         integer, intent(in) :: n
-        integer :: offset(n), count(n)
-        real(dp), allocatable :: x(:), values(:, :)
-        integer :: j, k
-
-        offset = nint(leading(file, '/snapshots/native/offset', n))
-        count = nint(leading(file, '/snapshots/native/count', n))
-        call read_real_1d(file, '/snapshots/native/x', x)
-        call read_rows(file, [character(len=64) :: ('/snapshots/native/'//SNAPSHOTS(k)%name, &
-                              k = 1, N_SNAPSHOT_FIELDS)], size(x), values)
-        do j = 1, n
-            associate (first => offset(j) + 1, last => offset(j) + count(j))
-                call require_rows(file, '/snapshots/native/x', size(x), last)
-                call writer%append_native(x(first:last), transpose(values(:, first:last)))
-            end associate
-        end do
-    end subroutine copy_native
-
-    !> rows(k, :): the first n values of dataset paths(k) of `file`; rows(:, j) is contiguous.
-    subroutine read_rows(file, paths, n, rows)
-        character(len=*), intent(in) :: file, paths(:)
-        integer, intent(in) :: n
-        real(dp), allocatable, intent(out) :: rows(:, :)
-        integer :: k, stat
+        real(dp), allocatable, intent(out) :: values(:, :, :)
+        type(entry_t) :: e
+        character(len=:), allocatable :: path
+        integer :: k, width, m, stat
         character(len=256) :: message
 
-        allocate (rows(size(paths), n), stat=stat, errmsg=message)
-        call check_allocation(stat, message, 'the copied history')
-        do k = 1, size(paths)
-            rows(k, :) = leading(file, trim(paths(k)), n)
+        do k = 1, size(names)
+            path = group//trim(names(k))
+            e = set%find(path(index(path(2:), '/') + 2:))   ! (its path below the group read)
+            width = merge(e%dims(1), 1, e%rank == 2)
+            m = merge(e%dims(e%rank), n, n < 0)
+            if (e%dims(e%rank) < m) call fatal(EXIT_INPUT, WHERE, "'"//set%source//"': "//path// &
+                ' has fewer rows than its time column')
+            if (k == 1) then
+                allocate (values(width, size(names), m), stat=stat, errmsg=message)
+                call check_allocation(stat, message, 'the copied history')
+            end if
+            if (e%is_integer) then
+                values(:, k, :) = reshape(real(e%values(:width * m), dp), [width, m])
+            else
+                values(:, k, :) = reshape(transfer(e%values(:width * m), 1.0_dp, width * m), [width, m])
+            end if
         end do
     end subroutine read_rows
-
-    !> The first n values of the 1D dataset `dset` of `file` (require_rows).
-    function leading(file, dset, n) result(values)
-        character(len=*), intent(in) :: file, dset
-        integer, intent(in) :: n
-        real(dp), allocatable :: values(:)
-
-        call read_real_1d(file, dset, values)
-        call require_rows(file, dset, size(values), n)
-        values = values(:n)
-    end function leading
-
-    !> A dataset of the copied history has fewer rows than its time column: not a file this
-    !> version of rodcontact wrote.
-    subroutine require_rows(file, dset, have, need)
-        character(len=*), intent(in) :: file, dset
-        integer, intent(in) :: have, need
-
-        if (have < need) &
-            call fatal(EXIT_INPUT, WHERE, "'"//file//"': "//dset//' has fewer rows than its time column')
-    end subroutine require_rows
 
     !> How many leading rows to copy: times up to t_last and strictly increasing (a file left
     !> by a killed run can hold rows past its last flush whose values were never written).

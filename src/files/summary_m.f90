@@ -10,6 +10,7 @@ module summary_m
     use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
                          dataset_exists
     use fsys_m, only: file_exists
+    use fields_m, only: FIELDS, OUTPUT_ORDER, N_OUTPUT_FIELDS
     implicit none
     private
     public :: summary_t
@@ -42,8 +43,8 @@ module summary_m
         !> root attribute 'step_control_error_sum_relative' of adaptive steps (NaN if absent)
         real(dp) :: time_error = NAN
         !> root attributes 'error_estimate.<field>' (&output error_estimate; NaN if absent),
-        !> the fields in ESTIMATE_FIELDS' order
-        real(dp) :: error_estimate(6) = NAN
+        !> the fields in fields_m's OUTPUT_ORDER
+        real(dp) :: error_estimate(N_OUTPUT_FIELDS) = NAN
         !> /events in time order: each event's time and whether it is an onset (else a
         !> release); none when absent (has_events false)
         logical :: has_events = .false.
@@ -53,7 +54,6 @@ module summary_m
     end type summary_t
 
     integer, parameter :: N_COLUMNS = 31
-    character(len=*), parameter :: ESTIMATE_FIELDS(6) = [character(len=5) :: 'u', 'v', 'theta', 'P', 'q', 'eta']
     character(len=*), parameter :: COLUMNS(N_COLUMNS) = [character(len=16) :: &
         'file', 'status', 'contact', 'first_contact_t', 'last_contact_t', 'contact_time', &
         'max_penetration', 'max_u_end', 't_max_u_end', 'max_u_end_over_g', 'energy_ratio', &
@@ -140,8 +140,8 @@ contains
         if (attr_exists(file, 'steps')) call read_attr_int(file, 'steps', s%steps)
         s%wall_seconds = attr_or_nan(file, 'wall_seconds')
         s%time_error = attr_or_nan(file, 'step_control_error_sum_relative')
-        do k = 1, size(ESTIMATE_FIELDS)
-            s%error_estimate(k) = attr_or_nan(file, 'error_estimate.'//trim(ESTIMATE_FIELDS(k)))
+        do k = 1, N_OUTPUT_FIELDS
+            s%error_estimate(k) = attr_or_nan(file, 'error_estimate.'//trim(FIELDS(OUTPUT_ORDER(k))%name))
         end do
         call read_events(file, s)
         if (.not. nondimensional) s%si = file_in_si(file)
@@ -178,10 +178,14 @@ contains
 
         call read_attr_real(file, 'scale.time', tf)
         call read_attr_real(file, 'scale.displacement', lf)
-        s%first_contact_t = tf * s%first_contact_t; s%last_contact_t = tf * s%last_contact_t
-        s%contact_time = tf * s%contact_time; s%t_max_u_end = tf * s%t_max_u_end
-        s%decay_fit_from_t = tf * s%decay_fit_from_t; s%decay_fit_to_t = tf * s%decay_fit_to_t
-        s%t_final = tf * s%t_final; s%decay_rate = s%decay_rate / tf
+        s%first_contact_t = tf * s%first_contact_t
+        s%last_contact_t = tf * s%last_contact_t
+        s%contact_time = tf * s%contact_time
+        s%t_max_u_end = tf * s%t_max_u_end
+        s%decay_fit_from_t = tf * s%decay_fit_from_t
+        s%decay_fit_to_t = tf * s%decay_fit_to_t
+        s%t_final = tf * s%t_final
+        s%decay_rate = s%decay_rate / tf
         s%event_t = tf * s%event_t
         s%max_penetration = lf * s%max_penetration; s%max_u_end = lf * s%max_u_end; s%g = lf * s%g
     end subroutine to_si

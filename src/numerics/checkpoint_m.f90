@@ -67,13 +67,13 @@ contains
         end do
     end function has
 
-    !> The entry `name`, of integers or reals and of that rank: a checkpoint without it
-    !> cannot be continued (an input error of the restart).
+    !> The entry `name` (given them, of integers or reals and of that rank): a checkpoint
+    !> without it cannot be continued (an input error of the restart).
     function find(self, name, is_integer, rank) result(entry)
         class(checkpoint_t), intent(in) :: self
         character(len=*), intent(in) :: name
-        logical, intent(in) :: is_integer
-        integer, intent(in) :: rank
+        logical, intent(in), optional :: is_integer
+        integer, intent(in), optional :: rank
         type(entry_t) :: entry
         integer :: k
         character(len=:), allocatable :: file
@@ -83,6 +83,7 @@ contains
         do k = 1, self%n
             if (self%entries(k)%name /= name) cycle
             entry = self%entries(k)
+            if (.not. present(rank)) return
             if ((entry%is_integer .eqv. is_integer) .and. entry%rank == rank) return
             call fatal(EXIT_INPUT, 'time.restart_from', file//"'s "//name//' is of another type or rank')
         end do

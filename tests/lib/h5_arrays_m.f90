@@ -1,11 +1,12 @@
 !> What the tests read from an output file besides h5_read_m's routines: an integer series
-!> as integers.
+!> as integers, a snapshot field as a 2D array.
 module h5_arrays_m
     use kinds_m, only: dp
+    use hdf5, only: hsize_t
     use h5_read_m, only: read_real_1d
     implicit none
     private
-    public :: read_int_1d
+    public :: read_int_1d, read_real_2d
 
 contains
 
@@ -20,5 +21,17 @@ contains
         call read_real_1d(file, dset, flat)
         values = nint(flat)
     end subroutine read_int_1d
+
+    !> Whole 2D float dataset: values(s+1, n_snap) for what h5py shows as (n_snap, s+1).
+    subroutine read_real_2d(file, dset, values)
+        character(len=*), intent(in) :: file
+        character(len=*), intent(in) :: dset
+        real(dp), allocatable, intent(out) :: values(:, :)
+        real(dp), allocatable :: flat(:)
+        integer(hsize_t) :: dims(2)
+
+        call read_real_1d(file, dset, flat, dims)
+        values = reshape(flat, dims)
+    end subroutine read_real_2d
 
 end module h5_arrays_m

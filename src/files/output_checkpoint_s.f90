@@ -1,7 +1,7 @@
 !> The checkpoint writer of output_m (the layout: docs/output.md, "Checkpoints"): a
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
-    use hdf5, only: h5lexists_f, h5dopen_f, H5T_STD_I64LE, &
+    use hdf5, only: h5lexists_f, H5T_STD_I64LE, &
                     h5kind_to_type, H5_INTEGER_KIND, H5P_DEFAULT_F, &
                     h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F
     use checkpoint_m, only: entry_t
@@ -185,10 +185,7 @@ contains
 
         name = set_path(ckpt%entries(d), slot)
         associate (id => w%ckpt_ids(d, slot), entry => ckpt%entries(d))
-            if (id < 0) then
-                call h5dopen_f(w%file_id, name, id, hdferr)
-                call w%check(hdferr, 'h5dopen_f /'//name)
-            end if
+            call w%hold(id, '/'//name)
             if (entry%rank > 0) then
                 call h5dset_extent_f(id, int(entry%dims(:entry%rank), hsize_t), hdferr)
                 call w%check(hdferr, 'h5dset_extent_f /'//name)
@@ -219,10 +216,7 @@ contains
         type(c_ptr) :: buf
         integer :: hdferr
 
-        if (w%ckpt_current_id < 0) then
-            call h5dopen_f(w%file_id, 'checkpoint/current', w%ckpt_current_id, hdferr)
-            call w%check(hdferr, 'h5dopen_f /checkpoint/current')
-        end if
+        call w%hold(w%ckpt_current_id, '/checkpoint/current')
         value = slot
         buf = c_loc(value)
         call h5dwrite_f(w%ckpt_current_id, h5kind_to_type(int64, H5_INTEGER_KIND), buf, hdferr)

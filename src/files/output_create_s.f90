@@ -8,7 +8,7 @@
 !> first append, kept open until finish() and buffered as the series are. A submodule of
 !> output_m, so that it sets up the writer's private state.
 submodule (output_m) output_create_s
-    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F, h5dopen_f, H5T_STD_I64LE
+    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F, H5T_STD_I64LE
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
@@ -204,6 +204,7 @@ contains
         integer :: hdferr, rank
         logical :: integers
 
+        call w%hold(dset_id, what)
         rank = size(block)
         new_dims = block
         new_dims(rank) = offset + block(rank)
@@ -356,6 +357,7 @@ contains
         integer :: k
 
         call w%leave_swmr()
+        call w%hold(w%snap_t_id, '/snapshots/t')   ! (create_index's coordinate)
         call w%make_group(GROUP)
         w%native_created = .true.
         call create_dataset(w, GROUP//'/x', H5T_IEEE_F64LE, VALUES_CHUNK, x_id, &
@@ -393,10 +395,8 @@ contains
         integer(hsize_t), intent(in) :: at
         real(dp), intent(in) :: values(:)
         integer(hid_t) :: dset_id
-        integer :: hdferr
 
-        call h5dopen_f(w%file_id, GROUP//'/'//name, dset_id, hdferr)
-        call w%check(hdferr, 'h5dopen_f '//GROUP//'/'//name)
+        dset_id = -1   ! (append_rows opens it)
         call w%append_rows(dset_id, GROUP//'/'//name, at, [int(size(values), hsize_t)], values)
         call w%close_dataset(dset_id, GROUP//'/'//name)
     end subroutine append

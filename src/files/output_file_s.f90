@@ -6,7 +6,7 @@
 !> clean, and reopened), and the next flush() starts it again.
 submodule (output_m) output_file_s
     use hdf5, only: h5fopen_f, H5F_ACC_RDWR_F, h5pset_libver_bounds_f, H5F_LIBVER_V110_F, &
-                    h5dopen_f, h5lexists_f, h5ldelete_f
+                    h5lexists_f, h5ldelete_f
     use h5ds, only: h5dsdetach_scale_f
     use h5_swmr_m, only: start_swmr_write
     implicit none
@@ -64,46 +64,28 @@ contains
     end procedure writer_flush
 
     !> Leave SWMR writing before a structural change (a new object or attribute, a deletion):
-    !> close the file, which a SWMR close leaves clean and complete, and reopen it with every
-    !> dataset the writer holds open. Nothing to do outside SWMR mode.
+    !> close the file, which a SWMR close leaves clean and complete, and reopen it. Nothing to
+    !> do outside SWMR mode.
     module procedure writer_leave_swmr
-        integer :: hdferr, k
+        integer :: hdferr
 
         if (.not. w%swmr) return
         call w%write_buffer(w%series)
         call w%write_buffer(w%estimates)
         call reserve(w)
-        ! the strong close degree (writer_open_file) closes every dataset too; the
-        ! checkpoint's are reopened by the next checkpoint (output_checkpoint_s)
+        ! the strong close degree (writer_open_file) closes every dataset too: each is opened
+        ! again where it is next written (hold)
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f (leaving SWMR writing)')
         w%swmr = .false.
         if (allocated(w%ckpt_ids)) w%ckpt_ids = -1
         w%ckpt_current_id = -1
+        w%snap_t_id = -1
+        w%snap_field_ids = -1
+        w%series%ids = -1
+        if (allocated(w%estimates%ids)) w%estimates%ids = -1
         call writer_open_file(w, create=.false.)
-        call reopen(w, w%snap_t_id, '/snapshots/t')
-        do k = 1, N_SNAPSHOT_FIELDS
-            call reopen(w, w%snap_field_ids(k), '/snapshots/'//trim(SNAPSHOTS(k)%name))
-        end do
-        do k = 1, size(w%series%ids)
-            call reopen(w, w%series%ids(k), trim(w%series%paths(k)))
-        end do
-        if (.not. allocated(w%estimates%ids)) return
-        do k = 1, size(w%estimates%ids)
-            call reopen(w, w%estimates%ids(k), trim(w%estimates%paths(k)))
-        end do
     end procedure writer_leave_swmr
-
-    !> Open the dataset at `path` again (leave_swmr), as dset_id.
-    subroutine reopen(w, dset_id, path)
-        class(h5_writer_t), intent(inout) :: w
-        integer(hid_t), intent(out) :: dset_id
-        character(len=*), intent(in) :: path
-        integer :: hdferr
-
-        call h5dopen_f(w%file_id, path, dset_id, hdferr)
-        call w%check(hdferr, 'h5dopen_f '//path)
-    end subroutine reopen
 
     !> Write the buffered series, root attribute `status` ('complete', or 'failed: <reason>'
     !> after a numerical failure), close the file and rename `<prefix>.h5.part` to
@@ -238,10 +220,11 @@ contains
         integer(hid_t) :: dset_id
         integer :: hdferr, k
 
+        call w%hold(w%snap_t_id, '/snapshots/t')
         do k = 1, size(NAMES)
             associate (name => trim(NAMES(k)))
-                call h5dopen_f(w%file_id, name, dset_id, hdferr)
-                call w%check(hdferr, 'h5dopen_f '//name)
+                dset_id = -1
+                call w%hold(dset_id, name)
                 call h5dsdetach_scale_f(dset_id, w%snap_t_id, 1, hdferr)
                 call w%check(hdferr, 'h5dsdetach_scale_f '//name)
                 call w%close_dataset(dset_id, name)

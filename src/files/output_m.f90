@@ -24,7 +24,7 @@ module output_m
                     H5P_DATASET_CREATE_F, h5gcreate_f, h5gclose_f, &
                     h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, &
                     H5S_UNLIMITED_F, H5S_SELECT_SET_F, h5dcreate_f, h5dclose_f, &
-                    h5dwrite_f, h5dset_extent_f, h5dget_space_f, &
+                    h5dwrite_f, h5dset_extent_f, h5dget_space_f, h5dopen_f, &
                     H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_NATIVE_DOUBLE, H5T_NATIVE_INTEGER, h5screate_f, &
                     H5S_SCALAR_F, H5S_NULL_F, h5acreate_f, h5aclose_f, h5awrite_f, h5aexists_f, h5adelete_f, &
                     h5tcopy_f, h5tclose_f, h5tset_cset_f, H5T_STRING, H5T_CSET_UTF8_F
@@ -121,6 +121,7 @@ module output_m
         procedure, private :: write_buffer => writer_write_buffer
         procedure, private :: append_rows => writer_append_rows
         procedure, private :: close_dataset => writer_close_dataset
+        procedure, private :: hold => writer_hold
         procedure, private :: leave_swmr => writer_leave_swmr
     end type h5_writer_t
 
@@ -170,7 +171,7 @@ module output_m
 
         module subroutine writer_append_rows(w, dset_id, what, offset, block, values, whole)
             class(h5_writer_t), intent(inout) :: w
-            integer(hid_t), intent(in) :: dset_id
+            integer(hid_t), intent(inout) :: dset_id
             character(len=*), intent(in) :: what
             integer(hsize_t), intent(in) :: offset, block(:)
             real(dp), intent(in) :: values(*)
@@ -362,6 +363,19 @@ contains
         call w%check(hdferr, 'h5dclose_f '//what)
         dset_id = -1
     end subroutine writer_close_dataset
+
+    !> Open dataset `path` as dset_id unless it is open: leave_swmr closes every dataset, and
+    !> each is opened again where it is next written.
+    subroutine writer_hold(w, dset_id, path)
+        class(h5_writer_t), intent(inout) :: w
+        integer(hid_t), intent(inout) :: dset_id
+        character(len=*), intent(in) :: path
+        integer :: hdferr
+
+        if (dset_id >= 0) return
+        call h5dopen_f(w%file_id, path, dset_id, hdferr)
+        call w%check(hdferr, 'h5dopen_f '//path)
+    end subroutine writer_hold
 
     !> Stop (exit 4) when the writer is not open: `what` came out of order.
     subroutine writer_need_open(w, what)

@@ -8,7 +8,7 @@ program test_banded_m
     use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
     use kinds_m, only: dp
     use banded_m, only: band_t, lapack_info_message
-    use band_reference_m, only: band_to_dense, solve_with_dgbtrs, factor_band_blocks
+    use band_reference_m, only: band_entry, band_to_dense, solve_with_dgbtrs, factor_band_blocks
     use block_tridiagonal_m, only: block_tridiagonal_t, product5, product5_left_pattern, product5_right_pattern, &
                                    in_pattern
     use testing_m, only: check_close, check_true, test_summary
@@ -45,8 +45,8 @@ program test_banded_m
         call a%add(j, j, 1.0e-3_dp)
     end do
     dense = band_to_dense(a)
-    call check_close('get = dense', dense(5, 8), a%get(5, 8), 0.0_dp)
-    call check_close('outside band is zero', 0.0_dp, a%get(1, n), 0.0_dp)
+    call check_close('band_entry = dense', dense(5, 8), band_entry(a, 5, 8), 0.0_dp)
+    call check_close('outside band is zero', 0.0_dp, band_entry(a, 1, n), 0.0_dp)
     do i = 1, n
         b(i) = sin(real(i, dp))
     end do
@@ -130,7 +130,7 @@ contains
         ! coupling is zero too, so clear both
         do j = 2 * nb + 1, 3 * nb
             do i = max(1, j - kw), min(n, j + kw)
-                call m%add(i, j, -m%get(i, j))
+                call m%add(i, j, -band_entry(m, i, j))
             end do
         end do
         call factor_band_blocks(blocks, m, nb, stat, .true.)

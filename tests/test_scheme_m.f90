@@ -12,7 +12,7 @@ program test_scheme_m
     use kinds_m, only: dp
     use config_m, only: config_t, model_t
     use banded_m, only: band_t
-    use band_reference_m, only: band_to_dense
+    use band_reference_m, only: band_entry, band_to_dense
     use fields_m, only: N_FIELDS, F_Q, F_THETA, F_V, F_P, F_ETA, FIELDS, is_dirichlet
     use scheme_m, only: assemble_matrix, assemble_blocks, band_width
     use slots_m, only: MONOLITHIC_SLOTS, THERMAL_SLOTS, MECHANICAL_SLOTS, slots_of
@@ -86,10 +86,13 @@ contains
                 do c = 1, N_FIELDS
                     do r = 1, N_FIELDS
                         if (slots(r) == 0 .or. slots(c) == 0) cycle
-                        if (.not. same_bits(d(r, c, i), a%get(at(slots, i, r), at(slots, i, c)))) n_diff = n_diff + 1
+                        if (.not. same_bits(d(r, c, i), band_entry(a, at(slots, i, r), at(slots, i, c)))) &
+                            n_diff = n_diff + 1
                         if (i == s) cycle
-                        if (.not. same_bits(e(r, c, i), a%get(at(slots, i, r), at(slots, i + 1, c)))) n_diff = n_diff + 1
-                        if (.not. same_bits(f(r, c, i), a%get(at(slots, i + 1, r), at(slots, i, c)))) n_diff = n_diff + 1
+                        if (.not. same_bits(e(r, c, i), band_entry(a, at(slots, i, r), at(slots, i + 1, c)))) &
+                            n_diff = n_diff + 1
+                        if (.not. same_bits(f(r, c, i), band_entry(a, at(slots, i + 1, r), at(slots, i, c)))) &
+                            n_diff = n_diff + 1
                     end do
                 end do
             end do

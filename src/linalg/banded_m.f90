@@ -33,7 +33,6 @@ module banded_m
         procedure :: init => band_init
         procedure :: add => band_add
         procedure :: release => band_release
-        procedure :: get => band_get
         procedure :: matvec => band_matvec
         procedure :: factor => band_factor
         procedure :: solve => band_solve
@@ -79,16 +78,6 @@ contains
         if (j - i > self%ku .or. i - j > self%kl) error stop 'band_add: entry outside the band'
         self%ab(self%kl + self%ku + 1 + i - j, j) = self%ab(self%kl + self%ku + 1 + i - j, j) + value
     end subroutine band_add
-
-    !> A(i,j) (zero outside the band); only meaningful before factor().
-    pure function band_get(self, i, j) result(value)
-        class(band_t), intent(in) :: self
-        integer, intent(in) :: i, j
-        real(dp) :: value
-
-        value = 0.0_dp
-        if (j - i <= self%ku .and. i - j <= self%kl) value = self%ab(self%kl + self%ku + 1 + i - j, j)
-    end function band_get
 
     !> y = A x; only meaningful before factor().
     pure function band_matvec(self, x) result(y)

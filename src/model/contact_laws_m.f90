@@ -42,7 +42,8 @@ contains
         do
             k = k + 1
             call law_row(k, row_name, law)
-            if (row_name == '') error stop 'contact_laws_m: a law not in the table (validate_m checks the name)'
+            if (row_name == '') &
+                error stop 'contact_laws_m: a law not in the table (validate_m checks the name)'
             if (row_name == name) exit
         end do
         law%g = g

@@ -29,8 +29,9 @@ contains
             left = max(i - 1, 0)
             right = min(i + 1, s)
             associate (dx => mesh%x(right) - mesh%x(left))
-                sigma(i) = model%alpha * (u(right) - u(left)) / dx + model%varpi * (w(right, F_V) - w(left, F_V)) / dx &
-                    - model%gamma1 * w(i, F_THETA) - model%gamma2 * w(i, F_P)
+                sigma(i) = model%alpha * (u(right) - u(left)) / dx &
+                           + model%varpi * (w(right, F_V) - w(left, F_V)) / dx &
+                           - model%gamma1 * w(i, F_THETA) - model%gamma2 * w(i, F_P)
             end associate
         end do
     end function nodal_stress

@@ -1,5 +1,5 @@
-!> Test and benchmark helpers for band_t that the program itself does not need: the dense
-!> copy of a band matrix, LAPACK's own dgbtrs on band_t's factors (the reference for
+!> Test and benchmark helpers for band_t that the program itself does not need: an entry and
+!> the dense copy of a band matrix, LAPACK's own dgbtrs on band_t's factors (the reference for
 !> band_t%solve, a plain-loop substitution), and the block LU of a band's node blocks.
 module band_reference_m
     use kinds_m, only: dp
@@ -7,7 +7,7 @@ module band_reference_m
     use block_tridiagonal_m, only: block_tridiagonal_t
     implicit none
     private
-    public :: band_to_dense, solve_with_dgbtrs, factor_band_blocks
+    public :: band_entry, band_to_dense, solve_with_dgbtrs, factor_band_blocks
 
     interface
         subroutine dgbtrs(trans, n, kl, ku, nrhs, ab, ldab, ipiv, b, ldb, info)
@@ -22,6 +22,16 @@ module band_reference_m
     end interface
 
 contains
+
+    !> A(i,j) (zero outside the band); only meaningful before factor().
+    pure function band_entry(a, i, j) result(value)
+        type(band_t), intent(in) :: a
+        integer, intent(in) :: i, j
+        real(dp) :: value
+
+        value = 0.0_dp
+        if (j - i <= a%ku .and. i - j <= a%kl) value = a%ab(a%kl + a%ku + 1 + i - j, j)
+    end function band_entry
 
     !> The dense n x n matrix; only meaningful before factor().
     pure function band_to_dense(a) result(dense)
@@ -38,7 +48,7 @@ contains
     end function band_to_dense
 
     !> The block LU (block_tridiagonal_m) of the unfactored band a with nb unknowns per node:
-    !> its node blocks D_i, E_i, F_i read with a%get and factored (info, inline as factor's).
+    !> its node blocks D_i, E_i, F_i read with band_entry and factored (info, inline as factor's).
     subroutine factor_band_blocks(blocks, a, nb, info, inline)
         type(block_tridiagonal_t), intent(inout) :: blocks
         type(band_t), intent(in) :: a
@@ -53,10 +63,10 @@ contains
         do i = 0, last
             do c = 1, nb
                 do r = 1, nb
-                    d(r, c, i) = a%get(nb * i + r, nb * i + c)
+                    d(r, c, i) = band_entry(a, nb * i + r, nb * i + c)
                     if (i == last) cycle
-                    e(r, c, i) = a%get(nb * i + r, nb * (i + 1) + c)
-                    f(r, c, i) = a%get(nb * (i + 1) + r, nb * i + c)
+                    e(r, c, i) = band_entry(a, nb * i + r, nb * (i + 1) + c)
+                    f(r, c, i) = band_entry(a, nb * (i + 1) + r, nb * i + c)
                 end do
             end do
         end do

@@ -187,7 +187,7 @@ contains
                 end do
             end do
             old(0, 0) = 0.0_dp
-            call transfer_level(k_old, k_new, n_fine, old, new, model)
+            call transfer_level(k_old, k_new, n_fine, old(:, 0), old(:, 1:), new(:, 0), new(:, 1:), model)
             e_old = energy(model, k_old, old)
             e_new = energy(model, k_new, new)
             worst_rise = max(worst_rise, (e_new - e_old) / e_old)
@@ -197,7 +197,7 @@ contains
             ! refinement only: the union of both meshes holds the old function exactly
             k_fine = union(k_old, k_new)
             allocate (back(0:size(k_fine) - 1, 0:N_FIELDS))
-            call transfer_level(k_old, k_fine, n_fine, old, back, model)
+            call transfer_level(k_old, k_fine, n_fine, old(:, 0), old(:, 1:), back(:, 0), back(:, 1:), model)
             if (model%mass_end_moved) then
                 ! the lumped part of M_v falls where elements split, and x = 1's v carries none
                 worst_kept = max(worst_kept, (energy(model, k_fine, back) - e_old) / e_old)

@@ -21,13 +21,14 @@ module adaptive_mesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use fields_m, only: N_FIELDS
-    use config_m, only: model_t
+    use config_m, only: config_t, model_t
+    use state_m, only: state_t, initial_state
     use errors_m, only: check_allocation
     use mesh_m, only: mesh_t
     use checkpoint_m, only: checkpoint_t
     implicit none
     private
-    public :: adaptive_mesh_t, COARSEN_MARGIN, FRONT_CFL, front_speed, nodes_of_keys
+    public :: adaptive_mesh_t, FRONT_CFL, front_speed, nodes_of_keys, initial_mesh
 
     !> Coarsen where the indicator is this many times below error_tol (hysteresis: a
     !> bisection halves the detail only about 4-fold, so the new node is not removed again).
@@ -73,6 +74,42 @@ contains
         self%n_fine = int(n_coarse, int64) * 2_int64**max_level
         call self%set_keys([(int(i, int64) * 2_int64**max_level, i = 0, n_coarse)])
     end subroutine mesh_init
+
+    !> The first mesh: the coarsest one adapted to the initial data (2.12), interpolated
+    !> afresh on every mesh, until it no longer changes (at most max_level + 2 passes); the
+    !> state holds the initial data on it.
+    subroutine initial_mesh(cfg, mesh, state)
+        type(config_t), intent(in) :: cfg
+        type(adaptive_mesh_t), intent(out) :: mesh
+        type(state_t), intent(out) :: state
+        integer :: pass
+        logical :: changed
+
+        call mesh%init(cfg%mesh%n_elements, cfg%mesh%max_level, cfg%mesh%error_tol, &
+                       front_buffer(cfg))
+        changed = .false.
+        do pass = 1, cfg%mesh%max_level + 2
+            call initial_state(cfg, state, mesh%nodes())
+            call mesh%adapt(state%mesh, state%u, state%w, changed)
+            if (.not. changed) exit
+        end do
+        if (changed) call initial_state(cfg, state, mesh%nodes())
+    end subroutine initial_mesh
+
+    !> How many elements around a large indicator are kept fine (the buffer): the finest
+    !> elements the fastest front (front_speed) can cross in remesh_every steps, plus one. A
+    !> step moves it v dt, so v dt n_fine of the finest elements with fixed steps (&time dt;
+    !> the buffer is 1 when there is no front: Fourier's and Fick's laws), and FRONT_CFL
+    !> elements with adaptive steps (step_driver_m limits them so), whatever the laws.
+    integer function front_buffer(cfg) result(buffer)
+        type(config_t), intent(in) :: cfg
+        real(dp) :: v, cfl, n_fine
+
+        v = front_speed(cfg%model)
+        n_fine = real(cfg%mesh%n_elements, dp) * 2.0_dp**cfg%mesh%max_level
+        cfl = merge(FRONT_CFL, v * cfg%time%dt * n_fine, cfg%time%adaptive)
+        buffer = 1 + ceiling(min(real(cfg%mesh%remesh_every, dp) * cfl, n_fine))
+    end function front_buffer
 
     !> The mesh with node keys k(0:s) (a checkpoint's, or adapt's).
     subroutine mesh_set_keys(self, k)
@@ -151,9 +188,8 @@ contains
         integer(int64) :: length
 
         s = self%s()
-        ! each field's L2 norm, and scale_f = max(scale_f, |f|_L2); the indicators relative to
-        ! the present norm, but not below NORM_FLOOR of the largest (a field decaying to zero
-        ! is not resolved down to round-off)
+        ! each field's L2 norm, scale_f = max(scale_f, |f|_L2), and the norm the indicators
+        ! are relative to (NORM_FLOOR: a field decaying to zero is not resolved to round-off)
         norm(0) = l2_norm(mesh%x, u)
         do f = 1, N_FIELDS
             norm(f) = l2_norm(mesh%x, w(:, f))

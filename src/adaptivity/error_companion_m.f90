@@ -26,7 +26,7 @@ module error_companion_m
     use errors_m, only: fatal, EXIT_INPUT
     use adaptive_mesh_m, only: nodes_of_keys
     use companion_mesh_m, only: companion_keys, key_positions, trapezoid_weights
-    use remesh_m, only: move_state
+    use transfer_m, only: move_state
     implicit none
     private
     public :: error_companions_t, N_ESTIMATE_PARTS, PART_TOTAL, PART_TIME, PART_SPACE
@@ -42,8 +42,7 @@ module error_companion_m
     character(len=*), parameter :: NAMES = 'ACD'
     !> the estimate's parts: total, time, space
     integer, parameter :: PART_TOTAL = 1, PART_TIME = 2, PART_SPACE = 3, N_ESTIMATE_PARTS = 3
-    !> a companion lands itself on a snapshot LAND_SPAN k or more of the run's steps after the
-    !> one before (closer snapshots: a copy lands; companions_land)
+    !> a companion lands itself on a snapshot LAND_SPAN k or more run steps after the last
     integer, parameter :: LAND_SPAN = 8
     !> the run's steps a companion holds at most (3 k: companions_follow)
     integer, parameter :: QUEUE_MAX = 3 * maxval(STEPS_PER_STEP)
@@ -56,7 +55,7 @@ module error_companion_m
         type(step_result_t) :: result
         !> the run's steps since the companion's last step: their sizes and end times
         integer :: n_queued = 0
-        real(dp) :: queue_dt(QUEUE_MAX) = 0.0_dp, queue_t(QUEUE_MAX) = 0.0_dp
+        real(dp), allocatable :: queue_dt(:), queue_t(:)
         !> an adaptive mesh: the companion's node keys (companion_mesh_m)
         integer(int64), allocatable :: k(:)
     end type companion_t
@@ -124,6 +123,8 @@ contains
                 end if
                 c%state%u = initial%u(on_run)
                 c%state%w = initial%w(on_run, :)
+                c%queue_dt = spread(0.0_dp, 1, QUEUE_MAX)
+                c%queue_t = c%queue_dt
                 call c%stepper%init(coarse, c%result, source)
                 if (present(keys)) call c%stepper%remesh(c%state)
                 ! a non-finite level stays so: companions_estimate tests it once per snapshot
@@ -285,10 +286,9 @@ contains
         self%last = values
     end subroutine companions_estimate
 
-    !> The L2 norm over the rod of the P1 function with nodal values x: on a uniform mesh
-    !> (weights absent) up to the factor sqrt(h) (the trapezoidal rule; the factor cancels in
-    !> a ratio); else by the trapezoidal rule with weights (companion_mesh_m's
-    !> trapezoid_weights).
+    !> The L2 norm over the rod of the P1 function with nodal values x by the trapezoidal rule:
+    !> with weights (companion_mesh_m's trapezoid_weights), or on a uniform mesh (weights
+    !> absent) up to the factor sqrt(h), which cancels in a ratio.
     pure real(dp) function norm(x, weights)
         real(dp), intent(in) :: x(0:)
         real(dp), intent(in), optional :: weights(0:)
@@ -312,15 +312,12 @@ contains
     end function relative
 
     !> The companions into a checkpoint, or back from one (checkpoint_m's reading; on
-    !> companions initialised for this run), each under error_companions/<A|C|D>: its state
-    !> (state_t's checkpoint; an adaptive mesh's companion meshes are first rebuilt from the
-    !> run's), its solves and its queue of the run's steps (QUEUE_MAX, n_queued in use); then
-    !> whether they failed, the run's steps since the last snapshot.
+    !> companions initialised for this run, an adaptive mesh's companion meshes first rebuilt
+    !> from the run's), each under error_companions/<A|C|D>.
     subroutine companions_checkpoint(self, ckpt)
         class(error_companions_t), intent(inout) :: self
         type(checkpoint_t), intent(inout) :: ckpt
         character(len=:), allocatable :: p
-        real(dp), allocatable :: queue(:)
         integer(int64), allocatable :: keys(:)
         integer :: j
 
@@ -328,7 +325,6 @@ contains
             call ckpt%sync('adaptive_mesh/keys', keys)
             call companions_remesh(self, keys)
         end if
-        allocate (queue(QUEUE_MAX))
         do j = 1, N_COMPANIONS
             associate (c => self%pair(j))
                 p = 'error_companions/'//NAMES(j:j)
@@ -337,12 +333,8 @@ contains
                     'the checkpoint''s error-estimate companion '//NAMES(j:j)//' does not fit its mesh')
                 call ckpt%sync(p//'/n_solves', c%stepper%n_solves)
                 call ckpt%sync(p//'/n_queued', c%n_queued)
-                queue = c%queue_dt
-                call ckpt%sync(p//'/queue_dt', queue)
-                c%queue_dt = queue
-                queue = c%queue_t
-                call ckpt%sync(p//'/queue_t', queue)
-                c%queue_t = queue
+                call ckpt%sync(p//'/queue_dt', c%queue_dt)
+                call ckpt%sync(p//'/queue_t', c%queue_t)
             end associate
         end do
         call ckpt%sync('error_companions/failed', self%failed)
@@ -350,10 +342,10 @@ contains
         if (self%failed .and. self%failure == '') self%failure = 'failed before the checkpoint'
     end subroutine companions_checkpoint
 
-    !> The run's adaptive mesh has changed (keys: its new node keys; remesh_m): each companion
-    !> onto its mesh for the new one (companion_mesh_m), its levels moved as the run's are
-    !> (remesh_m's move_state: transfer_m); a companion whose mesh stays keeps its levels
-    !> untouched. (A restart: before the checkpoint's levels are read.)
+    !> The run's adaptive mesh has changed (keys: its new node keys): each companion onto its
+    !> mesh for the new one (companion_mesh_m), its levels moved as the run's are (transfer_m's
+    !> move_state); a companion whose mesh stays keeps its levels untouched. (A restart: before
+    !> the checkpoint's levels are read.)
     subroutine companions_remesh(self, keys)
         class(error_companions_t), intent(inout) :: self
         integer(int64), intent(in) :: keys(0:)

@@ -134,10 +134,8 @@ contains
     end function estimator_estimate
 
     !> u_diff, w_diff = X^n - P^n, P^n = sum_j weight(j) X^{n-j} over the p + 1 <= 3 levels
-    !> held (the newest first): one pass over the nodes per field, the terms subtracted in
-    !> the order j = 1, 2, ... (the same sums as one array operation per level, without
-    !> reading and writing the difference once per level; Euler's own two-level loop:
-    !> docs/performance.md).
+    !> held (the newest first), the terms subtracted in the order j = 1, 2, ...: one pass over
+    !> the nodes per field (why, and Euler's own loop: docs/performance.md).
     subroutine extrapolation_difference(self, u, w, weight)
         type(error_estimator_t), intent(inout) :: self
         real(dp), intent(in) :: u(0:), w(0:, :)

@@ -8,15 +8,12 @@
 !> state in its interior is taken back and retried to end at the located event, and the
 !> step after it, which starts there, changes the contact state at its start and is
 !> accepted; the controller's proposal is kept across the event. Steps are shortened to
-!> land on the snapshot times (&output snapshot_dt) and on the end of the run. An accepted
-!> step adds its contact event to the event log, (adaptive steps) its level to the error
-!> estimator and its estimate to the controller's error sum, and its energy to the energy
-!> monitor. Fixed steps compute no estimate. Choosing, trying, judging and accepting one
-!> step (take_step): the submodule step_driver_trial_s.
+!> land on the snapshot times (&output snapshot_dt) and on the end of the run. Choosing,
+!> trying, judging and accepting one step (take_step): the submodule step_driver_trial_s.
 module step_driver_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
-    use config_m, only: config_t, model_t, with_contact_mass
+    use config_m, only: config_t
     use material_m, only: time_scale
     use state_m, only: state_t, copy_state, keep_copy
     use stepper_m, only: stepper_t, step_result_t
@@ -27,8 +24,7 @@ module step_driver_m
     use step_control_m, only: step_controller_t
     use dense_output_m, only: lagrange_weights
     use adaptive_mesh_m, only: adaptive_mesh_t, front_speed
-    use remesh_m, only: move_state
-    use transfer_m, only: transfer_level
+    use transfer_m, only: transfer_level, move_state
     use errors_m, only: check_allocation
     implicit none
     private
@@ -42,7 +38,6 @@ module step_driver_m
         logical :: dense = .false.
         real(dp) :: dt = 0.0_dp, dt_min = 0.0_dp, dt_max = 0.0_dp   !< &time dt, dt_min, dt_max
         real(dp) :: v_front = 0.0_dp           !< &mesh adaptive: adaptive_mesh_m's front_speed
-        type(model_t) :: model                 !< for the error estimate's energy norm
         type(error_estimator_t) :: estimator
         type(step_controller_t) :: control
         type(event_log_t) :: events
@@ -109,7 +104,6 @@ contains
         self%dt_min = cfg%time%dt_min
         self%dt_max = cfg%time%dt_max
         if (cfg%mesh%adaptive) self%v_front = front_speed(cfg%model)
-        self%model = with_contact_mass(cfg%model, cfg%contact%mass)
         call self%estimator%init(stepper%scheme, state%s)
         call self%control%init(cfg%time, stepper%scheme, &
                                scale=energy_norm(monitor%current_energy()))
@@ -212,9 +206,8 @@ contains
     end subroutine driver_past_level
 
     !> Adapt the mesh to the level in state and, if it changed, move every time level the
-    !> run holds onto it (the state, the level before of a multistep scheme, the estimator's
-    !> levels: transfer_m), hand it to the stepper, let the monitor measure the law energy
-    !> across the move and count the remesh (energy_m).
+    !> run holds and the stepper onto it (transfer_m), and let the monitor measure the law
+    !> energy across the move and count the remesh (energy_m).
     subroutine driver_remesh(self, mesh, state, stepper, monitor, changed)
         class(step_driver_t), intent(inout) :: self
         type(adaptive_mesh_t), intent(inout) :: mesh
@@ -236,7 +229,8 @@ contains
         call check_allocation(stat, message, 'the remesh')
         call self%estimator%resize(mesh%s())
         do j = 1, MAX_LEVELS
-            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, :, j), self%estimator%levels(:, :, j), &
+            call transfer_level(k_old, mesh%k, mesh%n_fine, levels_old(:, 0, j), levels_old(:, 1:, j), &
+                                self%estimator%levels(:, 0, j), self%estimator%levels(:, 1:, j), &
                                 stepper%model)
         end do
         call monitor%remeshed(state)

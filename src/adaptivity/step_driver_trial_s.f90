@@ -1,7 +1,7 @@
-!> Taking one step (step_driver_m's take_step): choose_step, try_step, judge (with
-!> landing: where a contact event the step crossed lies, and whether the step is cut to
-!> end there), accept and keep_level, undo_step. A submodule of step_driver_m, so that it
-!> works on the driver's private state; only take_step is seen outside it.
+!> Taking one step (step_driver_m's take_step): choose_step, try_step, judge (with landing:
+!> where a contact event the step crossed lies, and whether the step is cut to end there),
+!> accept, undo_step. A submodule of step_driver_m, so that it works on the driver's
+!> private state; only take_step is seen outside it.
 submodule (step_driver_m) step_driver_trial_s
     use reals_m, only: equal
     use iso_fortran_env, only: error_unit
@@ -9,13 +9,11 @@ submodule (step_driver_m) step_driver_trial_s
     use state_m, only: advance_time, land_on
     use events_m, only: EVENT_ONSET, EVENT_RELEASE, event_landing, MAX_LANDINGS, LANDING_FRACTION, LINEAR_CUT_MIN, &
                         crossing_time
-    use event_location_m, only: contact_state, gap_event_time, release_time
-    use contact_law_m, only: contact_law_t
+    use dense_output_m, only: interpolant_root
     use adaptive_mesh_m, only: FRONT_CFL
     implicit none
 
-    !> One tried step of take_step: its size, where it started and ends, the stepper's result,
-    !> the contact state it reached, its estimate and the contact event it crossed.
+    !> One tried step of take_step.
     type :: trial_t
         real(dp) :: dt = 0.0_dp             !< its size
         real(dp) :: target = 0.0_dp         !< t_stop or the next snapshot time
@@ -25,12 +23,13 @@ submodule (step_driver_m) step_driver_trial_s
         real(dp) :: dt_last = 0.0_dp        !< the state's dt_last before it
         real(dp) :: gap_start = 0.0_dp      !< u(1) - g before it
         type(step_result_t) :: result       !< the stepper's (advance)
-        real(dp) :: gap_end = 0.0_dp        !< the gap at its end (contact_state)
+        real(dp) :: gap_end = 0.0_dp        !< the gap at its end (try_step)
         logical :: contact = .false.        !< the contact state at its end
         logical :: flipped = .false.        !< it changed the contact state
         real(dp) :: est = 0.0_dp            !< its error estimate
         real(dp) :: err = -1.0_dp           !< est / (tol S); negative: no estimate
         integer :: landings = 0             !< retries cut to end at a located event
+        logical :: cut = .false.            !< it is retried so (landing)
         real(dp) :: dt_land = 0.0_dp        !< the next such retry's size
         real(dp) :: t_event = 0.0_dp        !< its contact event's time
         !> the end of the last step that changed the contact state (landing)
@@ -39,8 +38,7 @@ submodule (step_driver_m) step_driver_trial_s
 
 contains
 
-    !> take_step (step_driver_m's interface names its arguments): choose a step, try it and
-    !> judge it until one is accepted.
+    !> take_step: choose a step, try it and judge it until one is accepted (step_driver_m).
     module procedure driver_take_step
         type(trial_t) :: trial
         logical :: retry
@@ -48,9 +46,13 @@ contains
         failure = ''
         do
             call choose_step(self, state, t_stop, trial, t_snapshot)
-            call try_step(self, state, stepper, trial, failure)
+            call try_step(self, state, stepper, trial)
             at_snapshot = trial%at_snapshot
-            if (.not. trial%result%ok) exit   ! failure says why
+            if (.not. trial%result%ok) then
+                failure = self%step_label(state%step + 1, advance_time(state, trial%dt), &
+                                          trim(trial%result%message))
+                exit
+            end if
             ! fixed steps compute no estimate (the run's error: &output error_estimate)
             if (.not. self%adaptive) exit
             call judge(self, state, stepper, trial, retry)
@@ -109,13 +111,12 @@ contains
 
     !> Try the step of trial%dt from state (adaptive steps: the state saved before it):
     !> where it started, the contact state it reached and (flipped) the time of its event;
-    !> failure: the solve failed.
-    subroutine try_step(self, state, stepper, trial, failure)
+    !> trial%result: whether the solve failed.
+    subroutine try_step(self, state, stepper, trial)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
         type(stepper_t), intent(inout) :: stepper
         type(trial_t), intent(inout) :: trial
-        character(len=*), intent(inout) :: failure
 
         trial%t_before = state%t
         trial%dt_last = state%dt_last
@@ -123,12 +124,18 @@ contains
         ! without its level (undo_step takes it from the estimator)
         if (self%adaptive) call copy_state(state, self%saved, level=.false.)
         call stepper%advance(state, trial%result, trial%dt)
-        if (.not. trial%result%ok) then
-            failure = self%step_label(state%step + 1, advance_time(state, trial%dt), &
-                                      trim(trial%result%message))
-            return
+        if (.not. trial%result%ok) return
+        ! the contact state as events count it: penalty, u^n(1) > g (the end position; the
+        ! midpoint rule's force may act a step longer); Signorini, an active multiplier. The
+        ! gap the crossing time is interpolated to: u^n(1) - g, or Signorini's trial gap (its
+        ! u^n(1) stops at g)
+        if (stepper%law%is_constraint()) then
+            trial%contact = trial%result%in_contact
+            trial%gap_end = trial%result%trial_gap
+        else
+            trial%gap_end = state%u(state%s) - stepper%law%g
+            trial%contact = trial%gap_end > 0.0_dp
         end if
-        call contact_state(stepper%law, state, trial%result, trial%contact, trial%gap_end)
         trial%flipped = trial%contact .neqv. self%in_contact
         if (trial%flipped) &   ! the straight line's (adaptive steps: landing)
             trial%t_event = crossing_time(trial%t_before, trial%dt, trial%gap_start, trial%gap_end)
@@ -146,16 +153,15 @@ contains
         type(stepper_t), intent(inout) :: stepper
         type(trial_t), intent(inout) :: trial
         logical, intent(out) :: retry
-        logical :: cut
 
         retry = .true.
         if (self%estimator%ready() .and. .not. trial%flipped) then
-            trial%est = self%estimator%estimate(self%model, state%u, state%w, trial%dt, state%mesh)
+            trial%est = self%estimator%estimate(stepper%model, state%u, state%w, trial%dt, state%mesh)
             trial%err = self%control%ratio(trial%est)
         end if
         if (trial%flipped .or. (trial%landings > 0 .and. trial%landings < MAX_LANDINGS)) then
-            call landing(self, state, stepper%law, trial, cut)
-            if (cut .and. trial%landings < MAX_LANDINGS) then
+            call landing(self, state, stepper, trial)
+            if (trial%cut .and. trial%landings < MAX_LANDINGS) then
                 call undo_step(self, stepper, trial%result, state)
                 trial%landings = trial%landings + 1
                 return
@@ -168,8 +174,12 @@ contains
             return
         end if
         retry = .false.
-        if (trial%err > 1.0_dp .and. .not. self%warned_forced) then
-            call warn_forced(state%t, self%dt_min)
+        if (trial%err > 1.0_dp .and. .not. self%warned_forced) then   ! once per run
+            write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', state%t, &
+                ' a step of dt_min = ', self%dt_min, &
+                ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
+                '(the count is in the root attribute time_steps_at_dt_min)'
+            flush (error_unit)
             self%warned_forced = .true.
         end if
     end subroutine judge
@@ -179,35 +189,31 @@ contains
     !> release: release_time, else gap_event_time) and say whether the step is retried to end
     !> there (cut, of size dt_land; events_m's event_landing). t_bound: the end of the last
     !> flipped step, beyond which the event is not sought.
-    subroutine landing(self, state, law, trial, cut)
+    subroutine landing(self, state, stepper, trial)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
-        class(contact_law_t), intent(in) :: law
+        type(stepper_t), intent(in) :: stepper
         type(trial_t), intent(inout) :: trial
-        logical, intent(out) :: cut
         real(dp) :: t_lo
         logical :: found
 
         associate (t_before => trial%t_before, dt => trial%dt, flipped => trial%flipped, &
-                   t_bound => trial%t_bound, dt_land => trial%dt_land, t_event => trial%t_event)
+                   cut => trial%cut, t_bound => trial%t_bound, dt_land => trial%dt_land, &
+                   t_event => trial%t_event)
             if (flipped) then
                 t_bound = t_before + dt
                 t_lo = t_before
             else
                 t_lo = t_before + dt
             end if
-            if (self%in_contact .and. law%is_constraint()) then
-                call release_time(self%estimator, self%model%alpha, state, t_before, dt, .not. flipped, t_lo, &
-                                  t_bound, t_event, found)
+            if (self%in_contact .and. stepper%law%is_constraint()) then
+                call release_time(self, state, stepper%model%alpha, trial, t_lo, t_event, found)
             else
-                t_event = gap_event_time(self%estimator, t_before, dt, trial%gap_start, trial%gap_end, &
-                                         trial%result%trial_gap, .not. self%in_contact, law%g, t_lo, t_bound, found)
+                t_event = gap_event_time(self, trial, stepper%law%g, t_lo, found)
             end if
             if (flipped) then
                 call event_landing(t_before, dt, t_event, self%dt_min, cut, dt_land)
-                ! located by the straight line only (Euler, or right after an event): no cut of
-                ! less than LINEAR_CUT_MIN of the step, which a slow (tangential) crossing would
-                ! repeat step after step
+                ! located by the straight line only (Euler, or right after an event)
                 if (.not. found) cut = cut .and. dt_land >= LINEAR_CUT_MIN * dt
             else
                 ! the cut step ended short of the event: cut again at the event its end locates
@@ -218,8 +224,73 @@ contains
         end associate
     end subroutine landing
 
-    !> The tried step is accepted: its contact event into the log, its level into the
-    !> estimator and its estimate to the controller (keep_level), its energy to the monitor.
+    !> The time of the contact event in the tried step, whose gap went from gap_start to
+    !> gap_end: with a scheme of order 2 and a level before the step since the last event,
+    !> the root in [t_lo, t_bound] (found) of the gap's quadratic interpolant (dense_output_m)
+    !> through the two levels before the step and its end: for an onset the trial gap (the
+    !> free motion, which the solution follows up to the onset; the stiff penalty bends u^n(1)
+    !> away from it), for a release u^n(1) - g (gap_end). Otherwise (or with no root there)
+    !> the straight line's (crossing_time).
+    real(dp) function gap_event_time(self, trial, g, t_lo, found) result(t_event)
+        class(step_driver_t), intent(in) :: self
+        type(trial_t), intent(in) :: trial
+        real(dp), intent(in) :: g, t_lo
+        logical, intent(out) :: found
+        real(dp) :: times(3), gaps(3)
+
+        found = .false.
+        associate (e => self%estimator, t_before => trial%t_before)
+            if (e%order >= 2 .and. e%n_levels >= 2) then
+                times = [t_before + trial%dt, t_before, t_before - e%step(1)]
+                gaps = [merge(trial%result%trial_gap, trial%gap_end, .not. self%in_contact), trial%gap_start, &
+                        e%levels(ubound(e%levels, 1), 0, e%slot(2)) - g]
+                call interpolant_root(times, gaps, t_lo, trial%t_bound, t_event, found)
+            end if
+            if (.not. found) t_event = crossing_time(t_before, trial%dt, trial%gap_start, trial%gap_end)
+        end associate
+    end function gap_event_time
+
+    !> The time of a Signorini release in the tried step: the root in [t_lo, t_bound] (found;
+    !> else t_event = t_bound) of the polynomial (dense_output_m) through the contact force
+    !> lambda = -sigma = alpha (u_{s-1} - u_s) / h_s (the massless contact node's equilibrium
+    !> with its neighbour under &contact mass = 'redistributed', the last element's stress
+    !> otherwise) at the levels since the last event, at most p+1 (p the scheme's order), with
+    !> the step's end unless it flipped; not found with fewer than two levels.
+    subroutine release_time(self, state, alpha, trial, t_lo, t_event, found)
+        class(step_driver_t), intent(in) :: self
+        type(state_t), intent(in) :: state
+        real(dp), intent(in) :: alpha, t_lo
+        type(trial_t), intent(in) :: trial
+        real(dp), intent(out) :: t_event
+        logical, intent(out) :: found
+        real(dp) :: times(MAX_LEVELS + 1), force(MAX_LEVELS + 1), to_node
+        integer :: j, k, n, slot, s
+
+        t_event = trial%t_bound
+        found = .false.
+        s = state%s
+        to_node = alpha / state%mesh%h(s)
+        k = 0
+        if (.not. trial%flipped) then
+            k = 1
+            times(1) = trial%t_before + trial%dt
+            force(1) = to_node * (state%u(s - 1) - state%u(s))
+        end if
+        associate (e => self%estimator)
+            n = min(e%n_levels, e%order + 1 - k)
+            if (k + n < 2) return
+            times(k + 1:k + n) = e%times(trial%t_before, n)
+            do j = 1, n
+                slot = e%slot(j)
+                force(k + j) = to_node * (e%levels(s - 1, 0, slot) - e%levels(s, 0, slot))
+            end do
+        end associate
+        call interpolant_root(times(1:k + n), force(1:k + n), t_lo, trial%t_bound, t_event, found)
+    end subroutine release_time
+
+    !> The tried step is accepted: its contact event into the log; its level into the
+    !> estimator (adaptive steps; fixed steps with dense output), its estimate and size to
+    !> the controller (adaptive steps); its energy to the monitor.
     subroutine accept(self, state, monitor, trial, failure)
         class(step_driver_t), intent(inout) :: self
         type(state_t), intent(inout) :: state
@@ -227,13 +298,19 @@ contains
         type(trial_t), intent(in) :: trial
         character(len=*), intent(inout) :: failure
 
-        if (trial%lands .and. self%adaptive) call land_on(state, trial%target)
-        if (trial%flipped) then
+        if (trial%flipped) &
             call self%events%add(trial%t_event, merge(EVENT_ONSET, EVENT_RELEASE, trial%contact))
-            if (self%adaptive) call self%estimator%reset()
-        end if
         self%in_contact = trial%contact
-        call keep_level(self, state, trial)
+        if (self%adaptive) then
+            if (trial%lands) call land_on(state, trial%target)
+            if (trial%flipped) call self%estimator%reset()
+            call self%estimator%push(state%u, state%w, trial%dt)
+            ! a step cut to end at an event, and the event's step, keep the proposal from before
+            call self%control%accept(trial%dt, trial%est, trial%err, &
+                                     shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
+        else if (self%dense) then
+            call self%estimator%push(state%u, state%w, trial%dt)
+        end if
         call monitor%observe(state, step_changed=.not. equal(trial%dt, trial%dt_last))
         if (.not. ieee_is_finite(monitor%current_energy())) then
             failure = self%step_label(state%step, state%t, 'the discrete energy is not finite')
@@ -241,23 +318,6 @@ contains
         end if
         if (self%adaptive) call self%control%observe_size(energy_norm(monitor%current_energy()))
     end subroutine accept
-
-    !> The accepted level into the estimator (adaptive steps; fixed steps with dense output)
-    !> and the step's estimate and size to the controller (adaptive steps).
-    subroutine keep_level(self, state, trial)
-        class(step_driver_t), intent(inout) :: self
-        type(state_t), intent(in) :: state
-        type(trial_t), intent(in) :: trial
-
-        if (.not. self%adaptive) then
-            if (self%dense) call self%estimator%push(state%u, state%w, trial%dt)
-            return
-        end if
-        call self%estimator%push(state%u, state%w, trial%dt)
-        ! a step cut to end at an event, and the event's step, keep the proposal from before
-        call self%control%accept(trial%dt, trial%est, trial%err, &
-                                 shortened=trial%lands .or. trial%landings > 0 .or. trial%flipped)
-    end subroutine keep_level
 
     !> A rejected step: the state as before it, and the step's contact count taken back.
     subroutine undo_step(self, stepper, result, state)
@@ -273,15 +333,5 @@ contains
             state%w = e%levels(:, 1:, newest)
         end associate
     end subroutine undo_step
-
-    !> Once per run: the error estimate exceeded the tolerance at the smallest step allowed.
-    subroutine warn_forced(t, dt_min)
-        real(dp), intent(in) :: t, dt_min
-
-        write (error_unit, '(a,es11.4,a,es10.3,a)') 'rodcontact: warning: at t = ', t, &
-            ' a step of dt_min = ', dt_min, ' exceeds time.error_tol and is accepted; lower time.dt_min ' // &
-            '(the count is in the root attribute time_steps_at_dt_min)'
-        flush (error_unit)
-    end subroutine warn_forced
 
 end submodule step_driver_trial_s

@@ -16,26 +16,60 @@
 !>       (velocity_projection says why).
 !>
 !> Both meshes are given by the integer keys of adaptive_mesh_m (node i at k_i / n_fine).
-!> A level is packed as (0:s, 0:N_FIELDS): column 0 u, columns F_* the fields.
+!> A state and its stepper move to the new mesh by move_state.
 module transfer_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64
     use fields_m, only: N_FIELDS, F_V, is_dirichlet
     use fe_m, only: evaluate_p1, apply_mass_graded, add_inertia_difference, inertia_element
     use config_m, only: model_t
+    use state_m, only: state_t, set_mesh
+    use stepper_m, only: stepper_t
+    use errors_m, only: check_allocation
     use adaptive_mesh_m, only: nodes_of_keys
     implicit none
     private
-    public :: transfer_level, merge_keys
+    public :: transfer_level, merge_keys, move_state
 
 contains
 
-    !> level_new = the level level_old (on keys k_old) moved to keys k_new (module header);
-    !> model: the run's model, whose velocity mass (mass_lumped, mass_end_moved) v is moved in.
-    subroutine transfer_level(k_old, k_new, n_fine, level_old, level_new, model)
+    !> The state on the mesh of keys k_old (its level, and the level before of a multistep
+    !> scheme) moved onto the mesh of keys k_new (move_level), and the stepper onto it.
+    subroutine move_state(k_old, k_new, n_fine, stepper, state)
         integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
-        real(dp), intent(in) :: level_old(0:, 0:)
-        real(dp), intent(out) :: level_new(0:, 0:)
+        type(stepper_t), intent(inout) :: stepper
+        type(state_t), intent(inout) :: state
+
+        call move_level(k_old, k_new, n_fine, stepper%model, state%u, state%w)
+        if (allocated(state%u_prev)) &
+            call move_level(k_old, k_new, n_fine, stepper%model, state%u_prev, state%w_prev)
+        call set_mesh(state, nodes_of_keys(k_new, n_fine))
+        call stepper%remesh(state)
+    end subroutine move_state
+
+    !> One level (u, w) moved from keys k_old to keys k_new (u and w reallocated).
+    subroutine move_level(k_old, k_new, n_fine, model, u, w)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        type(model_t), intent(in) :: model
+        real(dp), allocatable, intent(inout) :: u(:), w(:, :)
+        real(dp), allocatable :: u_new(:), w_new(:, :)
+        integer :: stat
+        character(len=256) :: message
+
+        allocate (u_new(0:ubound(k_new, 1)), w_new(0:ubound(k_new, 1), N_FIELDS), stat=stat, errmsg=message)
+        call check_allocation(stat, message, 'the remeshed state')
+        call transfer_level(k_old, k_new, n_fine, u, w, u_new, w_new, model)
+        call move_alloc(u_new, u)
+        call move_alloc(w_new, w)
+    end subroutine move_level
+
+    !> (u_new, w_new) = the level (u_old, w_old) on keys k_old moved to keys k_new (module
+    !> header); model: the run's model, whose velocity mass (mass_lumped, mass_end_moved) v
+    !> is moved in.
+    subroutine transfer_level(k_old, k_new, n_fine, u_old, w_old, u_new, w_new, model)
+        integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
+        real(dp), intent(in) :: u_old(0:), w_old(0:, :)
+        real(dp), intent(out) :: u_new(0:), w_new(0:, :)
         type(model_t), intent(in) :: model
         real(dp) :: x_old(0:ubound(k_old, 1)), x_new(0:ubound(k_new, 1))
         integer(int64) :: k_union(0:ubound(k_old, 1) + ubound(k_new, 1))
@@ -49,16 +83,16 @@ contains
         call merge_keys(k_old, k_new, k_union, n)
         refinement_only = n == s_new   ! every old key is a new one
         massless_end = model%mass_end_moved .and. min(s_old, s_new) > 1
-        level_new(:, 0) = evaluate_p1(x_old, level_old(:, 0), x_new)
+        u_new = evaluate_p1(x_old, u_old, x_new)
         do f = 1, N_FIELDS
             if (massless_end .and. f == F_V) then
-                call velocity_projection(k_old, k_new, n_fine, model%mass_lumped, level_old(:, f), &
-                                         level_new(:, f))
-                level_new(s_new, f) = level_old(s_old, f)
+                call velocity_projection(k_old, k_new, n_fine, model%mass_lumped, w_old(:, f), &
+                                         w_new(:, f))
+                w_new(s_new, f) = w_old(s_old, f)
             else if (refinement_only) then
-                level_new(:, f) = evaluate_p1(x_old, level_old(:, f), x_new)
+                w_new(:, f) = evaluate_p1(x_old, w_old(:, f), x_new)
             else
-                call l2_projection(k_old, k_new, n_fine, level_old(:, f), f, level_new(:, f))
+                call l2_projection(k_old, k_new, n_fine, w_old(:, f), f, w_new(:, f))
             end if
         end do
     end subroutine transfer_level

@@ -7,8 +7,7 @@ module run_m
     use errors_m, only: fatal, check_allocation, EXIT_NUMERIC, EXIT_INTERRUPTED
     use stop_signal_m, only: install_stop_handlers, stop_signal_arrived, stop_signal_name
     use state_m, only: state_t, initial_state, set_mesh
-    use adaptive_mesh_m, only: adaptive_mesh_t
-    use remesh_m, only: initial_mesh
+    use adaptive_mesh_m, only: adaptive_mesh_t, initial_mesh
     use stepper_m, only: stepper_t, step_result_t
     use energy_m, only: energy_monitor_t
     use checkpoint_m, only: checkpoint_t

@@ -8,9 +8,9 @@ program test_output_layout
     use validate_m, only: validate_config
     use time_scheme_m, only: scheme_rules
     use run_m, only: run_simulation
-    use h5_arrays_m, only: read_int_1d, read_real_2d
+    use h5_arrays_m, only: read_int_1d, read_real_2d, read_attr_int
     use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, &
-                         read_attr_int, dataset_exists
+                         dataset_exists
     use fsys_m, only: file_exists
     use quadrature_m, only: hat, hat_dx
     use shipped_inputs_m, only: command_arguments

@@ -5,9 +5,9 @@ program test_output_m
     use iso_fortran_env, only: error_unit, int64
     use kinds_m, only: dp
     use output_m, only: h5_writer_t, SERIES_BUFFER_SIZE
-    use h5_arrays_m, only: read_int_1d, read_real_2d
+    use h5_arrays_m, only: read_int_1d, read_real_2d, read_attr_int
     use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, &
-                         read_attr_int, read_attr_real_1d, dataset_exists, attr_exists
+                         read_attr_real_1d, dataset_exists, attr_exists
     use fsys_m, only: file_exists, dir_exists, remove_file, parent_dir, mkdir_p
     use scratch_dirs_m, only: remove_dir
     use fields_m, only: N_TABLE_SERIES => N_SERIES, N_SNAPSHOT_FIELDS

@@ -24,7 +24,7 @@ module h5_read_m
     private
     public :: h5_library_init
     public :: read_real_1d
-    public :: read_attr_str, read_attr_real, read_attr_int, read_attr_real_1d
+    public :: read_attr_str, read_attr_real, read_attr_real_1d
     public :: dataset_exists, attr_exists, is_hdf5_file, open_file
 
     !> The HDF5 library is started once per process; this flag is the only module state.
@@ -193,7 +193,7 @@ contains
         call close_attr(file, name, file_id, attr_id)
     end subroutine read_attr_str
 
-    !> Scalar float root attribute `name`.
+    !> Scalar float root attribute `name` (an int32 one too: float64 holds it exactly).
     subroutine read_attr_real(file, name, value)
         character(len=*), intent(in) :: file
         character(len=*), intent(in) :: name
@@ -203,18 +203,6 @@ contains
         call read_attr_real_1d(file, name, values, scalar=.true.)
         value = values(1)
     end subroutine read_attr_real
-
-    !> Scalar integer root attribute `name` (also the 0/1 of a logical attribute), read as
-    !> float64, which holds every int32 exactly.
-    subroutine read_attr_int(file, name, value)
-        character(len=*), intent(in) :: file
-        character(len=*), intent(in) :: name
-        integer, intent(out) :: value
-        real(dp), allocatable :: values(:)
-
-        call read_attr_real_1d(file, name, values, scalar=.true.)
-        value = nint(values(1))
-    end subroutine read_attr_int
 
     !> Root attribute `name` as float64 values: any number, with scalar = .true. one.
     subroutine read_attr_real_1d(file, name, values, scalar)

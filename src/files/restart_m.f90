@@ -18,7 +18,7 @@ module restart_m
     use checkpoint_read_m, only: read_entries
     use fields_m, only: N_FIELDS, N_OUTPUT_FIELDS, N_SNAPSHOT_FIELDS, SNAPSHOTS, SERIES, N_SERIES
     use fsys_m, only: file_exists, same_file, rename_file, remove_file
-    use h5_read_m, only: read_real_1d, read_attr_int, &
+    use h5_read_m, only: read_real_1d, read_attr_real, &
                          read_attr_str, read_attr_real_1d, dataset_exists, attr_exists, is_hdf5_file
     use output_m, only: h5_writer_t, CHECKPOINT_LAYOUT, RESUMED_SUFFIX, ESTIMATE_PARTS
     implicit none
@@ -191,17 +191,16 @@ contains
         character(len=*), intent(in) :: file
         type(input_item_t), intent(in) :: item
         type(input_item_t) :: was
-        integer :: i
+        real(dp) :: x
 
         was = item
         select case (item%kind)
-        case (KIND_INTEGER)
-            call read_attr_int(file, item%name, was%int)
         case (KIND_STRING)
             call read_attr_str(file, item%name, was%text)
-        case (KIND_LOGICAL)
-            call read_attr_int(file, item%name, i)
-            was%flag = i /= 0
+        case (KIND_INTEGER, KIND_LOGICAL)   ! (a logical as 1 or 0)
+            call read_attr_real(file, item%name, x)
+            was%int = nint(x)
+            was%flag = nint(x) /= 0
         case default   ! a real, polynomial coefficients, (amplitude, x_end), a table's rows
             call read_attr_real_1d(file, item%name, was%reals)
         end select

@@ -7,7 +7,7 @@ module summary_m
     use, intrinsic :: iso_fortran_env, only: int64
     use kinds_m, only: dp
     use strings_m, only: format_real, doubled_quotes, int_str
-    use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, read_attr_int, attr_exists, is_hdf5_file, &
+    use h5_read_m, only: read_real_1d, read_attr_str, read_attr_real, attr_exists, is_hdf5_file, &
                          dataset_exists
     use fsys_m, only: file_exists
     use fields_m, only: FIELDS, OUTPUT_ORDER, N_OUTPUT_FIELDS
@@ -50,7 +50,6 @@ module summary_m
         logical :: has_events = .false.
         real(dp), allocatable :: event_t(:)
         logical, allocatable :: onset(:)
-        logical :: si = .false.                        !< times in s, lengths in m (else nondimensional)
     end type summary_t
 
     integer, parameter :: N_COLUMNS = 31
@@ -137,15 +136,16 @@ contains
         s%file = file
         s%status = ''
         if (attr_exists(file, 'status')) call read_attr_str(file, 'status', s%status)
-        if (attr_exists(file, 'steps')) call read_attr_int(file, 'steps', s%steps)
+        if (attr_exists(file, 'steps')) s%steps = nint(attr_or_nan(file, 'steps'))
         s%wall_seconds = attr_or_nan(file, 'wall_seconds')
         s%time_error = attr_or_nan(file, 'step_control_error_sum_relative')
         do k = 1, N_OUTPUT_FIELDS
             s%error_estimate(k) = attr_or_nan(file, 'error_estimate.'//trim(FIELDS(OUTPUT_ORDER(k))%name))
         end do
         call read_events(file, s)
-        if (.not. nondimensional) s%si = file_in_si(file)
-        if (s%si) call to_si(file, s)
+        if (.not. nondimensional) then
+            if (file_in_si(file)) call to_si(file, s)
+        end if
     end function summarise_file
 
     !> The real root attribute `name` of file; NaN when the file lacks it.
@@ -187,7 +187,9 @@ contains
         s%t_final = tf * s%t_final
         s%decay_rate = s%decay_rate / tf
         s%event_t = tf * s%event_t
-        s%max_penetration = lf * s%max_penetration; s%max_u_end = lf * s%max_u_end; s%g = lf * s%g
+        s%max_penetration = lf * s%max_penetration
+        s%max_u_end = lf * s%max_u_end
+        s%g = lf * s%g
     end subroutine to_si
 
     !> The unit of a column of quantity kind (KINDS) in a table in SI or nondimensional.

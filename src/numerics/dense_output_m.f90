@@ -1,20 +1,10 @@
-!> Dense output: the solution between the time levels, from the scheme's own interpolant.
-!>
-!> A scheme of order p (time_scheme_m) is interpolated by the polynomial of degree p through
-!> its last p+1 accepted levels X^n, X^{n-1}, ..., X^{n-p}, evaluated in [t_{n-1}, t_n]:
-!>   Euler (p = 1): the straight line between X^{n-1} and X^n;
-!>   BDF2 (p = 2): the quadratic through X^{n-2}, X^{n-1}, X^n, which is BDF2's own
-!>     interpolating polynomial (its derivative at t_n is the one the scheme imposes);
-!>   midpoint (p = 2): the same quadratic (the rule's own collocation polynomial is the
-!>     straight line, of order 1 between the levels).
-!> For a solution with p+1 bounded time derivatives the interpolant's own error is
-!> |X^(p+1)| / (p+1)! * |(t - t_n)(t - t_{n-1})...(t - t_{n-p})| = O(dt^(p+1)), below the
-!> scheme's global error O(dt^p): the error between the steps falls at the scheme's order,
-!> with a constant close to the one at the steps (a straight line's O(dt^2/8 X'') is not
-!> below it for p = 2). Across a contact event the solution is not smooth: the caller passes
-!> only the levels since the event (fewer points: a lower degree).
-!> The same polynomial gives the time of a contact event: the root of the interpolated gap
-!> u(1,t) - g in the step that changed the contact state.
+!> Dense output: the solution between the time levels, from the scheme's own interpolant:
+!> the polynomial of degree p (time_scheme_m's order) through the last p+1 accepted levels,
+!> evaluated in [t_{n-1}, t_n] (Euler: the straight line; BDF2: its own quadratic; midpoint:
+!> the same quadratic, not the rule's collocation line, of order 1). Across a contact event
+!> the caller passes only the levels since the event (fewer points: a lower degree). The same
+!> polynomial gives the time of a contact event: the root of the interpolated gap u(1,t) - g.
+!> Its error and why: docs/scheme.md, "Dense output".
 module dense_output_m
     use kinds_m, only: dp
     implicit none

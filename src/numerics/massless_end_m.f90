@@ -1,15 +1,11 @@
-!> The contact node without mass (&contact mass = 'redistributed'; docs/scheme.md, "Mass
-!> redistribution at the contact node"): what a step does to its displacement after the solve.
-!>  - Signorini: an active multiplier puts the end on the obstacle, u^n(1) = g, exactly (not to
-!>    round-off); the consistent mass keeps its results bit for bit.
-!>  - The midpoint rule: the node has no velocity of its own to extrapolate, so v^n(1) is the step's
-!>    mean velocity Y_v(1) = (u^n(1) - u^{n-1}(1))/dt; and when no viscosity and no coupling act on
-!>    the node (varpi = gamma1 = gamma2 = 0) its algebraic u(1), whose extrapolation
-!>    2 u^{n-1/2}(1) - u^{n-1}(1) carries an undamped alternating mode, is set to the node's
-!>    equilibrium at t_n with its neighbour, alpha (u(1) - u_{s-1})/h_s + lambda(u(1)) = 0
-!>    (contact_law_m's equilibrium). That value minimises the part of E^n that depends on u(1)
-!>    (the last element's strain energy and the penalty term), so E^n only falls. With
-!>    viscosity or coupling the node's equilibrium has other terms, and the extrapolated value is kept.
+!> The contact node without mass (&contact mass = 'redistributed'): what a step does to its
+!> displacement after the solve (the consistent mass's results stay bit for bit).
+!>  - Signorini: an active multiplier puts the end on the obstacle, u^n(1) = g, exactly.
+!>  - Midpoint: v^n(1) is the step's mean velocity Y_v(1) (no velocity of its own to extrapolate);
+!>    with varpi = gamma1 = gamma2 = 0 the algebraic u(1), whose extrapolation carries an
+!>    undamped alternating mode, is set to the node's equilibrium with its neighbour
+!>    (contact_law_m's equilibrium), which only lowers E^n; with viscosity or coupling the
+!>    extrapolated value is kept. Why: docs/scheme.md, "Mass redistribution at the contact node".
 module massless_end_m
     use kinds_m, only: dp
     use reals_m, only: is_zero

@@ -1,13 +1,10 @@
 !> The mesh of Section 6: nodes 0 = x_0 < x_1 < ... < x_s = 1 and element sizes
 !> h_e = x_e - x_{e-1}, e = 1..s. The state owns it (state_m); the stepper keeps a copy of
-!> the mesh its factored matrices belong to (stepper_m). It is always allocated: the uniform
-!> mesh of &mesh n_elements (x_i = i/s, fe_m's mesh_nodes) is the graded mesh whose
-!> elements all have h_e = 1/s exactly. It remembers that it was built uniform
-!> (is_uniform): the operators with equal elements take the written-out tridiagonal kernel
-!> (fewer operations, no division per node), and a few choices made for the uniform mesh
-!> are kept with it (stepper_m: the LAPACK inverse of the block LU's pivot blocks; output_m:
-!> no native snapshots). A mesh of the adaptive refinement (adaptivity/adaptive_mesh_m: node
-!> keys, indicator) is graded even where its elements happen to be equal.
+!> the mesh its factored matrices belong to. The uniform mesh of &mesh n_elements is the
+!> graded mesh whose elements all have h_e = 1/s exactly; it remembers that it was built
+!> uniform (is_uniform): equal elements take the written-out tridiagonal kernel, and a few
+!> choices are kept with it (stepper_m: the LAPACK pivot inverse; output_m: no native
+!> snapshots). A mesh of adaptive_mesh_m is graded even where its elements happen to be equal.
 module mesh_m
     use kinds_m, only: dp
     use errors_m, only: check_allocation

@@ -1,24 +1,13 @@
 !> The fully discrete problem (6.1): implicit Euler in time, P1 elements in space, derived
 !> from the variational form (not from the block form printed in Section 7, which has typos).
-!>
-!> Unknowns at t_n: v, q, eta in S_h (zero at x=0) and theta, P in V_h (zero at x=1); the
-!> displacement is u^n = u^{n-1} + dt v^n. Each equation of (6.1) is tested with the basis
-!> function of its own unknown's space and multiplied by dt; (6.1)_5 is also multiplied by
-!> hbar. With that scaling x^T A x is the discrete energy dissipation (Theorem 6.1): the
-!> coupling blocks come in pairs that are negatives of each other's transpose.
-!>
-!> Row (equation) r, column (unknown) c, element matrices Me (mass), Ke (stiffness) and
-!> Ge(a,b) = int phi_a phi_b' (see fe_m):
-!>   (6.1)_1 v    : v: rho Me + dt (varpi + dt alpha) Ke;  theta: -dt gamma1 Ge^T;  P: -dt gamma2 Ge^T
-!>                  rhs: rho Me v^{n-1} - dt alpha Ke u^{n-1} - (dt/eps)[u^n(1)-g]_+ e_s
-!>   (6.1)_2 theta: theta: c Me;  P: d Me;  q: dt Ge;  v: dt gamma1 Ge
-!>                  rhs: Me (c theta^{n-1} + d P^{n-1})
-!>   (6.1)_3 q    : q: (tau0 + dt) Me;  theta: dt Ge                  rhs: tau0 Me q^{n-1}
-!>   (6.1)_4 P    : theta: d Me;  P: r Me;  eta: dt hbar Ge;  v: dt gamma2 Ge
-!>                  rhs: Me (d theta^{n-1} + r P^{n-1})
-!>   (6.1)_5 eta  : eta: hbar (tau + dt) Me;  P: dt hbar Ge          rhs: hbar tau Me eta^{n-1}
-!> The contact term is the only nonlinearity; it acts on the v equation at node s only and
-!> is handled by the solution methods (stepper_m), never assembled here.
+!> Unknowns at t_n: v, q, eta in S_h (zero at x=0), theta, P in V_h (zero at x=1); u^n =
+!> u^{n-1} + dt v^n. Each equation of (6.1) is tested with its own unknown's basis functions
+!> and multiplied by dt ((6.1)_5 also by hbar), so that x^T A x is the dissipation of
+!> Theorem 6.1: every coupling block comes with its negative transpose. A change must keep
+!> that pairing (the contact compliance's sign and the block LU's pivots rest on it). The
+!> blocks, right-hand sides and why: docs/scheme.md, "The linear system of one time step".
+!> The contact term, the only nonlinearity, acts on the v equation at node s only and is
+!> handled by the solution methods (stepper_m), never assembled here.
 module scheme_m
     use kinds_m, only: dp
     use reals_m, only: equal, is_zero
@@ -273,7 +262,7 @@ contains
         end do
     end subroutine dirichlet_blocks
 
-    !> Right-hand side of (6.1) from the previous time level (module header) of the fields
+    !> Right-hand side of (6.1) from the previous time level (docs/scheme.md's table) of the fields
     !> with slots(f) > 0: y(i, f), the right-hand side of field f's equation at node i (a
     !> column each, contiguous, so they vectorise; the caller zeroes the Dirichlet rows and
     !> interleaves them into the system vector: slots_m's scatter_fields). The contact term is

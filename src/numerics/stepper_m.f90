@@ -1,14 +1,10 @@
-!> One time step of (6.1) by either solution method of docs/scheme.md.
+!> One time step of (6.1) by either solution method of docs/scheme.md, "Solution methods".
 !>
 !> 'monolithic': all five fields in one system (nodes interleaved), factored once by the
 !>   block-tridiagonal LU (block_tridiagonal_m), which solves every step once it reproduces
-!>   the band LU's (dgbtrf) solution at set-up (setup_monolithic).
-!>   The contact term (dt/eps)[u^{n-1}(1) + dt v_s - g]_+ acts on one unknown (v at x=1),
-!>   so with y = A^{-1} b and z = A^{-1} e_s (computed once) the solution is x = y - f z with
-!>   the scalar contact force f solving f = (dt/eps)[a - dt z_s f]_+, a = u^{n-1}(1) + dt y_s - g.
-!>   z_s = e_s^T A^{-1} e_s > 0 because the symmetric part of A is positive definite (Theorem
-!>   6.1), so the semismooth equation has the closed-form root f = 0 if a <= 0, else
-!>   f = dt a / (eps + dt^2 z_s): the active-set step is exact, one solve per time step.
+!>   the band LU's (dgbtrf) solution at set-up (setup_monolithic). The contact term acts on
+!>   one unknown (v at x=1): x = y - f z with y = A^{-1} b, z = A^{-1} e_s (kept with the
+!>   factors) and the scalar force f in closed form from the law (contact_law_m): one solve.
 !> 'paper': the Section 7 iteration (paper_method_m).
 !>
 !> &time scheme: every scheme is one Euler step (6.1) of size dt_eff from a combination of

@@ -1,17 +1,12 @@
 !> The factored systems of (6.1) a run keeps, keyed by the effective step dt_eff of the
-!> step's plan (time_scheme_m) and the mesh they were assembled on.
+!> step's plan (time_scheme_m) and the mesh they were assembled on; when the cache is full
+!> the least recently used entry is replaced.
 !>
-!> The matrix of (6.1) depends on nothing else: the coefficients are the run's step model
-!> (fixed at set-up), the contact term is not in it (stepper_m solves the contact node's
-!> force in closed form with z = A^{-1} e_s, which is kept with the factors), and the mesh
-!> changes only at a remesh, which bumps the mesh key and so invalidates every entry. An
-!> entry is used only for exactly (bit for bit) the dt_eff it was factored for, and the
-!> factors of a matrix are a function of the matrix alone, so a step gives the same bits
-!> whether its system was found here or factored anew: a restart, which starts with an empty
-!> cache, repeats the run bit for bit.
-!>
-!> Whatever sizes the steps take, a size met before costs no factorisation while its
-!> entry is kept; when the cache is full the least recently used entry is replaced.
+!> The matrix depends on nothing else (the step model is fixed at set-up, the contact term is
+!> not in it, a remesh bumps the mesh key). An entry serves only exactly (bit for bit) the
+!> dt_eff it was factored for, so a step gives the same bits whether its system was found
+!> here or factored anew, and a restart (empty cache) repeats the run bit for bit: a change
+!> must keep both. Why: docs/scheme.md, "Factorisations".
 module system_cache_m
     use kinds_m, only: dp
     use reals_m, only: equal
@@ -23,8 +18,7 @@ module system_cache_m
     private
     public :: monolithic_system_t, system_cache_t, CACHE_SIZE
 
-    !> factored systems kept (distinct dt_eff; the choice of 16: docs/performance.md,
-    !> "The step-size ladder")
+    !> factored systems kept (distinct dt_eff; why 16: docs/performance.md, "The step-size ladder")
     integer, parameter :: CACHE_SIZE = 16
 
     !> The monolithic matrix of (6.1) for one step size, factored, with its contact response.

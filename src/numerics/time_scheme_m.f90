@@ -1,41 +1,14 @@
 !> The time schemes (&time scheme): how the system of a step comes from the past levels and
 !> step sizes, and the energy law each guarantees.
 !>
-!> Every scheme here is one implicit Euler step (6.1) of an effective size dt_eff taken from
-!> a starting level X_from that is a combination of past levels:
-!>   X^n - X_from = dt_eff F(X^n)   (F: the right-hand side of (2.11)),  u^n = u_from + dt_eff v^n,
-!> so one assembly (scheme_m), one contact step (contact_law_m) and one source treatment
-!> serve all of them. The stepper asks plan() for (dt_eff, X_from) every step and factors
-!> the matrix of (6.1) only when dt_eff changes.
-!>
-!>   'euler' (6.1):  dt_eff = dt_n, X_from = X^{n-1}.
-!>       Law: E^n <= E^{n-1} for any step sequence (Theorem 6.1, Corollary 6.2).
-!>   'bdf2': variable-step BDF2 with ratio w = dt_n / dt_{n-1},
-!>       ((1+2w) X^n - (1+w)^2 X^{n-1} + w^2 X^{n-2}) / ((1+w) dt_n) = F(X^n), i.e.
-!>       dt_eff = dt_n (1+w)/(1+2w), X_from = ((1+w)^2 X^{n-1} - w^2 X^{n-2}) / (1+2w);
-!>       constant steps (w = 1): dt_eff = 2 dt/3, X_from = (4 X^{n-1} - X^{n-2})/3. The
-!>       first step (no X^{n-2}) is an Euler step.
-!>       Law (constant steps, contact node inactive): the G-energy
-!>       (E_lin(X^n) + E_lin(2 X^n - X^{n-1}))/2 + penalty(u^n) never rises (energy_m).
-!>       With an active penalty or a varying step no law is proven.
-!>   'midpoint': the implicit midpoint rule (X^n - X^{n-1})/dt = F(X^{n-1/2}),
-!>       X^{n-1/2} = (X^n + X^{n-1})/2, with the discrete-gradient contact force
-!>       (phi(u^n(1)) - phi(u^{n-1}(1))) / (u^n(1) - u^{n-1}(1)) (contact_law_m). As an Euler
-!>       step: Y = X^{n-1/2} is the Euler step of size dt/2 from X^{n-1} (dt_eff = dt/2), then
-!>       X^n = 2 Y - X^{n-1} (midpoint = .true.); fields without a time derivative in the
-!>       step's model (algebraic: stiff_limit) take X^n = Y. The first N_DAMPED steps are
-!>       Euler steps, which damp the stiff modes of rough initial data (the midpoint rule is
-!>       not L-stable); they keep E^n <= E^{n-1}.
-!>       Law: E^n - E^{n-1} = -dt (varpi |v_x|^2 + |q|^2 + hbar |eta|^2)(X^{n-1/2}) <= 0 with
-!>       the penalty law, exactly (to round-off); Signorini: <= 0 (docs/scheme.md).
-!>
-!> Everything else the code needs to know of a scheme is here too, so that a new scheme is
-!> a row of SCHEMES, its branches in plan and error_factor, its energy law (a LAW_* energy
-!> that energy_m computes) and the docs: the order p and the factor of the local error
-!> estimate of adaptive steps (step_control_m), the largest step ratio dt_n / dt_{n-1} the
-!> step controller may take, the energy law the monitor checks (energy_m) and the output
-!> file records, and the input rules validate_m applies (scheme_rules: the names, and
-!> which scheme solver.method = 'paper' runs).
+!> Every scheme is one implicit Euler step (6.1) of an effective size dt_eff from a starting
+!> level X_from, a combination of past levels: X^n - X_from = dt_eff F(X^n), so one assembly,
+!> one contact step and one source treatment serve 'euler' (6.1), 'bdf2' (variable steps, first
+!> step Euler) and 'midpoint' (an Euler step of dt/2 to X^{n-1/2}, then X^n = 2 X^{n-1/2} - X^{n-1};
+!> first N_DAMPED steps Euler). Derivations and energy laws: docs/scheme.md, "Time schemes
+!> (`&time scheme`)" and "The midpoint rule". Everything else the code asks of a scheme is here
+!> too (order, error factor, step-ratio bound, law, input rules): a new scheme is a row of
+!> SCHEMES and its branches in plan and error_factor (docs/architecture.md, "How to add").
 module time_scheme_m
     use kinds_m, only: dp
     use config_m, only: model_t, LEN_NAME
@@ -157,6 +130,7 @@ contains
         end if
         if (self%kind /= SCHEME_BDF2 .or. .not. have_previous .or. .not. (dt_last > 0.0_dp)) return
         plan%from_history = .true.
+        ! BDF2: dt_eff = dt (1+w)/(1+2w), X_from = ((1+w)^2 X^{n-1} - w^2 X^{n-2}) / (1+2w);
         ! constant steps: w = 1 exactly, and these are 2 dt / 3, 4, 1, 3 exactly
         w = dt / dt_last
         plan%dt_eff = dt * (1.0_dp + w) / (1.0_dp + 2.0_dp * w)

@@ -1,22 +1,18 @@
-!> The adaptive mesh of &mesh adaptive = .true. (docs/scheme.md, "Adaptive mesh"): bisection of
-!> the n_elements coarse elements up to max_level times, refined where the error indicator is
-!> large and coarsened back where the solution is smooth, neighbouring elements at most one
-!> level apart (2:1 grading). It holds the refinement's own data (the node keys, the field
-!> scales); the solver's geometry is the state's mesh_t, which adapt reads and the remesh
-!> (step_driver_m, with transfer_m) sets from nodes().
+!> The adaptive mesh of &mesh adaptive = .true.: bisection of the n_elements coarse elements
+!> up to max_level times, refined where the error indicator is large and coarsened back where
+!> the solution is smooth, neighbouring elements at most one level apart (2:1 grading). It
+!> holds the refinement's own data (the node keys, the field scales); the solver's geometry is
+!> the state's mesh_t, which adapt reads and the remesh (step_driver_m, with transfer_m) sets.
 !>
 !> Nodes are integers k_i in units of the finest possible element: x_i = k_i / n_fine, n_fine =
 !> n_elements 2^max_level, is the same number whenever it is computed (a restart rebuilds the
 !> mesh bit for bit), an element's level is max_level - log2(k_e - k_{e-1}), and x = 0 and x = 1
 !> (the contact node) are nodes of every mesh.
 !>
-!> Indicators (hierarchical), per unit length and relative to each field's L2 norm scale_f, so
-!> that sum_e indicator_e^2 h_e <= error_tol^2 bounds the relative L2 interpolation error:
-!>   refine e      if  max_f |d_e| sqrt(h_e/3) / (scale_f sqrt(h_e)) > error_tol,
-!>   coarsen m     if  max_f |d_m| sqrt(H/3) / (scale_f sqrt(H)) <= error_tol / COARSEN_MARGIN,
-!> d_m = f_m - (f_{m-1} + f_{m+1})/2 the detail of the node m that bisects a parent of length H
-!> (sqrt(H/3) the L2 norm of its hat), d_e ~ h_e^2 |f''| / 8 the detail a bisection of e would
-!> add; the elements within `buffer` elements of one above error_tol are refined and kept.
+!> Indicators: the hierarchical details d_e (refine e above error_tol) and d_m (coarsen the
+!> node m at or below error_tol / COARSEN_MARGIN), per unit length and relative to each field's
+!> scale_f; the elements within `buffer` of one above error_tol are refined and kept. Formulas
+!> and why: docs/scheme.md, "Adaptive mesh" ("Indicator: hierarchical").
 module adaptive_mesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64

@@ -1,18 +1,12 @@
-!> The built-in error estimate of a run (&output error_estimate = .true.; docs/scheme.md,
-!> "The error estimate of a run", has the reasons and the measurements): companion
-!> solutions integrated beside the run X (s elements of size h, steps dt) on coarser meshes
-!> with longer steps, and Richardson extrapolation with observed orders:
-!>   A at (2 dt, 2 h)   every other node;   C at (4 dt, 4 h)   every fourth node;
-!>   D at (8 dt, 4 h)   C's mesh.
-!> Total, per field: with d1 = |A - X| and d2 = |C - A| at their common nodes the observed
-!> order is r = log2(d2 / d1), clamped to [ORDER_MIN, ORDER_MAX], and the error of X is
-!> (A - X) / (2^r - 1) on A's nodes, scaled up to d2 / (2^r (2^r - 1)) when d1 is smaller.
-!> Time part: with p_t = min(p, r) (p the scheme's order) the error of X is
-!> (D - C) / (4^p_t (2^p_t - 1)) on C's nodes. Space part: sqrt(total^2 - time^2) (0 when
-!> the time part is larger). Relative L2 norms by the trapezoidal rule on the companion's
-!> nodes. A companion of k (2, 4, 8) steps over k of the run's (companions_follow,
-!> companions_land); on an adaptive mesh (&mesh adaptive) each has its own bisection mesh,
-!> nested in the run's (companion_mesh_m).
+!> The built-in error estimate of a run (&output error_estimate = .true.): companion solutions
+!> integrated beside the run X (s elements of size h, steps dt) on coarser meshes with longer
+!> steps, A at (2 dt, 2 h) on every other node, C at (4 dt, 4 h) on every fourth, D at
+!> (8 dt, 4 h) on C's mesh, and Richardson extrapolation with observed orders (clamped to
+!> [ORDER_MIN, ORDER_MAX]): the total from X, A, C, the time part from C, D, the space part
+!> what the total leaves. The formulas, the reasons and the measurements: docs/scheme.md,
+!> "The error estimate of a run". A companion of k (2, 4, 8) steps over k of the run's
+!> (companions_follow, companions_land); on an adaptive mesh (&mesh adaptive) each has its own
+!> bisection mesh, nested in the run's (companion_mesh_m).
 module error_companion_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64

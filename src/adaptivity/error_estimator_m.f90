@@ -1,11 +1,8 @@
-!> The local error estimate of adaptive time steps (&time adaptive = .true.; docs/scheme.md,
-!> "Adaptive time steps", says why this one): the predictor-corrector difference of the BDF
-!> codes (DASSL, CVODE). P^n is the polynomial of degree p (the scheme's order) through the
-!> last p+1 accepted levels, extrapolated to t_n; for smooth solutions
-!>   X^n - P^n = X^(p+1) / (p+1)! * d_1 ... d_{p+1} + h.o.t.,  d_j = t_n - t_{n-j},
-!> while the step's local error is C X^(p+1) h_n^(p+1) (time_scheme_m's error_factor), so
-!>   est_n = factor * |X^n - P^n|_E,   |X|_E = sqrt(2 E_lin(X))   (Corollary 6.2's energy),
-!> over all fields at once: no solve, one extrapolation and one energy per step.
+!> The local error estimate of adaptive time steps (&time adaptive = .true.): the
+!> predictor-corrector difference of the BDF codes, est_n = factor * |X^n - P^n|_E, P^n the
+!> polynomial of degree p through the last p+1 accepted levels extrapolated to t_n, factor
+!> time_scheme_m's error_factor, |X|_E = sqrt(2 E_lin(X)) (Corollary 6.2's energy) over all
+!> fields at once: no solve. Why this one: docs/scheme.md, "Adaptive time steps".
 !> The levels are a ring; callers reach the j-th most recent through slot(j), step(j) and
 !> times(t, n), never through the ring's index.
 module error_estimator_m

@@ -1,15 +1,10 @@
 !> The step-size controller of adaptive time steps (&time adaptive = .true.), on the local
-!> error estimate of error_estimator_m (docs/scheme.md, "Adaptive time steps").
-!>
-!> A step is accepted when est_n <= error_tol * S, S the largest |X^k|_E so far (k <= n);
-!> error_tol is thus relative to the size the solution has had. The controller is the
-!> standard one, dt_new = dt * safety * (error_tol S / est)^(1/(p+1)), limited to
-!> [SHRINK_MIN, growth_max] (growth_max: the scheme's max_step_ratio, for BDF2 below the
-!> step-ratio bound of its zero-stability) and to [dt_min, dt_max]; a growth below
-!> GROWTH_MIN is not taken. Proposals are rounded down to the ladder dt_first *
-!> LADDER_RATIO**k (k an integer; on_ladder), so that a run moves between few step sizes
-!> (each new size costs the stepper a factorisation). Steps shortened to land on an output
-!> time or to end at a contact event are not on the ladder.
+!> error estimate of error_estimator_m: a step is accepted when est_n <= error_tol * S, S the
+!> largest |X^k|_E so far; dt_new = dt * safety * (error_tol S / est)^(1/(p+1)), limited to
+!> [SHRINK_MIN, growth_max] (the scheme's max_step_ratio) and [dt_min, dt_max], a growth below
+!> GROWTH_MIN not taken, and rounded down to the ladder dt_first * LADDER_RATIO**k (on_ladder;
+!> each new size costs a factorisation). Steps shortened to land on an output time or to end
+!> at a contact event are not on the ladder. Why: docs/scheme.md, "Adaptive time steps".
 module step_control_m
     use kinds_m, only: dp
     use config_m, only: time_t

@@ -1,15 +1,9 @@
 !> The step driver: takes one accepted step of the time loop, trying and rejecting steps
-!> as the step control asks.
-!>
-!> The step is &time dt (fixed) or the size step_control_m's controller proposes
-!> (adaptive). Adaptive steps are tried: a step whose local error estimate exceeds the
-!> tolerance is rejected (the state restored) and retried smaller. A contact event is
-!> located and stepped over (events_m's event_landing): a step that changes the contact
-!> state in its interior is taken back and retried to end at the located event, and the
-!> step after it, which starts there, changes the contact state at its start and is
-!> accepted; the controller's proposal is kept across the event. Steps are shortened to
-!> land on the snapshot times (&output snapshot_dt) and on the end of the run. Choosing,
-!> trying, judging and accepting one step (take_step): the submodule step_driver_trial_s.
+!> as the step control asks: &time dt (fixed) or step_control_m's proposal (adaptive), a
+!> rejected step restored and retried smaller, a contact event located and stepped over
+!> (events_m's event_landing), steps shortened to land on the snapshot times and the end.
+!> The whole sequence: docs/architecture.md, "One adaptive step"; choosing, trying, judging
+!> and accepting one step (take_step): the submodule step_driver_trial_s.
 module step_driver_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64

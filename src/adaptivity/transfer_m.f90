@@ -1,20 +1,10 @@
 !> Moving a time level from one mesh to the next (remeshing, adaptive_mesh_m) so that the
-!> discrete energy of Corollary 6.2 cannot rise (docs/scheme.md, "Adaptive mesh"):
-!>
-!>   u (energy alpha |u_x|^2): nodal interpolation. In 1D the P1 interpolant is the
-!>       H1-seminorm (Ritz) projection, so |(I u)_x| <= |u_x|; u(1) (the contact term)
-!>       is kept, x = 1 being a node of every mesh.
-!>   v, theta, P, q, eta (energies rho v^2, c theta^2 + 2 d P theta + r P^2, tau0 q^2,
-!>       tau hbar eta^2): the L2 projection onto the new space (S_h or V_h, with its zero
-!>       at x = 0 or x = 1). An orthogonal projection does not raise an L2 norm, and the
-!>       same projection of theta and P does not raise the constant positive definite form
-!>       c theta^2 + 2 d P theta + r P^2.
-!>   Where the new mesh only adds nodes (refinement), the old function lies in the new
-!>       space and both are exact: the values are interpolated, and the energy is unchanged.
-!>   v with the redistributed mass (&contact mass = 'redistributed'), whose kinetic energy
-!>       is no L2 norm of v: moved in that mass's own terms, x = 1 keeping its v
-!>       (velocity_projection says why).
-!>
+!> discrete energy of Corollary 6.2 cannot rise: u by nodal interpolation (the H1-seminorm
+!> projection in 1D; x = 1, a node of every mesh, keeps u(1)); v, theta, P, q, eta by the L2
+!> projection onto the new space (S_h or V_h, with its zero at x = 0 or x = 1), theta and P by
+!> the same one; where the new mesh only adds nodes, both are exact interpolation. v with the
+!> redistributed mass: in that mass's own terms (velocity_projection). Why each cannot raise
+!> the energy: docs/scheme.md, "Adaptive mesh" ("Transfer: the energy cannot rise").
 !> Both meshes are given by the integer keys of adaptive_mesh_m (node i at k_i / n_fine).
 !> A state and its stepper move to the new mesh by move_state.
 module transfer_m

@@ -46,16 +46,10 @@ contains
 
     !> The scales of (2.10) for &material `mat`: x* = x/ell, t* = t/omega,
     !> theta = beta1 (T - T0)/((lambda + 2 mu) delta), P* = P/(beta2 delta),
-    !> q* = omega beta1 q/(rho0 cE delta ell (lambda + 2 mu)), eta* = ell eta/(D beta2 delta).
-    !> Displacement and stress: (2.10) follows from (2.1)-(2.9) only with u* = u/(delta ell)
-    !> (the coupling a-check of the heat equation and u_xx - theta_x of the momentum equation
-    !> both need it; the paper prints u* = delta u/ell), so u = delta ell u*, v = u_t takes the
-    !> displacement over the time scale, and the stress of (2.10) is (lambda + 2 mu) delta
-    !> times sigma*; the sigma of (2.11) (the code's, /series/contact_stress, /snapshots/sigma)
-    !> is a-check times that of (2.10), hence (lambda + 2 mu) delta / a-check.
-    !> The energy E^n of Corollary 6.2 (per unit cross-section, J/m^2): its thermal term
-    !> 1/2 int theta^2 dx* is 1/2 int rho0 cE (T - T0)^2 / T0 dx over ell, which with the
-    !> temperature scale is ell (lambda + 2 mu) delta^2 / a-check times it.
+    !> q* = omega beta1 q/(rho0 cE delta ell (lambda + 2 mu)), eta* = ell eta/(D beta2 delta);
+    !> u = delta ell u* (not the paper's printed u* = delta u/ell: (2.10) needs it), the stress
+    !> (lambda + 2 mu) delta / a-check, the energy ell (lambda + 2 mu) delta^2 / a-check. Why
+    !> each: docs/output.md, "Scales (with `&material` only)".
     pure function si_scales(mat) result(scales)
         type(material_t), intent(in) :: mat
         type(si_scale_t) :: scales(10)

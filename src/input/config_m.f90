@@ -6,12 +6,9 @@
 !> derived type is a namelist group, every component of that type an input variable, in
 !> the order of the messages, the &material echo and the output file. The build generates
 !> input_vars_m's table and namelist reads from them (src/input/generate_input_vars.py), so
-!> a new input variable is one line here (and its line in docs/input.md): one component per
-!> line, real(dp) (scalar, (0:MAX_POLY_DEGREE) coefficients or a (2) pair), integer,
-!> logical, or character(len=LEN_NAME) (a keyword, stored in lower case) or len=LEN_PATH.
-!> A trailing comment ending in [text] gives the unit column of the &material echo; one
-!> starting with 'not an input' leaves the component out (it may then be of any type, as
-!> &initial's tables). The reader is config_reader_m.
+!> a new input variable is one line here of a type the generator takes, and its line in
+!> docs/input.md (docs/architecture.md, "An input variable": the types, `[unit]`, `!< not an
+!> input`). The reader is config_reader_m.
 module config_m
     use kinds_m, only: dp
     implicit none

@@ -182,12 +182,9 @@ contains
         end block
     end function inertia_difference
 
-    !> The energy of the BDF2 scheme's law: G-stability of BDF2 gives, for the linear part
-    !> of (2.11) tested with the new level,
-    !>   (3a - 4b + c)/2 . a = [|a|^2 + |2a - b|^2]/4 - [|b|^2 + |2b - c|^2]/4 + |a - 2b + c|^2/4,
-    !> so E_G^n = (E_lin(X^n) + E_lin(2 X^n - X^{n-1})) / 2 never rises while the contact
-    !> node is inactive. The contact term is added at the current level. With an active
-    !> penalty BDF2 has no such law (the nonlinear term is not G-stable).
+    !> The energy of the BDF2 scheme's law, E_G^n = (E_lin(X^n) + E_lin(2 X^n - X^{n-1})) / 2
+    !> plus the contact term at the current level: it never rises while the contact node is
+    !> inactive (G-stability; derivation: docs/scheme.md, "Time schemes (`&time scheme`)").
     !> u_work, w_work: arrays shaped as u, w (no allocation here; called every step).
     !> lin: E_lin(X^n), which the caller has from discrete_energy.
     subroutine bdf2_energy(model, law, u, w, u_prev, w_prev, mesh, u_work, w_work, lin, energy)

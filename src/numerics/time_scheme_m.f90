@@ -141,11 +141,9 @@ contains
 
     !> Local error of the step / (X^n - P^n), P^n the polynomial of degree p through the
     !> last p+1 levels extrapolated to t_n (step_control_m), from the leading terms;
-    !> d(j) = t_n - t_{n-j}, h = h_n = d(1), h_prev = h_{n-1}, w = h / h_prev:
-    !>   Euler     h^2 X''/2                                      -> h / d_2
-    !>   BDF2      h^2 (h + h_prev) (1+w)/(1+2w) X'''/6           -> h (1+w) / ((1+2w) d_3)
-    !>   midpoint  h^3 X'''/12 (linear problems)                  -> h^2 / (2 d_2 d_3)
-    !> (constant steps: 1/2, 2/9 and 1/12 of the p+1-st difference).
+    !> d(j) = t_n - t_{n-j}, h = h_n = d(1), h_prev = h_{n-1}, w = h / h_prev: Euler h / d_2,
+    !> BDF2 h (1+w) / ((1+2w) d_3), midpoint h^2 / (2 d_2 d_3) (constant steps: 1/2, 2/9 and
+    !> 1/12 of the p+1-st difference). The local errors: docs/scheme.md, "Why this estimate".
     pure real(dp) function scheme_error_factor(self, d, h_prev) result(factor)
         class(time_scheme_t), intent(in) :: self
         real(dp), intent(in) :: d(:)

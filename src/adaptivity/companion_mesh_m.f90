@@ -1,10 +1,9 @@
 !> The meshes of the error estimate's companions on an adaptive mesh (&output error_estimate
-!> with &mesh adaptive; docs/scheme.md, "The error estimate of a run", says why). The companion
-!> coarser by `ratio` (2: A, 4: C and D) than the run's bisection mesh (adaptive_mesh_m's keys)
-!> is the coarse mesh of n_coarse / ratio elements bisected top-down: an element of length H is
-!> kept when every element of the run inside it is at least H / ratio long. Its nodes are the
-!> run's (a run element crossing the midpoint would be at least H long), the mesh of ratio 4 is
-!> nested in that of ratio 2, and it is rebuilt whenever the run's mesh changes.
+!> with &mesh adaptive): the companion coarser by `ratio` (2: A, 4: C and D) is the coarse mesh
+!> of n_coarse / ratio elements bisected top-down, an element of length H kept when every run
+!> element inside it is at least H / ratio long; its nodes are the run's, the mesh of ratio 4
+!> nested in that of ratio 2, rebuilt whenever the run's mesh changes. Why (and why ratio 2
+!> everywhere is impossible): docs/scheme.md, "The error estimate of a run", "On an adaptive mesh".
 module companion_mesh_m
     use kinds_m, only: dp
     use iso_fortran_env, only: int64

@@ -207,7 +207,7 @@ contains
                 t_lo = t_before + dt
             end if
             if (self%in_contact .and. stepper%law%is_constraint()) then
-                call release_time(self, state, stepper%model%alpha, trial, t_lo, t_event, found)
+                t_event = release_time(self, state, stepper%model%alpha, trial, t_lo, found)
             else
                 t_event = gap_event_time(self, trial, stepper%law%g, t_lo, found)
             end if
@@ -256,12 +256,11 @@ contains
     !> with its neighbour under &contact mass = 'redistributed', the last element's stress
     !> otherwise) at the levels since the last event, at most p+1 (p the scheme's order), with
     !> the step's end unless it flipped; not found with fewer than two levels.
-    subroutine release_time(self, state, alpha, trial, t_lo, t_event, found)
+    real(dp) function release_time(self, state, alpha, trial, t_lo, found) result(t_event)
         class(step_driver_t), intent(in) :: self
         type(state_t), intent(in) :: state
         real(dp), intent(in) :: alpha, t_lo
         type(trial_t), intent(in) :: trial
-        real(dp), intent(out) :: t_event
         logical, intent(out) :: found
         real(dp) :: times(MAX_LEVELS + 1), force(MAX_LEVELS + 1), to_node
         integer :: j, k, n, slot, s
@@ -286,7 +285,7 @@ contains
             end do
         end associate
         call interpolant_root(times(1:k + n), force(1:k + n), t_lo, trial%t_bound, t_event, found)
-    end subroutine release_time
+    end function release_time
 
     !> The tried step is accepted: its contact event into the log; its level into the
     !> estimator (adaptive steps; fixed steps with dense output), its estimate and size to

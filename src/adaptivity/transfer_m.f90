@@ -145,15 +145,12 @@ contains
         end if
     end subroutine l2_projection
 
-    !> g = the velocity f (keys k_old) moved to keys k_new so that the kinetic energy
-    !> v^T M_v v of the redistributed mass (fe_m's inertia_element: the blend with the lumped
-    !> fraction `lumped`, x = 1 massless) cannot rise (docs/scheme.md, "Mass redistribution",
-    !> says why): f is taken constant on its last element (f_s = f_{s-1}; its energy there is
-    !> h v_{s-1}^2), g is sought among the functions constant on their last element (g_s =
-    !> g_{s-1}; the caller puts back x = 1's own v), as the projection M_v^new g = I_new^T M_v^U
-    !> I_old f on the union U of both meshes (I: the interpolation onto U; M_v^U is no larger
-    !> than either mesh's M_v for its functions). Where the new mesh only adds nodes, U is the
-    !> new mesh and g = I_new f (interpolation), as for the other fields.
+    !> g = the velocity f (keys k_old) moved to keys k_new so that the kinetic energy v^T M_v v
+    !> of the redistributed mass (fe_m's inertia_element with `lumped`) cannot rise: f taken
+    !> constant on its last element (f_s = f_{s-1}), g sought among such functions (the caller
+    !> puts back x = 1's own v), M_v^new g = I_new^T M_v^U I_old f on the union U of both meshes
+    !> (I: the interpolation onto U); where the new mesh only adds nodes, g = I_new f. Why:
+    !> docs/scheme.md, "Mass redistribution at the contact node" (its adaptive-mesh item).
     subroutine velocity_projection(k_old, k_new, n_fine, lumped, f, g)
         integer(int64), intent(in) :: k_old(0:), k_new(0:), n_fine
         real(dp), intent(in) :: lumped

@@ -9,13 +9,11 @@ module config_reader_m
     use config_m, only: config_t, initial_t, LEN_PATH
     use strings_m, only: lower, excerpt, quoted, int_str, format_real
     use namelist_text_m, only: string_t, group_t, read_source, find_groups, read_group, &
-                               parse_override
+                               parse_override, LEN_MSG
     use material_m, only: check_material
     implicit none
     private
     public :: read_config
-
-    integer, parameter :: LEN_MSG = 512         !< iomsg buffers
 
 contains
 

@@ -16,7 +16,7 @@ module namelist_text_m
     implicit none
     private
     public :: string_t, group_t
-    public :: read_source, find_groups, read_group, parse_override
+    public :: read_source, find_groups, read_group, parse_override, LEN_MSG
 
     integer, parameter :: LEN_MSG = 512         !< iomsg buffers
 

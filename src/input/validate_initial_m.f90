@@ -24,7 +24,7 @@ module validate_initial_m
     !> (largest dt**2 alpha / h) at most ~1e97, and the scheme never lets the energy grow
     !> (Corollary 6.2), so every field stays far below the double-precision limit ~1.8e308.
     !> Outside it a run would overflow (Inf energy, NaN fields) or trap in a Debug build.
-    real(dp), parameter, public :: MAX_MAGNITUDE = 1.0e30_dp
+    real(dp), parameter :: MAX_MAGNITUDE = 1.0e30_dp
     real(dp), parameter :: MIN_POSITIVE = 1.0e-30_dp
     !> The bounds of require_real
     integer, parameter, public :: DATUM = 0, NONNEGATIVE = 1, POSITIVE = 2, DIVISOR = 3

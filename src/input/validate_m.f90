@@ -43,18 +43,17 @@ contains
     subroutine validate_config(cfg, schemes)
         type(config_t), intent(in) :: cfg
         type(scheme_rule_t), intent(in) :: schemes(:)
-        real(dp) :: n_steps
 
         associate (si => cfg%material%present)
             call validate_model(merge(model_from_material(cfg%material), cfg%model, si), si)
             call validate_contact(cfg%contact)
             call validate_mesh(cfg%mesh)
-            call validate_time(cfg%time, schemes, n_steps)
+            call validate_time(cfg%time, schemes)
             call validate_initial(cfg%initial, cfg%contact%g, merge(cfg%material%ell, 1.0_dp, si))
         end associate
         call validate_solver(cfg%solver)
         call validate_combination(cfg, schemes)
-        call validate_output(cfg%output, cfg%mesh%n_elements, n_steps, cfg%time%t_end)
+        call validate_output(cfg%output, cfg%mesh%n_elements, cfg%time)
         call validate_error_estimate(cfg)
     end subroutine validate_config
 
@@ -135,11 +134,9 @@ contains
             int_str(int(MEMORY_LIMIT / (8.0_dp * REALS_PER_NODE)) - 1))
     end subroutine validate_mesh
 
-    !> n_steps: the number of time steps, about t_end/dt (for the output size estimate).
-    subroutine validate_time(time, schemes, n_steps)
+    subroutine validate_time(time, schemes)
         type(time_t), intent(in) :: time
         type(scheme_rule_t), intent(in) :: schemes(:)
-        real(dp), intent(out) :: n_steps
         character(len=len(schemes%name)), allocatable :: names(:)
 
         call require_real(time%dt, 'time.dt', DIVISOR)
@@ -151,7 +148,6 @@ contains
             format_real(time%dt) // ' with t_end = ' // format_real(time%t_end) // ': t_end/dt = ' // &
             format_real(time%t_end / time%dt) // ' steps; must be at most ' // &
             int_str(huge(0) - 1) // ' steps')
-        n_steps = real(number_of_steps(time%dt, time%t_end), dp)
         names = schemes%name   ! contiguous: no array temporary at the call (-fcheck=all warns of one)
         call require_one_of(time%scheme, names, 'time.scheme')
         if (time%adaptive) call validate_step_control(time)
@@ -205,11 +201,11 @@ contains
 
     !> Output settings, and the size of <prefix>.h5: a warning above OUTPUT_WARN, an error
     !> above OUTPUT_LIMIT (counting snapshots and series as run_m writes them).
-    subroutine validate_output(output, n_elements, n_steps, t_end)
+    subroutine validate_output(output, n_elements, time)
         type(output_t), intent(in) :: output
         integer, intent(in) :: n_elements
-        real(dp), intent(in) :: n_steps, t_end
-        real(dp) :: nodes, snapshot_bytes, series_bytes, total
+        type(time_t), intent(in) :: time
+        real(dp) :: n_steps, nodes, snapshot_bytes, series_bytes, total
         character(len=:), allocatable :: where
 
         if (len_trim(output%prefix) == 0) call fatal(EXIT_INPUT, 'output.prefix', &
@@ -229,6 +225,7 @@ contains
         if (output%compression < 0 .or. output%compression > MAX_COMPRESSION) call fatal(EXIT_INPUT, &
             'output.compression', 'got ' // int_str(output%compression) // '; must be an integer from 0 (no ' // &
             'compression) to ' // int_str(MAX_COMPRESSION) // ' (the deflate level of the snapshot fields)')
+        n_steps = real(number_of_steps(time%dt, time%t_end), dp)
         nodes = real(n_elements, dp) + 1.0_dp
         if (output%n_points > 0) nodes = real(output%n_points, dp)
         snapshot_bytes = 8.0_dp * N_SNAPSHOT_FIELDS * nodes * &
@@ -257,7 +254,7 @@ contains
             real(dp), intent(in) :: dt
 
             entries = aint(n_steps / every) + 2.0_dp
-            if (dt > 0.0_dp) entries = aint(min(t_end / dt, 1.0e12_dp)) + 2.0_dp
+            if (dt > 0.0_dp) entries = aint(min(time%t_end / dt, 1.0e12_dp)) + 2.0_dp
         end function entries
     end subroutine validate_output
 

@@ -8,7 +8,7 @@ module run_attributes_m
     use kinds_m, only: dp
     use config_m, only: config_t
     use input_vars_m, only: input_item_t, input_items, KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL
-    use material_m, only: nondim_t, nondim_groups, NONDIM_NAMES, nondim_value, si_scale_t, si_scales
+    use material_m, only: nondim_groups, NONDIM_NAMES, si_scale_t, si_scales
     use state_m, only: state_t
     use stepper_m, only: stepper_t
     use time_scheme_m, only: energy_law_t
@@ -100,13 +100,13 @@ contains
     subroutine record_scales(writer, cfg)
         type(h5_writer_t), intent(inout) :: writer
         type(config_t), intent(in) :: cfg
-        type(nondim_t) :: nd
+        real(dp) :: nd(size(NONDIM_NAMES))
         type(si_scale_t), allocatable :: scales(:)
         integer :: k
 
         nd = nondim_groups(cfg%material)
         do k = 1, size(NONDIM_NAMES)
-            call writer%attr('derived.'//trim(NONDIM_NAMES(k)), nondim_value(nd, k))
+            call writer%attr('derived.'//trim(NONDIM_NAMES(k)), nd(k))
         end do
         scales = si_scales(cfg%material)
         do k = 1, size(scales)

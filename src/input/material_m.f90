@@ -11,24 +11,15 @@ module material_m
     use input_vars_m, only: INPUT_VARS, input_item_t, input_item, KIND_REAL
     implicit none
     private
-    public :: nondim_t, nondim_groups, model_from_material, check_material, nondimensionalise
-    public :: si_scale_t, si_scales, time_scale, NONDIM_NAMES, nondim_value
+    public :: nondim_groups, model_from_material, check_material, nondimensionalise
+    public :: si_scale_t, si_scales, time_scale, NONDIM_NAMES
+    public :: BETA1, BETA2, OMEGA, DELTA, VARSIGMA, ZETA, A_CHECK, ALPHA1, ALPHA2, ALPHA3
 
-    !> Nondimensional groups of (2.10) computed from &material.
-    type :: nondim_t
-        real(dp) :: beta1 = 0.0_dp      !< (3 lambda + 2 mu) alpha_t
-        real(dp) :: beta2 = 0.0_dp      !< (3 lambda + 2 mu) alpha_c
-        real(dp) :: omega = 0.0_dp      !< time scale rho0 cE ell^2 / kappa [s]
-        real(dp) :: delta = 0.0_dp      !< sqrt((lambda + 2 mu) / (rho0 cE T0))
-        real(dp) :: varsigma = 0.0_dp   !< rho0 ell^2 / (omega^2 (lambda + 2 mu))
-        real(dp) :: zeta = 0.0_dp       !< (lambda' + 2 mu') / (omega (lambda + 2 mu))
-        real(dp) :: a_check = 0.0_dp    !< a-check = T0 beta1^2 / (rho0 cE (lambda + 2 mu))
-        real(dp) :: alpha1 = 0.0_dp     !< (lambda + 2 mu) nu / (beta1 beta2)
-        real(dp) :: alpha2 = 0.0_dp     !< (lambda + 2 mu) ell^2 / (D beta2^2 omega)
-        real(dp) :: alpha3 = 0.0_dp     !< (lambda + 2 mu) varrho / beta2^2
-    end type nondim_t
-
-    !> nondim_t's groups by name (the k-th: nondim_value(nd, k)), and their units ('': none)
+    !> The nondimensional groups of (2.10) computed from &material (nondim_groups, whose lines
+    !> are their formulas; omega is the time scale), by index: the k-th is named NONDIM_NAMES(k),
+    !> in units NONDIM_UNITS(k) ('': none).
+    integer, parameter :: BETA1 = 1, BETA2 = 2, OMEGA = 3, DELTA = 4, VARSIGMA = 5, ZETA = 6, &
+                          A_CHECK = 7, ALPHA1 = 8, ALPHA2 = 9, ALPHA3 = 10
     character(len=*), parameter :: NONDIM_NAMES(10) = [character(len=8) :: 'beta1', 'beta2', 'omega', &
         'delta', 'varsigma', 'zeta', 'a_check', 'alpha1', 'alpha2', 'alpha3']
     character(len=*), parameter :: NONDIM_UNITS(10) = [character(len=17) :: 'kg/(m s^2 K)', 'm^2/s^2', &
@@ -53,53 +44,53 @@ contains
     pure function si_scales(mat) result(scales)
         type(material_t), intent(in) :: mat
         type(si_scale_t) :: scales(10)
-        type(nondim_t) :: nd
+        real(dp) :: nd(size(NONDIM_NAMES))
         real(dp) :: stiffness
 
         nd = nondim_groups(mat)
         stiffness = mat%lambda + 2.0_dp * mat%mu
-        scales(1) = si_scale_t('time', nd%omega, 's')
+        scales(1) = si_scale_t('time', nd(OMEGA), 's')
         scales(2) = si_scale_t('position', mat%ell, 'm')
-        scales(3) = si_scale_t('displacement', mat%ell * nd%delta, 'm')
-        scales(4) = si_scale_t('velocity', mat%ell * nd%delta / nd%omega, 'm/s')
-        scales(5) = si_scale_t('temperature', stiffness * nd%delta / nd%beta1, 'K')   ! of T - T0
-        scales(6) = si_scale_t('chemical_potential', nd%beta2 * nd%delta, 'J/kg')
-        scales(7) = si_scale_t('stress', stiffness * nd%delta / nd%a_check, 'Pa')
+        scales(3) = si_scale_t('displacement', mat%ell * nd(DELTA), 'm')
+        scales(4) = si_scale_t('velocity', mat%ell * nd(DELTA) / nd(OMEGA), 'm/s')
+        scales(5) = si_scale_t('temperature', stiffness * nd(DELTA) / nd(BETA1), 'K')   ! of T - T0
+        scales(6) = si_scale_t('chemical_potential', nd(BETA2) * nd(DELTA), 'J/kg')
+        scales(7) = si_scale_t('stress', stiffness * nd(DELTA) / nd(A_CHECK), 'Pa')
         scales(8) = si_scale_t('heat_flux', &
-                               mat%rho0 * mat%cE * nd%delta * mat%ell * stiffness / (nd%omega * nd%beta1), 'W/m^2')
-        scales(9) = si_scale_t('diffusion_flux', mat%D * nd%beta2 * nd%delta / mat%ell, 'kg/(m^2 s)')
-        scales(10) = si_scale_t('energy', mat%ell * stiffness * nd%delta**2 / nd%a_check, 'J/m^2')
+                               mat%rho0 * mat%cE * nd(DELTA) * mat%ell * stiffness / (nd(OMEGA) * nd(BETA1)), 'W/m^2')
+        scales(9) = si_scale_t('diffusion_flux', mat%D * nd(BETA2) * nd(DELTA) / mat%ell, 'kg/(m^2 s)')
+        scales(10) = si_scale_t('energy', mat%ell * stiffness * nd(DELTA)**2 / nd(A_CHECK), 'J/m^2')
     end function si_scales
 
     !> The factor from a run's times to those of its input: with &material the time scale
     !> omega of (2.10), in s; else 1.
     pure real(dp) function time_scale(mat)
         type(material_t), intent(in) :: mat
-        type(nondim_t) :: nd
+        real(dp) :: nd(size(NONDIM_NAMES))
 
         time_scale = 1.0_dp
         if (.not. mat%present) return
         nd = nondim_groups(mat)
-        time_scale = nd%omega
+        time_scale = nd(OMEGA)
     end function time_scale
 
-    !> The nondimensional groups of (2.10) for the physical quantities `mat`.
+    !> The nondimensional groups of (2.10) for the physical quantities `mat`, by index (BETA1, ...).
     pure function nondim_groups(mat) result(nd)
         type(material_t), intent(in) :: mat
-        type(nondim_t) :: nd
+        real(dp) :: nd(size(NONDIM_NAMES))
         real(dp) :: stiffness   ! lambda + 2 mu
 
         stiffness = mat%lambda + 2.0_dp * mat%mu
-        nd%beta1 = (3.0_dp * mat%lambda + 2.0_dp * mat%mu) * mat%alpha_t
-        nd%beta2 = (3.0_dp * mat%lambda + 2.0_dp * mat%mu) * mat%alpha_c
-        nd%omega = mat%rho0 * mat%cE * mat%ell**2 / mat%kappa
-        nd%delta = sqrt(stiffness / (mat%rho0 * mat%cE * mat%T0))
-        nd%varsigma = mat%rho0 * mat%ell**2 / (nd%omega**2 * stiffness)
-        nd%zeta = (mat%lambda_v + 2.0_dp * mat%mu_v) / (nd%omega * stiffness)
-        nd%a_check = mat%T0 * nd%beta1**2 / (mat%rho0 * mat%cE * stiffness)
-        nd%alpha1 = stiffness * mat%nu / (nd%beta1 * nd%beta2)
-        nd%alpha2 = stiffness * mat%ell**2 / (mat%D * nd%beta2**2 * nd%omega)
-        nd%alpha3 = stiffness * mat%varrho / nd%beta2**2
+        nd(BETA1) = (3.0_dp * mat%lambda + 2.0_dp * mat%mu) * mat%alpha_t
+        nd(BETA2) = (3.0_dp * mat%lambda + 2.0_dp * mat%mu) * mat%alpha_c
+        nd(OMEGA) = mat%rho0 * mat%cE * mat%ell**2 / mat%kappa
+        nd(DELTA) = sqrt(stiffness / (mat%rho0 * mat%cE * mat%T0))
+        nd(VARSIGMA) = mat%rho0 * mat%ell**2 / (nd(OMEGA)**2 * stiffness)
+        nd(ZETA) = (mat%lambda_v + 2.0_dp * mat%mu_v) / (nd(OMEGA) * stiffness)
+        nd(A_CHECK) = mat%T0 * nd(BETA1)**2 / (mat%rho0 * mat%cE * stiffness)
+        nd(ALPHA1) = stiffness * mat%nu / (nd(BETA1) * nd(BETA2))
+        nd(ALPHA2) = stiffness * mat%ell**2 / (mat%D * nd(BETA2)**2 * nd(OMEGA))
+        nd(ALPHA3) = stiffness * mat%varrho / nd(BETA2)**2
     end function nondim_groups
 
     !> The coefficients of (2.11) for the physical quantities `mat`; relaxation times are
@@ -107,22 +98,22 @@ contains
     pure function model_from_material(mat) result(m)
         type(material_t), intent(in) :: mat
         type(model_t) :: m
-        type(nondim_t) :: nd
+        real(dp) :: nd(size(NONDIM_NAMES))
 
         nd = nondim_groups(mat)
-        associate (a => nd%a_check, alpha1 => nd%alpha1, alpha2 => nd%alpha2, alpha3 => nd%alpha3)
-            m%rho = a * nd%varsigma
-            m%alpha = a * (1.0_dp - 1.0_dp / alpha3)
-            m%varpi = nd%zeta * a
-            m%gamma1 = a * (1.0_dp + alpha1 / alpha3)
-            m%gamma2 = a / alpha3
-            m%c = 1.0_dp + a * alpha1**2 / alpha3
-            m%d = alpha1 * a / alpha3
-            m%r = a / alpha3
-            m%hbar = a / alpha2
+        associate (a => nd(A_CHECK), a1 => nd(ALPHA1), a2 => nd(ALPHA2), a3 => nd(ALPHA3))
+            m%rho = a * nd(VARSIGMA)
+            m%alpha = a * (1.0_dp - 1.0_dp / a3)
+            m%varpi = nd(ZETA) * a
+            m%gamma1 = a * (1.0_dp + a1 / a3)
+            m%gamma2 = a / a3
+            m%c = 1.0_dp + a * a1**2 / a3
+            m%d = a1 * a / a3
+            m%r = a / a3
+            m%hbar = a / a2
         end associate
-        m%tau0 = mat%tau0 / nd%omega
-        m%tau = mat%tau / nd%omega
+        m%tau0 = mat%tau0 / nd(OMEGA)
+        m%tau = mat%tau / nd(OMEGA)
     end function model_from_material
 
     !> &material must be such that (2.10)-(2.11) can be evaluated: checked here, since the
@@ -245,27 +236,27 @@ contains
     !> gives the paper's (7.1) one (the &model defaults): varpi = zeta a-check, tau0* = tau0/omega.
     subroutine echo_effects(mat)
         type(material_t), intent(in) :: mat
-        type(nondim_t) :: nd
+        real(dp) :: nd(size(NONDIM_NAMES))
         type(model_t) :: paper
 
         nd = nondim_groups(mat)
         if (.not. mat%lambda_v + 2.0_dp * mat%mu_v > 0.0_dp) write (output_unit, '(2x, a)') &
             'off: viscosity (lambda_v + 2 mu_v = 0; varpi = ' // format_real(paper%varpi) // &
             ' of (7.1) is lambda_v + 2 mu_v = ' // &
-            format_real(paper%varpi * nd%omega * (mat%lambda + 2.0_dp * mat%mu) / nd%a_check) // ' Pa s)'
+            format_real(paper%varpi * nd(OMEGA) * (mat%lambda + 2.0_dp * mat%mu) / nd(A_CHECK)) // ' Pa s)'
         if (.not. mat%tau0 > 0.0_dp) write (output_unit, '(2x, a)') &
             'off: second sound (tau0 = 0: Fourier''s law; tau0* = ' // format_real(paper%tau0) // &
-            ' of (7.1) is tau0 = ' // format_real(paper%tau0 * nd%omega) // ' s)'
+            ' of (7.1) is tau0 = ' // format_real(paper%tau0 * nd(OMEGA)) // ' s)'
         if (.not. mat%tau > 0.0_dp) write (output_unit, '(2x, a)') &
             'off: diffusion relaxation (tau = 0: Fick''s law; tau* = ' // format_real(paper%tau) // &
-            ' of (7.1) is tau = ' // format_real(paper%tau * nd%omega) // ' s)'
+            ' of (7.1) is tau = ' // format_real(paper%tau * nd(OMEGA)) // ' s)'
     end subroutine echo_effects
 
     !> Echo the physical values of cfg%material, the nondimensional groups nd computed from
     !> them and the &model values cfg%model (stdout).
     subroutine echo_material(cfg, nd)
         type(config_t), intent(in) :: cfg
-        type(nondim_t), intent(in) :: nd
+        real(dp), intent(in) :: nd(:)
         integer :: k
 
         write (output_unit, '(a)') 'rodcontact: &material (SI units) -> &model by (2.10)-(2.11)'
@@ -273,7 +264,7 @@ contains
         call echo_group(cfg, 'material')
         write (output_unit, '(2x, a)') 'derived (2.10)'
         do k = 1, size(NONDIM_NAMES)
-            call echo_row(trim(NONDIM_NAMES(k)), nondim_value(nd, k), trim(NONDIM_UNITS(k)))
+            call echo_row(trim(NONDIM_NAMES(k)), nd(k), trim(NONDIM_UNITS(k)))
         end do
         write (output_unit, '(2x, a)') '&model (2.11)'
         call echo_group(cfg, 'model')
@@ -292,17 +283,6 @@ contains
             call echo_row(trim(INPUT_VARS(k)%name), item%reals(1), trim(INPUT_VARS(k)%unit))
         end do
     end subroutine echo_group
-
-    !> The k-th group of nd (NONDIM_NAMES(k)).
-    pure real(dp) function nondim_value(nd, k)
-        type(nondim_t), intent(in) :: nd
-        integer, intent(in) :: k
-        real(dp) :: values(size(NONDIM_NAMES))
-
-        values = [nd%beta1, nd%beta2, nd%omega, nd%delta, nd%varsigma, nd%zeta, nd%a_check, nd%alpha1, &
-                  nd%alpha2, nd%alpha3]
-        nondim_value = values(k)
-    end function nondim_value
 
     subroutine echo_row(name, value, unit)
         character(len=*), intent(in) :: name, unit

@@ -263,14 +263,14 @@ contains
         call read_entries(file, '/series', ser)
         call read_rows(ser, '/series/', ['t'], -1, t)
         n = rows_to_copy(t(1, 1, :), t_last)
-        call read_rows(ser, '/series/', SERIES%name, n, values)
+        call read_rows(ser, '/series/', [SERIES%name], n, values)   ! ([ ]: no array temporary)
         do k = 1, n
             call writer%append_series(values(1, :, k))
         end do
         call read_entries(file, '/snapshots', snaps)
         call read_rows(snaps, '/snapshots/', ['t'], -1, t)
         n = rows_to_copy(t(1, 1, :), t_last)
-        call read_rows(snaps, '/snapshots/', SNAPSHOTS%name, n, values)
+        call read_rows(snaps, '/snapshots/', [SNAPSHOTS%name], n, values)
         do k = 1, n
             call writer%append_snapshot(t(1, 1, k), values(:, :, k))
         end do
@@ -278,7 +278,7 @@ contains
             ! snapshot k: x and the fields from entry offset + 1 to offset + count
             call read_rows(snaps, NATIVE, ['offset', 'count '], n, at)
             call read_rows(snaps, NATIVE, ['x'], nint(sum(at(1, :, max(n, 1):n))), x)
-            call read_rows(snaps, NATIVE, SNAPSHOTS%name, size(x, 3), values)
+            call read_rows(snaps, NATIVE, [SNAPSHOTS%name], size(x, 3), values)
             do k = 1, n
                 associate (first => nint(at(1, 1, k)) + 1, last => nint(at(1, 1, k) + at(1, 2, k)))
                     call writer%append_native(x(1, 1, first:last), transpose(values(1, :, first:last)))
@@ -290,7 +290,7 @@ contains
         call check_allocation(stat, message, 'the copied history')
         do j = 1, size(ESTIMATE_PARTS)
             ! /snapshots/<part>/<field>: the fields of SNAPSHOTS(:N_OUTPUT_FIELDS)
-            call read_rows(snaps, '/snapshots/'//trim(ESTIMATE_PARTS(j))//'/', SNAPSHOTS(:N_OUTPUT_FIELDS)%name, &
+            call read_rows(snaps, '/snapshots/'//trim(ESTIMATE_PARTS(j))//'/', [SNAPSHOTS(:N_OUTPUT_FIELDS)%name], &
                            n, values)
             parts(:, j, :) = values(1, :, :)
         end do

@@ -1,7 +1,7 @@
 !> The checkpoint writer of output_m (the layout: docs/output.md, "Checkpoints"): a
 !> submodule, so that it reaches the writer's open file without making it public.
 submodule (output_m) output_checkpoint_s
-    use hdf5, only: h5lexists_f, H5T_STD_I64LE, &
+    use hdf5, only: H5T_STD_I64LE, &
                     h5kind_to_type, H5_INTEGER_KIND, H5P_DEFAULT_F, &
                     h5tcreate_f, h5tinsert_f, H5T_COMPOUND_F
     use checkpoint_m, only: entry_t
@@ -78,7 +78,6 @@ contains
         do k = 1, ckpt%n
             if (w%ckpt_set(k) /= k) cycle
             do slot = 0, 1
-                call make_groups(w, set_path(ckpt%entries(k), slot))
                 call create_set(w, k, slot, ckpt)
             end do
         end do
@@ -95,21 +94,6 @@ contains
         path = 'checkpoint/slot'//int_str(slot)//'/'//entry%name
         if (entry%rank == 0) path = path(:index(path, '/', back=.true.))//'scalars'
     end function set_path
-
-    !> The groups on the path to dataset `path` that do not exist yet.
-    subroutine make_groups(w, path)
-        class(h5_writer_t), intent(inout) :: w
-        character(len=*), intent(in) :: path
-        logical :: exists
-        integer :: i, hdferr
-
-        do i = 1, len(path)
-            if (path(i:i) /= '/') cycle
-            call h5lexists_f(w%file_id, path(:i - 1), exists, hdferr)
-            call w%check(hdferr, 'h5lexists_f /'//path(:i - 1))
-            if (.not. exists) call w%make_group(path(:i - 1))
-        end do
-    end subroutine make_groups
 
     !> Create the dataset of first entry d in a slot and write it: an owner's scalars as one
     !> compound of named members (int64 or float64, native: the machine's byte order, which
@@ -154,7 +138,8 @@ contains
                 call h5screate_simple_f(entry%rank, dims, space_id, hdferr, [H5S_UNLIMITED_F, H5S_UNLIMITED_F])
             end if
             call w%check(hdferr, 'h5screate_f /'//name)
-            call h5dcreate_f(w%file_id, name, file_type, space_id, w%ckpt_ids(d, slot), hdferr, dcpl_id=dcpl_id)
+            call h5dcreate_f(w%file_id, name, file_type, space_id, w%ckpt_ids(d, slot), hdferr, dcpl_id, &
+                             w%lcpl_id)
             call w%check(hdferr, 'h5dcreate_f /'//name)
             if (entry%rank > 0) call h5pclose_f(dcpl_id, hdferr)
             call w%check(hdferr, 'h5pclose_f /'//name)

@@ -1,5 +1,5 @@
 !> Creating the writer's file (output_m's create), /events at the end of the run, the groups
-!> and datasets of the other parts (make_group, create_dataset), and their self-description
+!> and datasets of the other parts (create_dataset), and their self-description
 !> (docs/output.md, "Datasets" and "netCDF"): CF-style long_name and units, with &material the
 !> factor to SI units, and the HDF5 dimension scales. And what a snapshot adds beyond the
 !> output grid: on an adaptive mesh the snapshot on its own mesh (/snapshots/native; every
@@ -8,7 +8,8 @@
 !> first append, kept open until finish() and buffered as the series are. A submodule of
 !> output_m, so that it sets up the writer's private state.
 submodule (output_m) output_create_s
-    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F, H5T_STD_I64LE
+    use hdf5, only: h5lcreate_hard_f, H5P_DEFAULT_F, H5T_STD_I64LE, H5P_LINK_CREATE_F, &
+                    h5pset_create_inter_group_f
     use h5ds, only: h5dsset_scale_f, h5dsattach_scale_f
     implicit none
 
@@ -29,6 +30,7 @@ contains
     module procedure writer_create
         character(len=:), allocatable :: dir, message
         logical :: ok
+        integer :: hdferr
 
         if (w%opened) call fatal(EXIT_OUTPUT, 'output', "internal error: create() on a writer that is &
                                  &already writing '"//w%part_path//"'")
@@ -66,6 +68,10 @@ contains
         ! from here on abandon() has something to close
         w%opened = .true.
         call writer_open_file(w, create=.true.)
+        call h5pcreate_f(H5P_LINK_CREATE_F, w%lcpl_id, hdferr)
+        call w%check(hdferr, 'h5pcreate_f (link creation)')
+        call h5pset_create_inter_group_f(w%lcpl_id, 1, hdferr)
+        call w%check(hdferr, 'h5pset_create_inter_group_f')
 
         call create_layout(w, x)
         call w%attr('status', 'incomplete')
@@ -88,11 +94,9 @@ contains
         integer(hid_t) :: x_id
         integer :: hdferr, k
 
-        call w%make_group('/mesh')
         call create_dataset(w, '/mesh/x', H5T_IEEE_F64LE, CHUNK, x_id, &
                             'position x along the rod (nondimensional, scale: position)', &
                             '1', si='position', scale='x', values=x)
-        call w%make_group('/series')
         call w%start_buffered(w%series, N_SERIES, SERIES_BUFFER_SIZE)
         w%series%paths = '/series/'//SERIES%name
         w%series%whole = SERIES%is_integer
@@ -100,7 +104,6 @@ contains
             call create_dataset(w, trim(w%series%paths(S_T)), H5T_IEEE_F64LE, CHUNK, &
                                 ids(S_T), described(t%long_name, t%scale), t%units, si=t%scale, &
                                 scale='t')
-            call w%make_group('/snapshots')
             call create_dataset(w, '/snapshots/t', H5T_IEEE_F64LE, CHUNK, &
                                 w%snap_t_id, described(t%long_name, t%scale), &
                                 t%units, si=t%scale, scale='t')
@@ -176,7 +179,7 @@ contains
             call h5pset_deflate_f(dcpl_id, w%compression, hdferr)
             call w%check(hdferr, 'h5pset_deflate_f '//path)
         end if
-        call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr, dcpl_id=dcpl_id)
+        call h5dcreate_f(w%file_id, path, file_type, space_id, dset_id, hdferr, dcpl_id, w%lcpl_id)
         call w%check(hdferr, 'h5dcreate_f '//path)
         if (present(values)) then
             if (file_type == H5T_STD_I32LE .and. n(1) > 0) then   ! no conversion buffer (append_rows)
@@ -248,17 +251,6 @@ contains
         call w%check(hdferr, 'h5sclose_f (memory) '//what)
     end subroutine close_spaces
 
-    !> Create the group at `path` (its parent exists).
-    module procedure writer_make_group
-        integer(hid_t) :: group_id
-        integer :: hdferr
-
-        call h5gcreate_f(w%file_id, path, group_id, hdferr)
-        call w%check(hdferr, 'h5gcreate_f '//path)
-        call h5gclose_f(group_id, hdferr)
-        call w%check(hdferr, 'h5gclose_f '//path)
-    end procedure writer_make_group
-
     !> /events/t (float64) and /events/kind (int32, +1 onset, -1 release), n_events long
     !> (possibly 0), written once at the end of the run; t is the coordinate of kind
     !> (docs/output.md, "netCDF").
@@ -267,7 +259,6 @@ contains
 
         call w%need_open('write_events()')
         call w%leave_swmr()   ! a new group: not in SWMR writing (output_file_s)
-        call w%make_group('/events')
         associate (time => SERIES(S_T))
             call create_dataset(w, '/events/t', H5T_IEEE_F64LE, CHUNK, t_id, &
                                 described(trim(time%long_name)//' of a change of the contact '// &
@@ -358,7 +349,6 @@ contains
 
         call w%leave_swmr()
         call w%hold(w%snap_t_id, '/snapshots/t')   ! (create_index's coordinate)
-        call w%make_group(GROUP)
         w%native_created = .true.
         call create_dataset(w, GROUP//'/x', H5T_IEEE_F64LE, VALUES_CHUNK, x_id, &
                             'nodes of the mesh of each snapshot, concatenated (see offset, count)', &
@@ -428,7 +418,6 @@ contains
         call w%start_buffered(w%estimates, size(paths), SERIES_CHUNK)
         w%estimates%paths = [paths]
         do part = 1, size(ESTIMATE_PARTS)
-            call w%make_group('/snapshots/'//trim(ESTIMATE_PARTS(part)))
             do k = 1, N_OUTPUT_FIELDS
                 call create_dataset(w, trim(paths(k, part)), H5T_IEEE_F64LE, CHUNK, &
                                     w%estimates%ids(k + N_OUTPUT_FIELDS * (part - 1)), &

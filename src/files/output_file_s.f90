@@ -109,6 +109,9 @@ contains
         ! holds; the next create() starts from a reset writer
         call h5fclose_f(w%file_id, hdferr)
         call w%check(hdferr, 'h5fclose_f')
+        call h5pclose_f(w%lcpl_id, hdferr)
+        call w%check(hdferr, 'h5pclose_f (link creation)')
+        w%lcpl_id = -1
         w%file_id = -1
         w%opened = .false.
         w%swmr = .false.
@@ -135,6 +138,8 @@ contains
         w%swmr = .false.
         ! the file was opened with H5F_CLOSE_STRONG, so this also closes every dataset
         if (w%file_id >= 0) call h5fclose_f(w%file_id, hdferr)
+        if (w%lcpl_id >= 0) call h5pclose_f(w%lcpl_id, hdferr)
+        w%lcpl_id = -1
         w%file_id = -1
         call remove_file(w%part_path)
     end procedure writer_abandon

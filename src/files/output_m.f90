@@ -74,6 +74,7 @@ module output_m
         integer :: n_nodes = 0
         integer :: compression = 0                 !< deflate level of the extendible datasets (0: none)
         integer(hid_t) :: file_id = -1
+        integer(hid_t) :: lcpl_id = -1             !< link creation: missing groups created
         type(buffered_t) :: series                 !< /series/<name>, in fields_m's SERIES order
         integer(hid_t) :: snap_t_id = -1
         integer(hid_t) :: snap_field_ids(N_SNAPSHOT_FIELDS) = -1
@@ -115,7 +116,6 @@ module output_m
         procedure, private :: check => writer_check
         procedure, private :: need_open => writer_need_open
         procedure, private :: fail => writer_fail
-        procedure, private :: make_group => writer_make_group
         procedure, private :: start_buffered => writer_start_buffered
         procedure, private :: push => writer_push
         procedure, private :: write_buffer => writer_write_buffer
@@ -177,11 +177,6 @@ module output_m
             real(dp), intent(in) :: values(*)
             logical, intent(in), optional :: whole
         end subroutine writer_append_rows
-
-        module subroutine writer_make_group(w, path)
-            class(h5_writer_t), intent(inout) :: w
-            character(len=*), intent(in) :: path
-        end subroutine writer_make_group
 
         module subroutine writer_write_events(w, t, kind)
             class(h5_writer_t), intent(inout) :: w

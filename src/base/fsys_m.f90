@@ -185,8 +185,7 @@ contains
 
         err = c_path_op(OP_CREATE_EMPTY, trim(path)//c_null_char, c_null_char)
         ok = err == 0
-        message = ''
-        if (.not. ok) message = strerror(err)
+        message = strerror(err)
     end subroutine create_empty_file
 
     !> Reserve disk space for the first `bytes` bytes of file `path` (it grows to that size if
@@ -201,8 +200,7 @@ contains
 
         err = c_reserve(trim(path)//c_null_char, int(bytes, c_long_long))
         ok = err == 0
-        message = ''
-        if (.not. ok) message = strerror(int(err))
+        message = strerror(int(err))
     end subroutine reserve_file_size
 
     !> The system's reason for a failed write when errno names one about space or the device
@@ -210,19 +208,17 @@ contains
     !> Call it right after the failing call (HDF5 keeps the errno of its failed write).
     function write_failure_reason() result(text)
         character(len=:), allocatable :: text
-        integer(c_int) :: err
 
-        err = c_write_errno()
-        text = ''
-        if (err /= 0) text = strerror(int(err))
+        text = strerror(int(c_write_errno()))
     end function write_failure_reason
 
-    !> strerror(err) as a Fortran string.
+    !> strerror(err) as a Fortran string; '' for 0 (no error).
     function strerror(err) result(text)
         integer, intent(in) :: err
         character(len=:), allocatable :: text
 
-        text = from_c_string(c_strerror(int(err, c_int)), 'unknown error')
+        text = ''
+        if (err /= 0) text = from_c_string(c_strerror(int(err, c_int)), 'unknown error')
     end function strerror
 
     !> The NUL-terminated C string at `text` as a Fortran string (`null` for a null pointer).

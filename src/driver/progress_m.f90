@@ -222,11 +222,7 @@ contains
         character(len=32) :: t_text
         real(dp) :: percent
 
-        if (n_steps > 0) then
-            percent = 100.0_dp * real(step, dp) / real(n_steps, dp)
-        else
-            percent = 0.0_dp
-        end if
+        percent = 100.0_dp * real(step, dp) / real(max(n_steps, 1), dp)
         write (percent_text, '(f5.1,a)') percent, '%'
         ! not f0.6: that drops the leading zero of 0.5; NaN and Infinity are not compared
         write (t_text, '(f15.6)') t

@@ -13,7 +13,7 @@ module input_vars_m
     public :: input_var_t, input_item_t, INPUT_VARS, GROUP_NAMES
     public :: KIND_REAL, KIND_INTEGER, KIND_STRING, KIND_LOGICAL, KIND_COEFFS, KIND_PAIR
     public :: var_kind, input_item, input_items, table_items, read_namelist
-    public :: group_list, var_list, kind_description, changes_history
+    public :: group_list, var_list, joined, kind_description, changes_history
 
     !> Kinds of input variables (codes as in the reader's messages).
     character, parameter :: KIND_REAL = 'r'      !< a real number
@@ -162,7 +162,7 @@ contains
     pure function group_list() result(list)
         character(len=:), allocatable :: list
 
-        list = joined(GROUP_NAMES, '&')
+        list = joined(GROUP_NAMES, '&', '')
     end function group_list
 
     !> 'rho, alpha, ...': the variables of `group`.
@@ -170,18 +170,18 @@ contains
         character(len=*), intent(in) :: group
         character(len=:), allocatable :: list
 
-        list = joined(pack(INPUT_VARS%name, INPUT_VARS%group == group), '')
+        list = joined(pack(INPUT_VARS%name, INPUT_VARS%group == group), '', '')
     end function var_list
 
-    !> The words, each after `mark`, separated by ', '.
-    pure function joined(words, mark) result(list)
-        character(len=*), intent(in) :: words(:), mark
+    !> The words, each between `before` and `after`, separated by ', '.
+    pure function joined(words, before, after) result(list)
+        character(len=*), intent(in) :: words(:), before, after
         character(len=:), allocatable :: list
         integer :: k
 
-        list = mark // trim(words(1))
+        list = before // trim(words(1)) // after
         do k = 2, size(words)
-            list = list // ', ' // mark // trim(words(k))
+            list = list // ', ' // before // trim(words(k)) // after
         end do
     end function joined
 
@@ -189,24 +189,15 @@ contains
     pure function kind_description(kind) result(text)
         character, intent(in) :: kind
         character(len=:), allocatable :: text
+        character(len=*), parameter :: KINDS = KIND_REAL // KIND_INTEGER // KIND_STRING // KIND_LOGICAL // &
+                                               KIND_PAIR
+        character(len=*), parameter :: TEXTS(5) = [character(len=34) :: 'a real number', 'an integer', &
+            "a quoted string, e.g. 'value'", '.true. or .false.', 'two real numbers: amplitude, x_end']
 
-        select case (kind)
-        case (KIND_REAL)
-            text = 'a real number'
-        case (KIND_INTEGER)
-            text = 'an integer'
-        case (KIND_STRING)
-            text = "a quoted string, e.g. 'value'"
-        case (KIND_LOGICAL)
-            text = '.true. or .false.'
-        case (KIND_COEFFS)
-            text = 'at most ' // int_str(MAX_POLY_DEGREE + 1) // &
-                   ' real coefficients c0, c1, ... (of x**0, x**1, ...)'
-        case (KIND_PAIR)
-            text = 'two real numbers: amplitude, x_end'
-        case default
-            text = 'a valid value'
-        end select
+        text = 'a valid value'
+        if (index(KINDS, kind) > 0) text = trim(TEXTS(index(KINDS, kind)))
+        if (kind == KIND_COEFFS) text = 'at most ' // int_str(MAX_POLY_DEGREE + 1) // &
+                                        ' real coefficients c0, c1, ... (of x**0, x**1, ...)'
     end function kind_description
 
 end module input_vars_m

@@ -13,6 +13,7 @@ module validate_m
     use validate_initial_m, only: validate_initial, require_real, NONNEGATIVE, POSITIVE, DIVISOR
     use contact_laws_m, only: law_names, constraint_law
     use material_m, only: model_from_material
+    use input_vars_m, only: joined
     implicit none
     private
     public :: validate_config, scheme_rule_t
@@ -301,15 +302,10 @@ contains
         character(len=*), intent(in) :: value
         character(len=*), intent(in) :: allowed(:)
         character(len=*), intent(in) :: where
-        character(len=:), allocatable :: list
-        integer :: k
 
         if (any(allowed == value)) return
-        list = "'" // trim(allowed(1)) // "'"
-        do k = 2, size(allowed)
-            list = list // ", '" // trim(allowed(k)) // "'"
-        end do
-        call fatal(EXIT_INPUT, where, "got '" // trim(value) // "'; must be one of " // list)
+        call fatal(EXIT_INPUT, where, "got '" // trim(value) // "'; must be one of " // &
+                   joined(allowed, "'", "'"))
     end subroutine require_one_of
 
     !> bytes in GiB with one decimal.

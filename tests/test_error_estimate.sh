@@ -135,6 +135,18 @@ check "4d. restart with estimates on an adaptive mesh, adaptive midpoint steps: 
 status=$?
 check "3c. a restart that drops the option is refused (exit 2, names output.error_estimate)" \
     test "$status" = 2 -a -n "$(grep output.error_estimate err.txt)"
+# a checkpoint whose companion queue was cut short (a damaged file): refused, not read past its end
+cp fixed_half.h5 cut_queue.h5 && "$py" -c "
+import h5py
+with h5py.File('cut_queue.h5', 'r+') as f:
+    for slot in ('slot0', 'slot1'):
+        g = f['checkpoint/' + slot + '/error_companions/C']
+        q = g['queue_t'][:2]; del g['queue_t']; g['queue_t'] = q"
+"$exe" "${exp1[@]}" --set time.t_end=0.6 --set time.restart_from="'cut_queue.h5'" --set time.scheme="'bdf2'" \
+    --set output.error_estimate=.true. --set output.snapshot_every=30 --set output.prefix="'cut'" >/dev/null 2>err.txt
+status=$?
+check "3d. a checkpoint with a companion's queue cut short is refused (exit 2, names the companion, no output)" \
+    test "$status" = 2 -a -n "$(grep 'companion C has a queue of another size' err.txt)" -a ! -e cut.h5 -a ! -e cut.h5.part
 
 if "$py" -c 'import scipy.fft, scipy.linalg' 2>/dev/null; then
     check "5. estimate / true error on exp1 before contact in [1/3, 3] (fixed steps; adaptive Euler, midpoint; adaptive mesh: Euler), on exp2's fronts in [1/10, 10] (adaptive mesh: midpoint)" \

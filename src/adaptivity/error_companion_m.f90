@@ -329,6 +329,10 @@ contains
                 call ckpt%sync(p//'/n_queued', c%n_queued)
                 call ckpt%sync(p//'/queue_dt', c%queue_dt)
                 call ckpt%sync(p//'/queue_t', c%queue_t)
+                ! fewer than 3 k steps queued (companions_follow steps at 3 k), in QUEUE_MAX slots
+                if (any([size(c%queue_dt), size(c%queue_t)] /= QUEUE_MAX) .or. c%n_queued < 0 &
+                    .or. c%n_queued >= 3 * STEPS_PER_STEP(j)) call fatal(EXIT_INPUT, 'restart', &
+                    'the checkpoint''s error-estimate companion '//NAMES(j:j)//' has a queue of another size')
             end associate
         end do
         call ckpt%sync('error_companions/failed', self%failed)

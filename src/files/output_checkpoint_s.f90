@@ -64,6 +64,7 @@ contains
         call h5dcreate_f(w%file_id, 'checkpoint/current', H5T_STD_I64LE, space_id, w%ckpt_current_id, hdferr)
         call w%check(hdferr, 'h5dcreate_f /checkpoint/current')
         call h5sclose_f(space_id, hdferr)
+        call w%check(hdferr, 'h5sclose_f /checkpoint/current')
         call put_current(w, -1_int64)
         allocate (w%ckpt_names(ckpt%n), w%ckpt_set(ckpt%n), w%ckpt_ids(ckpt%n, 0:1), w%ckpt_types(ckpt%n), &
                   stat=stat, errmsg=message)

@@ -319,13 +319,13 @@ contains
     !> read into set; a row is the dataset's values at one time (its last Fortran index),
     !> float64 (an integer dataset's too, which it holds exactly).
     subroutine read_rows(set, group, names, n, values)
-        type(checkpoint_t), intent(in) :: set
+        type(checkpoint_t), intent(inout) :: set
         character(len=*), intent(in) :: group, names(:)
         integer, intent(in) :: n
         real(dp), allocatable, intent(out) :: values(:, :, :)
         type(entry_t) :: e
         character(len=:), allocatable :: path
-        integer :: k, width, m, stat
+        integer :: i, k, width, m, stat
         character(len=256) :: message
 
         do k = 1, size(names)
@@ -344,6 +344,10 @@ contains
             else
                 values(:, k, :) = reshape(transfer(e%values(:width * m), 1.0_dp, width * m), [width, m])
             end if
+            if (n < 0) cycle   ! (a time column, read again with the other datasets)
+            do i = 1, set%n   ! its words, copied, dropped: a large history is not held twice
+                if (set%entries(i)%name == e%name) deallocate (set%entries(i)%values)
+            end do
         end do
     end subroutine read_rows
 

@@ -136,7 +136,7 @@ contains
         entry = entry_t(name, .false., 1, [size(values), 1], &
                         transfer(values, [0_int64]))
         call sync_entry(self, entry)
-        values = transfer(entry%values, [0.0_dp])
+        if (self%reading) values = transfer(entry%values, [0.0_dp])
     end subroutine sync_reals
 
     subroutine sync_real2(self, name, values)
@@ -149,7 +149,7 @@ contains
         entry = entry_t(name, .false., 2, shape(values), &
                         transfer(values, [0_int64]))
         call sync_entry(self, entry)
-        values = reshape(transfer(entry%values, [0.0_dp]), entry%dims)
+        if (self%reading) values = reshape(transfer(entry%values, [0.0_dp]), entry%dims)
     end subroutine sync_real2
 
     subroutine sync_ints(self, name, values)
@@ -161,7 +161,7 @@ contains
         if (.not. allocated(values)) allocate (values(0))
         entry = entry_t(name, .true., 1, [size(values), 1], values)
         call sync_entry(self, entry)
-        values = entry%values
+        if (self%reading) values = entry%values
     end subroutine sync_ints
 
     !> Put entry, or (reading) get the one of its name.
